@@ -1,0 +1,35 @@
+//! Ray–sphere interval.
+//!
+//! The origin is moved to the point of the line closest to the centre before the quadratic is
+//! formed (the "Ray Tracing Gems" ch. 7 formulation), so the discriminant is computed from a
+//! vector of length ≈ distance(line, centre) rather than from `|o − c|²`: far origins lose only
+//! what representing `o` itself loses.
+
+use crate::ray::{in_range, Interval, Ray};
+use crate::real::Real;
+use crate::vec::V3;
+
+/// Interval of the ray's line with the ball `|x − c| ≤ r`, with unit outward normals.
+///
+/// `u_in`/`u_out` are set to `u` (the caller's curve parameter for this sphere, e.g. 0 or 1
+/// for a link's end spheres). Lanes with `r ≤ 0` miss. Never NaN for finite input with `d ≠ 0`.
+#[inline(always)]
+pub fn intersect_sphere<T: Real>(ray: &Ray<T>, c: V3<T>, r: T, u: T) -> Interval<T> {
+    let d2 = ray.d.length2();
+    let f = ray.o - c;
+    // t of the closest point of the line to c.
+    let tc = -f.dot(ray.d) / d2;
+    // Perpendicular from c to the line (accurate: no |f|² − (f·d)² cancellation).
+    let l = f + ray.d * tc;
+    let disc = r * r - l.length2();
+    let ok = disc.ge(T::zero()) & r.gt(T::zero());
+    let h = (disc.max(T::zero()) / d2).sqrt();
+    let t_in = tc - h;
+    let t_out = tc + h;
+    // Hit points relative to c: l ∓ h·d (no o + t·d − c cancellation).
+    let inv_r = T::one() / T::select(ok, r, T::one());
+    let n_in = (l - ray.d * h) * inv_r;
+    let n_out = (l + ray.d * h) * inv_r;
+    let hit = ok & in_range(ray, t_in, t_out);
+    Interval { t_in, t_out, n_in, n_out, u_in: u, u_out: u, hit }.masked(hit)
+}
