@@ -24,6 +24,17 @@ pub mod ray;
 pub mod real;
 pub mod vec;
 
+#[cfg(feature = "render")]
+pub mod accel;
+#[cfg(feature = "render")]
+pub mod io;
+#[cfg(feature = "render")]
+pub mod render;
+#[cfg(feature = "cli")]
+pub mod report;
+#[cfg(feature = "render")]
+pub mod scene;
+
 pub use kernel::{HanLink, LinkShape, RoundCone};
 pub use ray::{Interval, Ray};
 pub use real::{Mask, Real, Scalar};

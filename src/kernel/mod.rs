@@ -10,3 +10,7 @@ pub mod sphere;
 pub use cone::{TangentCone, UnitConeTransform};
 pub use link::{HanLink, LinkShape, RoundCone};
 pub use sphere::intersect_sphere;
+pub mod hermite;
+pub mod obb;
+pub mod roots;
+pub mod spline;

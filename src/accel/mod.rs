@@ -1,0 +1,1 @@
+//! Acceleration structures: BVH over links and spline segments.

@@ -1,0 +1,1 @@
+//! File readers and writers: SWC, TrackVis .trk, MRtrix .tck, OBJ polylines, .npy.

@@ -1,0 +1,5 @@
+//! The `tubecast` command line.
+fn main() {
+    eprintln!("tubecast: the command line is being built (see issue 5)");
+    std::process::exit(2);
+}

@@ -1,0 +1,1 @@
+//! Camera, shading, opaque and transparent compositing, PNG output.

@@ -1,0 +1,1 @@
+//! Accuracy, speed and stability reports (SVG charts + markdown).

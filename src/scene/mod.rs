@@ -1,0 +1,1 @@
+//! Owned scene data built from user input: nodes, links, splines; primitive selection.
