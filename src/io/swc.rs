@@ -1,0 +1,153 @@
+//! SWC neuron morphologies: one node per line, seven whitespace-separated columns
+//! `id type x y z radius parent`; `#` starts a comment; rows may come in any order; a parent
+//! of `-1` marks a root and there may be several roots. Coordinates and radii are kept in the
+//! file's units.
+
+use super::{parse_finite, IoError};
+use std::collections::HashMap;
+
+/// One SWC row.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SwcNode {
+    /// Node id (unique in the file).
+    pub id: i64,
+    /// Structure type (1 soma, 2 axon, 3 basal dendrite, 4 apical dendrite, ...).
+    pub kind: i32,
+    /// Position.
+    pub pos: [f64; 3],
+    /// Radius (≥ 0).
+    pub radius: f64,
+    /// Parent id, or `-1` for a root.
+    pub parent: i64,
+}
+
+fn parse_int(tok: &str) -> Option<i64> {
+    if let Ok(v) = tok.parse::<i64>() {
+        return Some(v);
+    }
+    // Some writers print integers as "12.0".
+    let f = tok.parse::<f64>().ok()?;
+    if f.is_finite() && f.fract() == 0.0 && f.abs() < 9.0e15 {
+        Some(f as i64)
+    } else {
+        None
+    }
+}
+
+/// Parse an SWC file. Errors name the line: wrong column count, a non-number, a negative or
+/// non-finite value, a duplicate id, a parent that does not exist, a node that is its own
+/// ancestor (cycle), or a file without nodes.
+pub fn read(data: &[u8], name: &str) -> Result<Vec<SwcNode>, IoError> {
+    let text = std::str::from_utf8(data).map_err(|e| {
+        IoError::offset(name, e.valid_up_to() as u64, "not UTF-8 text (is this an SWC file?)")
+    })?;
+    let mut nodes = Vec::new();
+    let mut lines = Vec::new(); // line number of each node
+    let mut index: HashMap<i64, usize> = HashMap::new();
+    for (i, raw) in text.lines().enumerate() {
+        let ln = i + 1;
+        let line = raw.split('#').next().unwrap_or("").trim();
+        if line.is_empty() {
+            continue;
+        }
+        let cols: Vec<&str> = line.split_whitespace().collect();
+        if cols.len() != 7 {
+            return Err(IoError::line(
+                name,
+                ln,
+                format!("expected 7 columns (id type x y z radius parent), found {}", cols.len()),
+            ));
+        }
+        let id = parse_int(cols[0])
+            .ok_or_else(|| IoError::line(name, ln, format!("id {:?} is not an integer", cols[0])))?;
+        if id < 0 {
+            return Err(IoError::line(name, ln, format!("id {id} is negative")));
+        }
+        let kind = parse_int(cols[1])
+            .filter(|k| i32::try_from(*k).is_ok())
+            .ok_or_else(|| IoError::line(name, ln, format!("type {:?} is not an integer", cols[1])))?
+            as i32;
+        let mut v = [0.0; 4];
+        for (k, what) in ["x", "y", "z", "radius"].iter().enumerate() {
+            v[k] = parse_finite(cols[2 + k]).ok_or_else(|| {
+                IoError::line(name, ln, format!("{what} {:?} is not a finite number", cols[2 + k]))
+            })?;
+        }
+        if v[3] < 0.0 {
+            return Err(IoError::line(name, ln, format!("radius {} is negative", v[3])));
+        }
+        let parent = parse_int(cols[6]).ok_or_else(|| {
+            IoError::line(name, ln, format!("parent {:?} is not an integer", cols[6]))
+        })?;
+        if parent < -1 {
+            return Err(IoError::line(name, ln, format!("parent {parent} (roots use -1)")));
+        }
+        if parent == id {
+            return Err(IoError::line(name, ln, format!("node {id} is its own parent")));
+        }
+        if let Some(&prev) = index.get(&id) {
+            return Err(IoError::line(
+                name,
+                ln,
+                format!("duplicate id {id} (first on line {})", lines[prev]),
+            ));
+        }
+        index.insert(id, nodes.len());
+        lines.push(ln);
+        nodes.push(SwcNode { id, kind, pos: [v[0], v[1], v[2]], radius: v[3], parent });
+    }
+    if nodes.is_empty() {
+        return Err(IoError::file(name, "no nodes (empty or only comments)"));
+    }
+    // Parents exist, and following parents always reaches a root (no cycles).
+    let mut state = vec![0u8; nodes.len()]; // 0 unknown, 1 on current path, 2 reaches a root
+    for start in 0..nodes.len() {
+        let mut path = Vec::new();
+        let mut cur = start;
+        loop {
+            match state[cur] {
+                2 => break,
+                1 => {
+                    return Err(IoError::line(
+                        name,
+                        lines[cur],
+                        format!("node {} is its own ancestor (parent cycle)", nodes[cur].id),
+                    ))
+                }
+                _ => {}
+            }
+            state[cur] = 1;
+            path.push(cur);
+            let p = nodes[cur].parent;
+            if p == -1 {
+                break;
+            }
+            match index.get(&p) {
+                Some(&pi) => cur = pi,
+                None => {
+                    return Err(IoError::line(
+                        name,
+                        lines[cur],
+                        format!("parent {p} of node {} does not exist", nodes[cur].id),
+                    ))
+                }
+            }
+        }
+        for k in path {
+            state[k] = 2;
+        }
+    }
+    Ok(nodes)
+}
+
+/// Write nodes as SWC text (shortest round-trip formatting of every number).
+pub fn write(nodes: &[SwcNode]) -> String {
+    let mut s = String::from("# written by tubecast\n# id type x y z radius parent\n");
+    for n in nodes {
+        s.push_str(&format!(
+            "{} {} {:?} {:?} {:?} {:?} {}\n",
+            n.id, n.kind, n.pos[0], n.pos[1], n.pos[2], n.radius, n.parent
+        ));
+    }
+    s
+}
