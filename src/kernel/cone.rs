@@ -225,6 +225,17 @@ pub fn intersect_stump_precomputed<T: Real>(
     cone: &TangentCone<T>,
     m: &UnitConeTransform<T>,
 ) -> Interval<T> {
+    let iv = stump_line(ray, cone, m);
+    iv.masked(in_range(ray, iv.t_in, iv.t_out))
+}
+
+/// The stump's line interval, no range test (see [`crate::kernel::sphere`]).
+#[inline(always)]
+pub(crate) fn stump_line<T: Real>(
+    ray: &Ray<T>,
+    cone: &TangentCone<T>,
+    m: &UnitConeTransform<T>,
+) -> Interval<T> {
     let o = m.point(ray.o);
     let d = m.dir(ray.d);
     let a = d.x * d.x + d.y * d.y - d.z * d.z;
@@ -249,7 +260,7 @@ pub fn intersect_stump_precomputed<T: Real>(
         let u = ((z - m.z_cap) / (T::one() - m.z_cap)).clamp(T::zero(), T::one());
         T::select(cone.swapped, T::one() - u, u)
     };
-    let hit = ok & cone.is_cone & in_range(ray, t0, t1);
+    let hit = ok & cone.is_cone;
     Interval { t_in: t0, t_out: t1, n_in, n_out, u_in: zu(t0), u_out: zu(t1), hit }.masked(hit)
 }
 
@@ -277,6 +288,13 @@ pub fn intersect_cylinder_naive<T: Real>(
     c2: V3<T>,
     r: T,
 ) -> Interval<T> {
+    let iv = cylinder_line(ray, c1, c2, r);
+    iv.masked(in_range(ray, iv.t_in, iv.t_out))
+}
+
+/// The cylinder's line interval, no range test.
+#[inline(always)]
+pub(crate) fn cylinder_line<T: Real>(ray: &Ray<T>, c1: V3<T>, c2: V3<T>, r: T) -> Interval<T> {
     let v = c2 - c1;
     let len = v.length();
     let len_ok = len.gt(T::zero());
@@ -297,7 +315,7 @@ pub fn intersect_cylinder_naive<T: Real>(
         V3::select(q, side, cap)
     };
     let u_at = |t: T| ((zo + zd * t) / T::select(len_ok, len, T::one())).clamp(T::zero(), T::one());
-    let hit = ok & len_ok & r.gt(T::zero()) & in_range(ray, t0, t1);
+    let hit = ok & len_ok & r.gt(T::zero());
     Interval { t_in: t0, t_out: t1, n_in: n_at(t0, q0), n_out: n_at(t1, q1), u_in: u_at(t0), u_out: u_at(t1), hit }
         .masked(hit)
 }

@@ -17,9 +17,9 @@
 //! Because the hull is convex and equals the union of its three pieces, the ray interval is
 //! the earliest entry and the latest exit over the pieces.
 
-use super::cone::{intersect_cylinder_naive, intersect_stump_precomputed, quadric_in_slab, slab};
+use super::cone::{cylinder_line, quadric_in_slab, slab, stump_line};
 use super::cone::{TangentCone, UnitConeTransform};
-use super::sphere::intersect_sphere;
+use super::sphere::sphere_line;
 use crate::ray::{in_range, Interval, Ray};
 use crate::real::{Mask, Real, Scalar};
 
@@ -128,14 +128,23 @@ impl<T: Real> RoundCone<T> {
     /// Stable ray–round-cone interval (no apex; see the module docs).
     #[inline(always)]
     pub fn intersect(&self, ray: &Ray<T>) -> Interval<T> {
-        let s1 = intersect_sphere(ray, self.a, self.ra, T::zero());
-        let s2 = intersect_sphere(ray, self.b, self.rb, T::one());
-        s1.hull(s2).hull(self.intersect_stump_stable(ray))
+        // Pieces are combined on the whole line, then clipped: a piece lying behind the origin
+        // can still hold the entry of a ray that starts inside.
+        let s1 = sphere_line(ray, self.a, self.ra, T::zero());
+        let s2 = sphere_line(ray, self.b, self.rb, T::one());
+        let iv = s1.hull(s2).hull(self.stump_stable_line(ray));
+        iv.masked(in_range(ray, iv.t_in, iv.t_out))
     }
 
-    /// The tangent-cone stump alone, stable form (half-angle, midpoint-centred).
+    /// The tangent-cone stump alone, stable form (half-angle, locally centred).
     #[inline(always)]
     pub fn intersect_stump_stable(&self, ray: &Ray<T>) -> Interval<T> {
+        let iv = self.stump_stable_line(ray);
+        iv.masked(in_range(ray, iv.t_in, iv.t_out))
+    }
+
+    #[inline(always)]
+    fn stump_stable_line(&self, ray: &Ray<T>) -> Interval<T> {
         let zero = T::zero();
         let one = T::one();
         let half = T::cst(0.5);
@@ -150,24 +159,37 @@ impl<T: Real> RoundCone<T> {
         let axis = v * (one / len_s);
         let s = T::select(has_cone, dr / len_s, zero); // sin θ
         let c2 = (one - s) * (one + s); // cos² θ, without 1 − s² cancellation
-        let rm = (self.ra + self.rb) * half;
         let mid = (self.a + self.b) * half;
-        // Re-centre: origin at the line's closest point to the midpoint.
+        let hl = len_s * half;
+        // Local frame. 1) The ray's closest approach to the axis line (midpoint if parallel),
+        // 2) its axial position clamped into the segment gives a local centre c0 on the axis,
+        // 3) the new ray origin is the ray's closest point to c0. Near a crossing, o' = X0 − c0
+        // is then as short as the ray–axis distance, so the quadratic's coefficients are formed
+        // from numbers of the size of the radius rather than of the link length or of |o − m|.
         let d2 = ray.d.length2();
-        let tc = (mid - ray.o).dot(ray.d) / d2;
-        let o = ray.o + ray.d * tc - mid;
-        let zo = o.dot(axis);
         let zd = ray.d.dot(axis);
-        let p = o.cross(axis);
         let q = ray.d.cross(axis);
+        let q2 = q.length2();
+        let w = mid - ray.o;
+        let skew = q2.gt(d2 * T::cst(1e-12));
+        let t_ax = (w.dot(ray.d) - w.dot(axis) * zd) / T::select(skew, q2, T::one());
+        let t_ax = T::select(skew, t_ax, w.dot(ray.d) / d2);
+        let z0 = (ray.o + ray.d * t_ax - mid).dot(axis).clamp(-hl, hl);
+        let c0 = mid + axis * z0;
+        let tc = (c0 - ray.o).dot(ray.d) / d2;
+        let o = ray.o + ray.d * tc - c0;
+        // Cone side c·ρ + s·z = rm in coordinates centred at the midpoint; at c0 it reads
+        // c·ρ + s·z' = rm − s·z0 with z' = z − z0.
+        let rm = (self.ra + self.rb) * half - s * z0;
+        let zo = o.dot(axis);
+        let p = o.cross(axis);
         let e = rm - s * zo;
         // F(τ) = c²|y × â|² − (rm − s·(y·â))², y = o + τd;  F = Aτ² + 2Bτ + C.
-        let qa = c2 * q.length2() - s * s * zd * zd;
+        let qa = c2 * q2 - s * s * zd * zd;
         let qb = c2 * p.dot(q) + s * zd * e;
         let qc = c2 * p.length2() - e * e;
         // Slab between the tangent circles: zm ∈ [ra·s − L/2, L/2 + rb·s].
-        let hl = len_s * half;
-        let (lo, hi) = slab(zo, zd, self.ra * s - hl, hl + self.rb * s);
+        let (lo, hi) = slab(zo, zd, self.ra * s - hl - z0, hl + self.rb * s - z0);
         let (t0, t1, q0, q1, ok) = quadric_in_slab(qa, qb, qc, lo, hi);
         // Outward normal on the cone: c·ρ̂ + s·â; on a cap plane: ∓â.
         let cc = c2.sqrt();
@@ -176,15 +198,15 @@ impl<T: Real> RoundCone<T> {
             let z = y.dot(axis);
             let radial = (y - axis * z).normalize_or_zero();
             let side = (radial * cc + axis * s).normalize_or_zero();
-            let cap = axis * T::select(z.gt((self.ra + self.rb) * s * half), one, -one);
+            let cap = axis * T::select((z + z0).gt((self.ra + self.rb) * s * half), one, -one);
             V3::select(on_side, side, cap)
         };
         // u of the sphere touching the cone at axial position zm: (zm + L/2 − ra·s)/(L·c²).
         let inv = one / (len_s * c2);
-        let u_at = |t: T| ((zo + zd * t + hl - self.ra * s) * inv).clamp(zero, one);
+        let u_at = |t: T| ((zo + zd * t + z0 + hl - self.ra * s) * inv).clamp(zero, one);
         let (n_in, n_out) = (normal(t0, q0), normal(t1, q1));
         let (t_in, t_out) = (t0 + tc, t1 + tc);
-        let hit = ok & has_cone & in_range(ray, t_in, t_out);
+        let hit = ok & has_cone;
         Interval { t_in, t_out, n_in, n_out, u_in: u_at(t0), u_out: u_at(t1), hit }.masked(hit)
     }
 
@@ -219,17 +241,17 @@ impl<T: Real> HanLink<T> {
     #[inline(always)]
     pub fn intersect(&self, ray: &Ray<T>) -> Interval<T> {
         let l = &self.link;
-        let s1 = intersect_sphere(ray, l.a, l.ra, T::zero());
-        let s2 = intersect_sphere(ray, l.b, l.rb, T::one());
+        let s1 = sphere_line(ray, l.a, l.ra, T::zero());
+        let s2 = sphere_line(ray, l.b, l.rb, T::one());
         let mut iv = s1.hull(s2);
         if self.cone.is_cone.any() {
-            iv = iv.hull(intersect_stump_precomputed(ray, &self.cone, &self.xf));
+            iv = iv.hull(stump_line(ray, &self.cone, &self.xf));
         }
         if self.cone.is_cylinder.any() {
-            let cyl = intersect_cylinder_naive(ray, l.a, l.b, l.ra).masked(self.cone.is_cylinder);
+            let cyl = cylinder_line(ray, l.a, l.b, l.ra).masked(self.cone.is_cylinder);
             iv = iv.hull(cyl);
         }
-        iv
+        iv.masked(in_range(ray, iv.t_in, iv.t_out))
     }
 }
 

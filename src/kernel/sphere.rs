@@ -15,6 +15,14 @@ use crate::vec::V3;
 /// for a link's end spheres). Lanes with `r ≤ 0` miss. Never NaN for finite input with `d ≠ 0`.
 #[inline(always)]
 pub fn intersect_sphere<T: Real>(ray: &Ray<T>, c: V3<T>, r: T, u: T) -> Interval<T> {
+    let iv = sphere_line(ray, c, r, u);
+    iv.masked(in_range(ray, iv.t_in, iv.t_out))
+}
+
+/// Like [`intersect_sphere`] but `hit` only says the line meets the ball (no range test):
+/// the building block for unions of convex pieces, which must be formed before clipping.
+#[inline(always)]
+pub(crate) fn sphere_line<T: Real>(ray: &Ray<T>, c: V3<T>, r: T, u: T) -> Interval<T> {
     let d2 = ray.d.length2();
     let f = ray.o - c;
     // t of the closest point of the line to c.
@@ -27,9 +35,8 @@ pub fn intersect_sphere<T: Real>(ray: &Ray<T>, c: V3<T>, r: T, u: T) -> Interval
     let t_in = tc - h;
     let t_out = tc + h;
     // Hit points relative to c: l ∓ h·d (no o + t·d − c cancellation).
-    let inv_r = T::one() / T::select(ok, r, T::one());
-    let n_in = (l - ray.d * h) * inv_r;
-    let n_out = (l + ray.d * h) * inv_r;
-    let hit = ok & in_range(ray, t_in, t_out);
-    Interval { t_in, t_out, n_in, n_out, u_in: u, u_out: u, hit }.masked(hit)
+    // Normalised explicitly: in f32 with |o − c| ≫ r the rounding of l is not small against r.
+    let n_in = (l - ray.d * h).normalize_or_zero();
+    let n_out = (l + ray.d * h).normalize_or_zero();
+    Interval { t_in, t_out, n_in, n_out, u_in: u, u_out: u, hit: ok }.masked(ok)
 }
