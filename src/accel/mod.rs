@@ -1,1 +1,229 @@
-//! Acceleration structures: BVH over links and spline segments.
+//! Acceleration structures: a BVH (built and traversed by [`obvhs`]) over the scene's
+//! primitives, with closest-hit, any-hit and all-intervals queries in `f64` ray parameters.
+//!
+//! # Conservative boxes
+//! obvhs works in `f32`. Its boxes are stored relative to the scene's centre, and every
+//! query first clips the ray's line to the scene box in `f64` and restarts it at the box
+//! entry, so every `f32` quantity in a traversal is bounded by the scene size `D` (its box
+//! diagonal). The `f32` errors of a traversal are then: the restarted origin, `≤ D·2⁻²⁴` per
+//! component; the rounded direction, `≤ 2⁻²⁴` relative, i.e. `≤ 2D·2⁻²⁴` of displacement over
+//! the `≤ 2D` of travel that matters; and the slab test's own subtract-and-multiply,
+//! `≤ 2·2⁻²⁴` relative on slab distances `≤ 2D`. Each box is therefore padded outward by
+//! `pad = D·2⁻¹⁶` (256 times the largest of these), after rounding its corners outward, so a
+//! ray that grazes a primitive still enters every box on the way. The same margin covers
+//! obvhs clamping `1/dᵢ` to `±2²³` for `|dᵢ| ≤ 2⁻²³` (its `safe_inverse`): the clamped slab of
+//! a ray inside a padded slab still spans `±pad·2²³ = ±128·D`, far beyond the travel.
+//! The returned hits are exact kernel results in `f64`; only culling uses `f32`.
+
+use crate::kernel::csg::Tagged;
+use crate::ray::{Interval, Ray};
+use crate::scene::Prim;
+use crate::V3;
+use glam::Vec3A;
+use obvhs::aabb::Aabb;
+use obvhs::bvh2::Bvh2;
+
+/// The first surface crossing along a ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Ray parameter.
+    pub t: f64,
+    /// Unit outward normal.
+    pub n: V3<f64>,
+    /// Curve parameter on the primitive.
+    pub u: f64,
+    /// Index into [`Bvh::prims`].
+    pub prim: u32,
+    /// Scene link index.
+    pub link: u32,
+    /// True when the crossing is an entry (false: the ray started inside).
+    pub entering: bool,
+}
+
+/// A BVH over primitives.
+pub struct Bvh {
+    bvh: Bvh2,
+    /// The primitives, in BVH leaf order.
+    pub prims: Vec<Prim>,
+    centre: [f64; 3],
+    lo: [f64; 3],
+    hi: [f64; 3],
+    pad: f64,
+}
+
+struct BoxOf(Aabb);
+impl obvhs::Boundable for BoxOf {
+    fn aabb(&self) -> Aabb {
+        self.0
+    }
+}
+
+/// The scene-box-clipped form of a ray, ready for obvhs.
+struct Clipped {
+    ray: obvhs::ray::Ray,
+    /// Distance along the unit direction where the obvhs ray starts.
+    s0: f64,
+    /// Length of the user's direction.
+    len: f64,
+}
+
+impl Bvh {
+    /// Build over `prims` (obvhs PLOC builder, medium quality). An empty list gives a BVH that
+    /// every ray misses.
+    pub fn build(prims: Vec<Prim>) -> Self {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        let boxes: Vec<_> = prims.iter().map(|p| p.aabb()).collect();
+        for (a, b) in &boxes {
+            for i in 0..3 {
+                lo[i] = lo[i].min(a[i]);
+                hi[i] = hi[i].max(b[i]);
+            }
+        }
+        if prims.is_empty() {
+            lo = [0.0; 3];
+            hi = [0.0; 3];
+        }
+        let centre: [f64; 3] = std::array::from_fn(|i| 0.5 * (lo[i] + hi[i]));
+        let diag = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
+        let pad = diag.max(f64::MIN_POSITIVE) * 2f64.powi(-16);
+        let to32 = |v: [f64; 3], s: f64| {
+            Vec3A::new(
+                (v[0] - centre[0] + s) as f32,
+                (v[1] - centre[1] + s) as f32,
+                (v[2] - centre[2] + s) as f32,
+            )
+        };
+        let aabbs: Vec<BoxOf> =
+            boxes.iter().map(|(a, b)| BoxOf(Aabb::new(to32(*a, -pad), to32(*b, pad)))).collect();
+        let mut bvh = if prims.is_empty() {
+            Bvh2::default()
+        } else {
+            obvhs::bvh2::builder::build_bvh2(
+                &aabbs,
+                obvhs::BvhBuildParams::medium_build(),
+                &mut std::time::Duration::default(),
+            )
+        };
+        // Reorder primitives into leaf order so leaves index them directly.
+        let prims: Vec<Prim> = bvh.primitive_indices.iter().map(|&i| prims[i as usize]).collect();
+        for (k, i) in bvh.primitive_indices.iter_mut().enumerate() {
+            *i = k as u32;
+        }
+        let lo = std::array::from_fn(|i| lo[i] - 2.0 * pad);
+        let hi = std::array::from_fn(|i| hi[i] + 2.0 * pad);
+        Self { bvh, prims, centre, lo, hi, pad }
+    }
+
+    /// Bytes held by the BVH nodes and the primitives.
+    pub fn memory_bytes(&self) -> usize {
+        self.bvh.nodes.len() * std::mem::size_of::<obvhs::bvh2::node::Bvh2Node>()
+            + self.bvh.primitive_indices.len() * 4
+            + self.prims.len() * std::mem::size_of::<Prim>()
+    }
+
+    /// Number of BVH nodes.
+    pub fn node_count(&self) -> usize {
+        self.bvh.nodes.len()
+    }
+
+    /// Clip the ray's line restricted to distances `[s_lo, s_hi]` along the unit direction to
+    /// the scene box; `None` when it misses.
+    fn clip(&self, ray: &Ray<f64>, s_lo: f64, s_hi: f64) -> Option<Clipped> {
+        if self.prims.is_empty() {
+            return None;
+        }
+        let len = ray.d.length();
+        let dn = ray.d * (1.0 / len);
+        let (o, d) = (ray.o.to_array(), dn.to_array());
+        let (mut a, mut b) = (s_lo, s_hi);
+        for i in 0..3 {
+            if d[i] == 0.0 {
+                if o[i] < self.lo[i] || o[i] > self.hi[i] {
+                    return None;
+                }
+            } else {
+                let t1 = (self.lo[i] - o[i]) / d[i];
+                let t2 = (self.hi[i] - o[i]) / d[i];
+                a = a.max(t1.min(t2));
+                b = b.min(t1.max(t2));
+            }
+        }
+        if !(a <= b) {
+            return None;
+        }
+        // Start a little before the box so the entry is at t ≥ 0 despite rounding.
+        let s0 = a - 4.0 * self.pad;
+        let p = ray.o + dn * s0;
+        let org = Vec3A::new(
+            (p.x - self.centre[0]) as f32,
+            (p.y - self.centre[1]) as f32,
+            (p.z - self.centre[2]) as f32,
+        );
+        let dir = Vec3A::new(d[0] as f32, d[1] as f32, d[2] as f32);
+        let tmax = ((b - s0) + 8.0 * self.pad) as f32;
+        Some(Clipped { ray: obvhs::ray::Ray::new(org, dir, 0.0, tmax), s0, len })
+    }
+
+    /// Distances along the unit direction for a ray's `[t_min, t_max]`.
+    fn range(ray: &Ray<f64>) -> (f64, f64) {
+        let len = ray.d.length();
+        (ray.t_min * len, ray.t_max * len)
+    }
+
+    /// The closest surface crossing in `[t_min, t_max]` (entry, or exit when the ray starts
+    /// inside a primitive). The ray must be valid ([`Ray::validate`]).
+    pub fn closest_hit(&self, ray: &Ray<f64>) -> Option<Hit> {
+        let (a, b) = Self::range(ray);
+        let c = self.clip(ray, a, b)?;
+        let mut best: Option<Hit> = None;
+        let mut hit = obvhs::ray::RayHit::none();
+        let margin = 8.0 * self.pad;
+        self.bvh.ray_traverse(c.ray, &mut hit, |_, id| {
+            let p = &self.prims[id];
+            let iv = p.intersect(ray);
+            let Some((t, n, u)) = iv.first_hit(ray.t_min, ray.t_max) else {
+                return f32::INFINITY;
+            };
+            if best.map_or(true, |h| t < h.t) {
+                best = Some(Hit { t, n, u, prim: id as u32, link: p.link, entering: t == iv.t_in });
+            }
+            // Cull by the best hit so far, loosened by the box margin (see the module docs).
+            let tb = best.map_or(t, |h| h.t);
+            ((tb * c.len - c.s0) + margin) as f32
+        });
+        best
+    }
+
+    /// True when any primitive's surface or interior meets the ray within `[t_min, t_max]`
+    /// (shadow and ambient-occlusion rays).
+    pub fn any_hit(&self, ray: &Ray<f64>) -> bool {
+        let (a, b) = Self::range(ray);
+        let Some(c) = self.clip(ray, a, b) else {
+            return false;
+        };
+        !self.bvh.ray_traverse_miss(c.ray, |_, id| {
+            if self.prims[id].intersect(ray).hit {
+                0.0
+            } else {
+                f32::INFINITY
+            }
+        })
+    }
+
+    /// Every primitive's interval with the ray's whole **line** (not only `[t_min, t_max]`),
+    /// appended to `out` tagged with the primitive index — the input of
+    /// [`crate::kernel::csg::union`].
+    pub fn line_intervals(&self, ray: &Ray<f64>, out: &mut Vec<Tagged<f64>>) {
+        let Some(c) = self.clip(ray, f64::NEG_INFINITY, f64::INFINITY) else {
+            return;
+        };
+        let line = Ray::with_range(ray.o, ray.d, f64::NEG_INFINITY, f64::INFINITY);
+        self.bvh.ray_traverse_anyhit(c.ray, |_, id| {
+            let iv: Interval<f64> = self.prims[id].intersect(&line);
+            if iv.hit {
+                out.push(Tagged { iv, id: id as u32 });
+            }
+        });
+    }
+}
