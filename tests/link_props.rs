@@ -39,7 +39,20 @@ fn region() -> impl Strategy<Value = Region> {
 /// Distance error bound E for precision with unit roundoff `eps` (see the module docs).
 fn bound(c: &Case, eps: f64) -> f64 {
     let m = (c.link.a + c.link.b) * 0.5;
-    64.0 * eps * (c.size + (c.ray.o - m).length())
+    64.0 * eps * (c.size + (c.ray.o - m).length()) + cone_term(&c.link, eps)
+}
+
+/// The stump's radius is `e/c` with `e = rm − s·z` known to ≈ 2ε·S, so its surface moves by
+/// ≈ 2ε·S/c; ×4 for safety. With `c² < 64ε` the kernel drops the stump (≤ 64ε·L, already in E).
+fn cone_term(l: &RoundCone<f64>, eps: f64) -> f64 {
+    let len = (l.b - l.a).length();
+    let s = (l.ra - l.rb) / len;
+    let c2 = (1.0 - s) * (1.0 + s);
+    if !(len > 0.0) || !(c2 > 0.0) {
+        return 0.0;
+    }
+    let size = len.max(l.ra).max(l.rb);
+    8.0 * eps * size / c2.max(32.0 * eps).sqrt()
 }
 
 fn no_nan<T: Scalar>(iv: &Interval<T>) -> bool {
@@ -79,13 +92,32 @@ fn check_against_oracle(c: &Case, iv: Interval<f64>, eps: f64, what: &str) -> Re
         prop_assert!(sd.abs() <= e + e64, "{what}: hit point off the surface by {sd:e} > {:e} (entering {entering})", e + e64);
         // Normal: unit, and equal to the oracle gradient at the same point.
         prop_assert!((n.length() - 1.0).abs() <= 16.0 * eps, "{what}: |n| = {}", n.length());
-        let r_min = c.link.ra.min(c.link.rb).max(r_at(&c.link, us));
+        // Around the axis the cone's normal turns with the radius of its circle, r(u)·c.
+        let cc = {
+            let len = (c.link.b - c.link.a).length();
+            let s = if len > 0.0 { ((c.link.ra - c.link.rb) / len).clamp(-1.0, 1.0) } else { 0.0 };
+            ((1.0 - s) * (1.0 + s)).sqrt()
+        };
+        let cc = if c.link.shape() == LinkShape::Sphere { 1.0 } else { cc };
+        let r_min = c.link.ra.min(c.link.rb).max(r_at(&c.link, us)) * cc;
         let ng = sweep_normal(&c.link, x);
-        let n_tol = 4.0 * (e + e64) / r_min + 16.0 * eps;
-        prop_assert!((n - ng).length() <= n_tol, "{what}: normal {n:?} vs oracle {ng:?} (tol {n_tol:e})");
+        // At the tip of a zero-radius end the surface has no normal: nothing to compare.
+        if r_min > 0.0 && ng.length() > 0.5 {
+            // Near a seam (sphere tangent to cone) a point within E of the surface may be
+            // reported by either piece; the two surfaces separate like a²/(2r) at arc distance
+            // a from the seam, so both are within E for a ≤ √(2rE), where their normals differ
+            // by a/r = √(2E/r).
+            let ee = e + e64;
+            let n_tol = 4.0 * ee / r_min + (2.0 * ee / r_min).sqrt() + 16.0 * eps;
+            prop_assert!((n - ng).length() <= n_tol, "{what}: normal {n:?} vs oracle {ng:?} (tol {n_tol:e})");
+        }
         // t against the oracle's t, through the incidence cosine at the oracle's hit.
         if let Some(ot) = o_t {
             let gamma = sweep_normal(&c.link, c.ray.at(ot)).dot(c.ray.d).abs() / dl;
+            // No normal (and no conditioning statement) at the tip of a zero-radius end.
+            if !gamma.is_finite() {
+                continue;
+            }
             let tol = (e + e64) / (gamma * dl) + 1e-12 * ot.abs();
             prop_assert!((t - ot).abs() <= tol, "{what}: t {t} vs oracle {ot} (tol {tol:e}, γ {gamma:e})");
         }
@@ -93,7 +125,10 @@ fn check_against_oracle(c: &Case, iv: Interval<f64>, eps: f64, what: &str) -> Re
         if c.link.shape() != LinkShape::Sphere {
             let v = c.link.b - c.link.a;
             let s = (c.link.ra - c.link.rb) / v.length();
-            let tol_u = 2.0 * (e + e64) / (v.length() * (1.0 - s * s)) + 16.0 * eps;
+            // Plus the seam term: within arc √(2·r·E) of a seam either piece's u may be reported.
+            let lc2 = v.length() * (1.0 - s * s);
+            let seam = (2.0 * c.link.ra.max(c.link.rb) * (e + e64)).sqrt() / lc2;
+            let tol_u = 2.0 * (e + e64) / lc2 + seam + 16.0 * eps;
             prop_assert!((u - us).abs() <= tol_u, "{what}: u {u} vs oracle {us} (tol {tol_u:e})");
         }
     }
@@ -124,6 +159,10 @@ fn han_conditioning(l: &RoundCone<f64>) -> f64 {
 }
 
 proptest! {
+    // Defaults (256 cases, or PROPTEST_CASES); the Han properties reject the ill-conditioned
+    // part of the case mix by design, so allow many rejects.
+    #![proptest_config(ProptestConfig { max_global_rejects: 1 << 24, ..ProptestConfig::default() })]
+
     #[test]
     fn stable_f64_matches_oracle(seed in any::<u64>(), region in region()) {
         let c = make_case(seed, region);
@@ -146,6 +185,9 @@ proptest! {
         let c = make_case(seed, region);
         let k = han_conditioning(&c.link);
         prop_assume!(k <= 100.0);
+        // Near an apex (a zero or tiny radius end) Han's quadric X²+Y²−Z² has a vanishing
+        // gradient: distance errors grow like ε·D²/ρ. Not "well conditioned"; see the report.
+        prop_assume!(c.link.ra.min(c.link.rb) >= 1e-3 * c.link.ra.max(c.link.rb));
         // The faithful version also forms its quadratic from o − A without re-centring:
         // coefficient errors ε·(D + p₂)², i.e. distance errors ε·(D + p₂)²/r_min.
         let m = (c.link.a + c.link.b) * 0.5;
@@ -212,6 +254,7 @@ proptest! {
     fn faithful_and_stable_agree_where_well_conditioned(seed in any::<u64>(), region in region()) {
         let c = make_case(seed, region);
         prop_assume!(han_conditioning(&c.link) <= 100.0);
+        prop_assume!(c.link.ra.min(c.link.rb) >= 1e-3 * c.link.ra.max(c.link.rb));
         let m = (c.link.a + c.link.b) * 0.5;
         let d = (c.ray.o - m).length() + 100.0 * c.size;
         let r_min = c.link.ra.max(c.link.rb) * 1e-3 + c.link.ra.min(c.link.rb);

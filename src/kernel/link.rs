@@ -151,14 +151,21 @@ impl<T: Real> RoundCone<T> {
         let v = self.b - self.a;
         let len = v.length();
         let dr = self.ra - self.rb;
-        let has_cone = dr.abs().lt(len);
+        let len_s = T::select(len.gt(zero), len, one);
+        let s = (dr / len_s).clamp(-one, one); // sin θ
+        let c2 = (one - s) * (one + s); // cos² θ, without 1 − s² cancellation
+        // s carries a relative rounding error ≈ 2ε, so c² = (1 − s)(1 + s) is known to ≈ 4ε
+        // absolutely. Below 64ε it is mostly noise, and so is the stump (its radius is e/c with
+        // e = r·c² buried under e's rounding error ε·r). There the stump is dropped: with one
+        // sphere almost inside the other, the hull exceeds the union of the two spheres by at
+        // most L − |ra − rb| = L·(1 − |s|) ≤ L·c² < 64ε·L, within the kernel's error bound.
+        let has_cone = dr.abs().lt(len) & c2.ge(T::epsilon() * T::cst(64.0));
         if has_cone.none() {
             return Interval::miss();
         }
-        let len_s = T::select(has_cone, len, one);
         let axis = v * (one / len_s);
-        let s = T::select(has_cone, dr / len_s, zero); // sin θ
-        let c2 = (one - s) * (one + s); // cos² θ, without 1 − s² cancellation
+        let s = T::select(has_cone, s, zero);
+        let c2 = T::select(has_cone, c2, one);
         let mid = (self.a + self.b) * half;
         let hl = len_s * half;
         // Local frame. 1) The ray's closest approach to the axis line (midpoint if parallel),
