@@ -42,8 +42,12 @@ fn bound(c: &Case, eps: f64) -> f64 {
     64.0 * eps * (c.size + (c.ray.o - m).length()) + cone_term(&c.link, eps)
 }
 
-/// The stump's radius is `e/c` with `e = rm − s·z` known to ≈ 2ε·S, so its surface moves by
-/// ≈ 2ε·S/c; ×4 for safety. With `c² < 64ε` the kernel drops the stump (≤ 64ε·L, already in E).
+/// Extra error of a nearly flat stump (one sphere almost inside the other, c = cos θ → 0).
+/// The quadratic's coefficients `A = c²|d×â|² − s²(d·â)²` and `C = c²|P|² − e²` are differences of
+/// terms whose sum is O(1)·|·|² while the difference is O(c²)·|·|²: they carry a relative error of
+/// ≈ 4ε/c², which moves the crossing by that fraction of the local scale (≤ S): 4ε·S/c², ×2 for
+/// safety. (With c² < 64ε the kernel drops the stump, costing ≤ 64ε·L, already in E; so this
+/// term is at most S/8.)
 fn cone_term(l: &RoundCone<f64>, eps: f64) -> f64 {
     let len = (l.b - l.a).length();
     let s = (l.ra - l.rb) / len;
@@ -52,7 +56,7 @@ fn cone_term(l: &RoundCone<f64>, eps: f64) -> f64 {
         return 0.0;
     }
     let size = len.max(l.ra).max(l.rb);
-    8.0 * eps * size / c2.max(32.0 * eps).sqrt()
+    8.0 * eps * size / c2.max(32.0 * eps)
 }
 
 fn no_nan<T: Scalar>(iv: &Interval<T>) -> bool {
