@@ -227,3 +227,16 @@ impl Bvh {
         });
     }
 }
+
+/// The part of the scene's surface union that a ray meets first: the entry and exit
+/// boundaries of the first component of the union (over the whole line) that overlaps
+/// `[t_min, t_max]`. The entry lies before `t_min` when the ray starts inside.
+pub fn first_component(bvh: &Bvh, ray: &Ray<f64>) -> Option<(crate::kernel::csg::Boundary<f64>, crate::kernel::csg::Boundary<f64>)> {
+    let mut ivs = Vec::new();
+    bvh.line_intervals(ray, &mut ivs);
+    let mut b = Vec::new();
+    crate::kernel::csg::union(&mut ivs, f64::NEG_INFINITY, f64::INFINITY, |x| b.push(x));
+    b.chunks_exact(2)
+        .find(|p| p[1].t >= ray.t_min && p[0].t <= ray.t_max)
+        .map(|p| (p[0], p[1]))
+}
