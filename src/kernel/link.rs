@@ -205,7 +205,13 @@ impl<T: Real> RoundCone<T> {
             let z = y.dot(axis);
             let radial = (y - axis * z).normalize_or_zero();
             let side = (radial * cc + axis * s).normalize_or_zero();
-            let cap = axis * T::select((z + z0).gt((self.ra + self.rb) * s * half), one, -one);
+            // A crossing of a cap plane lies in the adjacent end sphere (the cap disc is inside
+            // it); it is exposed only when rounding loses that sphere's grazing interval. Report
+            // the sphere's normal there, not the plane's: it is the surface the ray grazes.
+            let at_b = (z + z0).gt((self.ra + self.rb) * s * half);
+            let to_end = y + axis * (z0 + T::select(at_b, -hl, hl));
+            // (At the tip of a zero-radius end there is no sphere: keep the side's normal.)
+            let cap = V3::select(to_end.length2().gt(zero), to_end.normalize_or_zero(), side);
             V3::select(on_side, side, cap)
         };
         // u of the sphere touching the cone at axial position zm: (zm + L/2 − ra·s)/(L·c²).
