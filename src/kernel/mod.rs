@@ -14,3 +14,7 @@ pub mod hermite;
 pub mod obb;
 pub mod roots;
 pub mod spline;
+pub use hermite::HermiteSegment;
+pub use obb::Obb;
+pub use roots::Solver;
+pub use spline::QuadTube;

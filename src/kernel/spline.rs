@@ -1,1 +1,497 @@
-//! (in progress: see issue 3)
+//! Ray–spline-tube intersection: the sphere sweep `S(p(t), r(t))`, `t ∈ [0, 1]`, of a
+//! **quadratic** Bézier position curve and radius curve ([`QuadTube`]; a cubic Hermite segment
+//! is split into two of them by [`crate::kernel::hermite`]).
+//!
+//! # Ray space (Russig §3.2, Salm §3.2)
+//! With `d̂ = d/|d|` and `q(t) = p(t) − o`, the ray enters the sphere `t` at `s = h − √g` and
+//! leaves it at `h + √g` (`s` = distance along `d̂`), where
+//!
+//! * `h(t) = q·d̂` — quadratic,
+//! * `g(t) = r² − |q|² + (q·d̂)² = r² − |q × d̂|²` — quartic; formed from the cross products,
+//!   so no ray-space basis is built and there is no `|q|² − (q·d̂)²` cancellation.
+//!
+//! The ray origin is first moved to the point of the line closest to `p(½)` (so far origins
+//! lose only what representing the origin loses). The entry of the sweep is `min f`,
+//! `f = h − √g`, over `{t : g(t) ≥ 0}`, the exit `max e`, `e = h + √g`. Both extrema are at
+//! interior critical points or at the segment ends `t = 0, 1` (where the tube continues into
+//! the neighbouring segment: a minimum exactly at a joint is a candidate, never missed).
+//!
+//! # Solvers ([`Solver`])
+//! * Russig's cascade ([`Solver::Bisection`], [`Solver::Itp`], [`Solver::Newton`]): real
+//!   intervals of `g` by the cascade `g''` (analytic) → `g'` → `g`; on each real interval the
+//!   critical points of `f` by `f'''` → `f''` → `f'` (sign functions scaled by powers of `g`
+//!   so they stay finite at the interval ends: `F₁ = 2h'√g − g'`,
+//!   `F₂ = 4h''g√g − 2g''g + g'²`, `F₃ = −4g'''g² + 6g'g''g − 3g'³`), and the same for the exit
+//!   with `h → −h`. This assumes Russig's empirical claim that `f'''` has at most one root per
+//!   real interval (`f'` at most three); `tests/spline_claims.rs` tests it.
+//! * [`Solver::Polynomial`]: the critical points of `f` **and** `e` are exactly the roots of
+//!   `P = 4h'²g − g'² = (2h'√g − g')(2h'√g + g')` where `g > 0`; all roots of `P` in `[0, 1]`
+//!   by the derivative cascade, then `f` and `e` at every root with `g ≥ 0` and at `t = 0, 1`.
+//!   Needs no real intervals and no claim.
+//!
+//! The kernel returns the hull `[first entry, last exit]` ([`QuadTube::intersect`]). A strongly
+//! bent segment can be crossed more than once; [`QuadTube::intersect_pieces`] returns one
+//! interval per real interval of `g` (each exact: the part of the sweep over a connected
+//! `t`-interval meets the line in one interval), which is what CSG needs.
+
+use super::roots::{cascade_level, horner, poly_breakpoints, poly_mul, Bracket, Solver};
+use crate::kernel::link::RoundCone;
+use crate::ray::{in_range, Interval, Ray};
+use crate::real::{Mask, Real, Scalar};
+use crate::vec::V3;
+use crate::GeometryError;
+
+/// A quadratic sphere-swept segment: Bézier control points `b` and control radii `r`;
+/// `p(t) = (1−t)²b₀ + 2t(1−t)b₁ + t²b₂`, likewise `r(t)`.
+///
+/// Build scalar segments with [`QuadTube::new`] (validated: the interpolated radius must not
+/// be negative anywhere on `[0, 1]`); lanes with [`QuadTube::from_lanes`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct QuadTube<T> {
+    /// Control points.
+    pub b: [V3<T>; 3],
+    /// Control radii (`r₁` may be negative as long as `r(t) ≥ 0` on `[0, 1]`).
+    pub r: [T; 3],
+}
+
+/// Minimum of the quadratic Bézier `(1−t)²c₀ + 2t(1−t)c₁ + t²c₂` over `t ∈ [0, 1]`.
+#[inline(always)]
+pub(crate) fn bezier2_min<T: Real>(c: [T; 3]) -> T {
+    let den = c[0] - c[1] * T::cst(2.0) + c[2];
+    let ok = den.gt(T::zero());
+    let ts = (c[0] - c[1]) / T::select(ok, den, T::one());
+    let inside = ok & ts.gt(T::zero()) & ts.lt(T::one());
+    let ts = T::select(inside, ts, T::zero());
+    let v = bezier2(c, ts);
+    T::select(inside, v.min(c[0]).min(c[2]), c[0].min(c[2]))
+}
+
+/// Maximum of a quadratic Bézier over `[0, 1]`.
+#[inline(always)]
+pub(crate) fn bezier2_max<T: Real>(c: [T; 3]) -> T {
+    -bezier2_min([-c[0], -c[1], -c[2]])
+}
+
+/// Evaluate a quadratic Bézier with scalar (lane) coefficients.
+#[inline(always)]
+pub(crate) fn bezier2<T: Real>(c: [T; 3], t: T) -> T {
+    let s = T::one() - t;
+    c[0] * s * s + c[1] * (T::cst(2.0) * s * t) + c[2] * t * t
+}
+
+impl<T: Scalar> QuadTube<T> {
+    /// A validated segment. Errors: non-finite input ([`GeometryError::NonFinite`]), a radius
+    /// curve that is negative somewhere on `[0, 1]` ([`GeometryError::NegativeRadius`]), a
+    /// radius that is zero everywhere ([`GeometryError::ZeroRadius`]), or an extent whose
+    /// fourth power overflows (the kernel's degree-6 polynomial is quartic in coordinates).
+    pub fn new(b: [V3<T>; 3], r: [T; 3]) -> Result<Self, GeometryError> {
+        if b.iter().any(|p| !p.is_finite()) {
+            return Err(GeometryError::NonFinite { what: "spline control point" });
+        }
+        if r.iter().any(|x| !x.is_finite()) {
+            return Err(GeometryError::NonFinite { what: "spline control radius" });
+        }
+        if bezier2_min(r) < T::zero() {
+            return Err(GeometryError::NegativeRadius);
+        }
+        if bezier2_max(r) <= T::zero() {
+            return Err(GeometryError::ZeroRadius);
+        }
+        let mut e = T::zero();
+        for i in 0..3 {
+            e = e.max((b[i] - b[0]).max_abs()).max(r[i].abs());
+        }
+        // Ray-space coordinates are bounded by ~4e after the far-ray early-out; P's
+        // coefficients by a few hundred (4e)⁴.
+        let e4 = e * e * e * e * T::cst(65536.0);
+        if !e4.is_finite() {
+            return Err(GeometryError::NonFinite { what: "spline extent (overflows in the kernel)" });
+        }
+        Ok(Self { b, r })
+    }
+    /// The straight segment equal to a link: `b₁`, `r₁` at the midpoints (the same sweep as
+    /// the round cone, parametrised at the same speed).
+    pub fn from_link(l: &RoundCone<T>) -> Result<Self, GeometryError> {
+        let h = T::cst(0.5);
+        Self::new([l.a, (l.a + l.b) * h, l.b], [l.ra, (l.ra + l.rb) * h, l.rb])
+    }
+    /// Minimum of `r(t)` over `[0, 1]`.
+    pub fn min_radius(&self) -> T {
+        bezier2_min(self.r)
+    }
+    /// Convert the precision.
+    pub fn cast<U: Scalar>(&self) -> QuadTube<U> {
+        QuadTube {
+            b: [self.b[0].cast(), self.b[1].cast(), self.b[2].cast()],
+            r: [U::from_f64(self.r[0].to_f64()), U::from_f64(self.r[1].to_f64()), U::from_f64(self.r[2].to_f64())],
+        }
+    }
+}
+
+/// Working data of one ray–segment query in ray space.
+struct RaySpace<T: Real> {
+    /// `h` coefficients, ascending powers of `t`.
+    h: [T; 3],
+    /// `g` coefficients.
+    g: [T; 5],
+    /// Power-basis position relative to the re-centred origin: `q = qa t² + qb t + qc`.
+    qa: V3<T>,
+    qb: V3<T>,
+    qc: V3<T>,
+    dhat: V3<T>,
+    /// Ray parameter of the re-centred origin.
+    tc: T,
+    inv_dlen: T,
+    /// Lanes whose line comes within the bounding sphere.
+    near: T::Mask,
+}
+
+impl<T: Real> RaySpace<T> {
+    #[inline(always)]
+    fn new(tube: &QuadTube<T>, ray: &Ray<T>) -> Self {
+        let two = T::cst(2.0);
+        let quarter = T::cst(0.25);
+        let [b0, b1, b2] = tube.b;
+        let m = (b0 + b1 * two + b2) * quarter; // p(½)
+        let d2 = ray.d.length2();
+        let dlen = d2.sqrt();
+        let inv_dlen = T::one() / dlen;
+        let dhat = ray.d * inv_dlen;
+        let tc = (m - ray.o).dot(ray.d) / d2;
+        // l = o' − m, o' the closest point of the line to m.
+        let l = (ray.o - m) + ray.d * tc;
+        let (c0, c1, c2) = (b0 - m - l, b1 - m - l, b2 - m - l);
+        let rmax = tube.r[0].abs().max(tube.r[1].abs()).max(tube.r[2].abs());
+        let big = (b0 - m).length().max((b1 - m).length()).max((b2 - m).length()) + rmax;
+        let near = l.length2().le(big * big);
+        let qa = c0 - c1 * two + c2;
+        let qb = (c1 - c0) * two;
+        let qc = c0;
+        let [r0, r1, r2] = tube.r;
+        let (ra, rb, rc) = (r0 - r1 * two + r2, (r1 - r0) * two, r0);
+        let h = [qc.dot(dhat), qb.dot(dhat), qa.dot(dhat)];
+        let (wa, wb, wc) = (qa.cross(dhat), qb.cross(dhat), qc.cross(dhat));
+        let w2 = [
+            wc.dot(wc),
+            two * wc.dot(wb),
+            wb.dot(wb) + two * wc.dot(wa),
+            two * wb.dot(wa),
+            wa.dot(wa),
+        ];
+        let r2 = [rc * rc, two * rc * rb, rb * rb + two * rc * ra, two * rb * ra, ra * ra];
+        let g = [r2[0] - w2[0], r2[1] - w2[1], r2[2] - w2[2], r2[3] - w2[3], r2[4] - w2[4]];
+        Self { h, g, qa, qb, qc, dhat, tc, inv_dlen, near }
+    }
+
+    #[inline(always)]
+    fn q(&self, t: T) -> V3<T> {
+        self.qa * (t * t) + self.qb * t + self.qc
+    }
+
+    /// `σh(t) − √max(g(t), 0)`: the entry (σ = 1) or minus the exit (σ = −1).
+    #[inline(always)]
+    fn val(&self, t: T, sigma: T) -> T {
+        sigma * horner(&self.h, t) - horner(&self.g, t).max(T::zero()).sqrt()
+    }
+
+    /// Minimum of `σh − √g` over the critical points in `[lo, hi]` (Russig's cascade) and the
+    /// ends. Returns `(value, t)`.
+    #[inline(always)]
+    fn russig_min(&self, lo: T, hi: T, sigma: T, m: Bracket) -> (T, T) {
+        let two = T::cst(2.0);
+        let g = self.g;
+        let g1 = [g[1], two * g[2], T::cst(3.0) * g[3], T::cst(4.0) * g[4]];
+        let g2 = [two * g[2], T::cst(6.0) * g[3], T::cst(12.0) * g[4]];
+        let g3 = [T::cst(6.0) * g[3], T::cst(24.0) * g[4]];
+        let hs = [self.h[0] * sigma, self.h[1] * sigma, self.h[2] * sigma];
+        let h1 = [hs[1], two * hs[2]];
+        let h2 = two * hs[2];
+        let gg = move |t: T| horner(&g, t).max(T::zero());
+        let f3 = move |t: T| {
+            let (gv, d1, d2, d3) = (gg(t), horner(&g1, t), horner(&g2, t), horner(&g3, t));
+            -T::cst(4.0) * d3 * gv * gv + T::cst(6.0) * d1 * d2 * gv - T::cst(3.0) * d1 * d1 * d1
+        };
+        let f2 = move |t: T| {
+            let (gv, d1, d2) = (gg(t), horner(&g1, t), horner(&g2, t));
+            T::cst(4.0) * h2 * gv * gv.sqrt() - two * d2 * gv + d1 * d1
+        };
+        let f1 = move |t: T| two * horner(&h1, t) * gg(t).sqrt() - horner(&g1, t);
+        let df1 = move |t: T| {
+            let sg = gg(t).sqrt();
+            two * h2 * sg + horner(&h1, t) * horner(&g1, t) / sg - horner(&g2, t)
+        };
+        let none = |_: T| T::zero();
+        let (m3, m1) = match m {
+            Bracket::Newton => (Bracket::Itp, Bracket::Newton),
+            other => (other, other),
+        };
+        let mut bp = [hi; 8];
+        bp[0] = lo;
+        bp[1] = hi;
+        let bp = cascade_level(&bp, 2, f3, none, m3);
+        let bp = cascade_level(&bp, 3, f2, none, m3);
+        let bp = cascade_level(&bp, 4, f1, df1, m1);
+        let mut best = self.val(bp[0], sigma);
+        let mut bt = bp[0];
+        for &t in bp.iter().take(5).skip(1) {
+            let v = self.val(t, sigma);
+            let better = v.lt(best);
+            best = T::select(better, v, best);
+            bt = T::select(better, t, bt);
+        }
+        (best, bt)
+    }
+
+    /// `P = 4h'²g − g'²` (degree 6).
+    #[inline(always)]
+    fn p_poly(&self) -> [T; 7] {
+        let two = T::cst(2.0);
+        let g = self.g;
+        let h1 = [self.h[1], two * self.h[2]];
+        let g1 = [g[1], two * g[2], T::cst(3.0) * g[3], T::cst(4.0) * g[4]];
+        let h1s: [T; 3] = poly_mul(&h1, &h1);
+        let a: [T; 7] = poly_mul(&h1s, &g);
+        let b: [T; 7] = poly_mul(&g1, &g1);
+        let mut p = [T::zero(); 7];
+        for i in 0..7 {
+            p[i] = T::cst(4.0) * a[i] - b[i];
+        }
+        p
+    }
+
+    /// Entry/exit from candidate parameters (clamped to `[lo, hi]`), keeping only those with
+    /// `g ≥ 0` unless `all_real`. Returns `(s_in, t_in*, s_out, t_out*, any)`.
+    #[inline(always)]
+    fn from_candidates(&self, c: &[T], lo: T, hi: T, all_real: bool) -> (T, T, T, T, T::Mask) {
+        let inf = T::infinity();
+        let (mut bi, mut ti, mut bo, mut to) = (inf, lo, inf, lo);
+        let mut any = T::Mask::splat(false);
+        for &t in c {
+            let t = t.clamp(lo, hi);
+            let gv = horner(&self.g, t);
+            let ok = if all_real { T::Mask::splat(true) } else { gv.ge(T::zero()) };
+            let hv = horner(&self.h, t);
+            let sq = gv.max(T::zero()).sqrt();
+            let (vi, vo) = (hv - sq, -hv - sq);
+            let bi_ = ok & vi.lt(bi);
+            let bo_ = ok & vo.lt(bo);
+            bi = T::select(bi_, vi, bi);
+            ti = T::select(bi_, t, ti);
+            bo = T::select(bo_, vo, bo);
+            to = T::select(bo_, t, to);
+            any = any | ok;
+        }
+        (bi, ti, -bo, to, any)
+    }
+
+    /// Assemble the interval from ray-space entry/exit distances and curve parameters.
+    #[inline(always)]
+    fn interval(&self, ray: &Ray<T>, s_in: T, u_in: T, s_out: T, u_out: T, found: T::Mask) -> Interval<T> {
+        let normal = |s: T, u: T, fallback: V3<T>| {
+            let v = self.dhat * s - self.q(u);
+            let n = v.normalize_or_zero();
+            V3::select(n.length2().gt(T::zero()), n, fallback)
+        };
+        let t_in = self.tc + s_in * self.inv_dlen;
+        let t_out = self.tc + s_out * self.inv_dlen;
+        let n_in = normal(s_in, u_in, -self.dhat);
+        let n_out = normal(s_out, u_out, self.dhat);
+        let hit = found & self.near & in_range(ray, t_in, t_out);
+        Interval { t_in, t_out, n_in, n_out, u_in, u_out, hit }.masked(hit)
+    }
+}
+
+impl<T: Real> QuadTube<T> {
+    /// Lanes from validated scalar segments (one per lane).
+    pub fn from_lanes(f: impl Fn(usize) -> QuadTube<T::Elem>) -> Self {
+        Self {
+            b: [V3::from_fn(|i| f(i).b[0]), V3::from_fn(|i| f(i).b[1]), V3::from_fn(|i| f(i).b[2])],
+            r: [T::from_fn(|i| f(i).r[0]), T::from_fn(|i| f(i).r[1]), T::from_fn(|i| f(i).r[2])],
+        }
+    }
+    /// Every lane the same segment.
+    pub fn splat(s: QuadTube<T::Elem>) -> Self {
+        Self {
+            b: [V3::splat(s.b[0]), V3::splat(s.b[1]), V3::splat(s.b[2])],
+            r: [T::splat(s.r[0]), T::splat(s.r[1]), T::splat(s.r[2])],
+        }
+    }
+    /// Lane `i` as a scalar segment.
+    pub fn lane(&self, i: usize) -> QuadTube<T::Elem> {
+        QuadTube { b: [self.b[0].lane(i), self.b[1].lane(i), self.b[2].lane(i)], r: [self.r[0].lane(i), self.r[1].lane(i), self.r[2].lane(i)] }
+    }
+    /// Centre-line point `p(t)`.
+    #[inline(always)]
+    pub fn point(&self, t: T) -> V3<T> {
+        let s = T::one() - t;
+        let (w0, w1, w2) = (s * s, T::cst(2.0) * s * t, t * t);
+        self.b[0] * w0 + self.b[1] * w1 + self.b[2] * w2
+    }
+    /// Radius `r(t)`.
+    #[inline(always)]
+    pub fn radius(&self, t: T) -> T {
+        bezier2(self.r, t)
+    }
+    /// Tangent `p'(t)`.
+    #[inline(always)]
+    pub fn tangent(&self, t: T) -> V3<T> {
+        let two = T::cst(2.0);
+        ((self.b[1] - self.b[0]) * (T::one() - t) + (self.b[2] - self.b[1]) * t) * two
+    }
+    /// Radius derivative `r'(t)`.
+    #[inline(always)]
+    pub fn radius_deriv(&self, t: T) -> T {
+        T::cst(2.0) * ((self.r[1] - self.r[0]) * (T::one() - t) + (self.r[2] - self.r[1]) * t)
+    }
+
+    /// Ray–segment interval with the default solver ([`Solver::Polynomial`]): entry
+    /// `min f`, exit `max e` over the whole segment (the hull of [`Self::intersect_pieces`]).
+    #[inline(always)]
+    pub fn intersect(&self, ray: &Ray<T>) -> Interval<T> {
+        self.intersect_with(ray, Solver::Polynomial)
+    }
+
+    /// Ray–segment interval (hull) with a chosen solver.
+    #[inline(always)]
+    pub fn intersect_with(&self, ray: &Ray<T>, solver: Solver) -> Interval<T> {
+        let rs = RaySpace::new(self, ray);
+        if rs.near.none() {
+            return Interval::miss();
+        }
+        match solver {
+            Solver::Polynomial => {
+                let p = rs.p_poly();
+                let (bp, n) = poly_breakpoints(&p, T::zero(), T::one(), Bracket::Newton);
+                let (si, ui, so, uo, any) = rs.from_candidates(&bp[..n], T::zero(), T::one(), false);
+                rs.interval(ray, si, ui, so, uo, any)
+            }
+            _ => {
+                let pieces = self.pieces_in(&rs, ray, solver);
+                let mut iv = pieces[0];
+                for p in &pieces[1..] {
+                    iv = iv.hull(*p);
+                }
+                iv
+            }
+        }
+    }
+
+    /// One interval per real interval of `g` (at most three non-empty, in slots `0..5`; the
+    /// others miss), each exact. Feed them to [`crate::kernel::csg::union`] for transparency.
+    /// With [`Solver::Polynomial`] the real intervals come from `g`'s cascade with Newton and
+    /// the candidates from `P`'s roots.
+    #[inline(always)]
+    pub fn intersect_pieces(&self, ray: &Ray<T>, solver: Solver) -> [Interval<T>; 5] {
+        let rs = RaySpace::new(self, ray);
+        if rs.near.none() {
+            return [Interval::miss(); 5];
+        }
+        self.pieces_in(&rs, ray, solver)
+    }
+
+    #[inline(always)]
+    fn pieces_in(&self, rs: &RaySpace<T>, ray: &Ray<T>, solver: Solver) -> [Interval<T>; 5] {
+        let half = T::cst(0.5);
+        let method = match solver {
+            Solver::Bisection { iters } => Bracket::Bisection(iters),
+            Solver::Itp => Bracket::Itp,
+            Solver::Newton | Solver::Polynomial => Bracket::Newton,
+        };
+        // Real intervals of g: breakpoints 0 = z₀ ≤ z₁ ≤ … ≤ z₅ = 1, g of one sign on each piece.
+        let (z, _) = poly_breakpoints(&rs.g, T::zero(), T::one(), method);
+        let mut real = [T::Mask::splat(false); 5];
+        for k in 0..5 {
+            let mid = (z[k] + z[k + 1]) * half;
+            real[k] = horner(&rs.g, mid).gt(T::zero()) & z[k + 1].gt(z[k]);
+        }
+        // A boundary is a cut (a root of g) where realness changes or g ≤ 0 there.
+        let mut cut = [T::Mask::splat(true); 6];
+        for j in 1..5 {
+            let rj = real[j - 1] & real[j];
+            cut[j] = !rj | horner(&rs.g, z[j]).le(T::zero());
+        }
+        let ppoly = if solver == Solver::Polynomial {
+            Some(poly_breakpoints(&rs.p_poly(), T::zero(), T::one(), Bracket::Newton))
+        } else {
+            None
+        };
+        let mut out = [Interval::miss(); 5];
+        for k in 0..5 {
+            // Process piece k only where it starts a merged real interval.
+            let first = real[k] & cut[k];
+            if first.none() {
+                continue;
+            }
+            let lo = z[k];
+            let mut hi = z[k + 1];
+            let mut open = T::Mask::splat(true);
+            for j in k + 1..5 {
+                open = open & !cut[j];
+                hi = T::select(open, z[j + 1], hi);
+            }
+            let (si, ui, so, uo) = match ppoly {
+                Some((bp, n)) => {
+                    let (si, ui, so, uo, _) = rs.from_candidates(&bp[..n], lo, hi, true);
+                    (si, ui, so, uo)
+                }
+                None => {
+                    let (vi, ui) = rs.russig_min(lo, hi, T::one(), method);
+                    let (vo, uo) = rs.russig_min(lo, hi, -T::one(), method);
+                    (vi, ui, -vo, uo)
+                }
+            };
+            out[k] = rs.interval(ray, si, ui, so, uo, first);
+        }
+        out
+    }
+}
+
+/// Distance-like function of the sweep: `φ(x) = min_t (|x − p(t)| − r(t))` over `t ∈ [0, 1]`,
+/// by exact 1-D minimisation. Outside the tube and on its surface this **is** the exact
+/// distance to the sweep (the distance to a union of balls is the least distance to one of
+/// them); inside it is `−max_t (r(t) − |x − p(t)|)`, negative, zero on the surface and at most
+/// the depth in magnitude.
+///
+/// The critical points of `|x − p| − r` satisfy `(x − p)·p' = −r'|x − p|`, so they are roots of
+/// the degree-6 polynomial `((x − p)·p')² − r'²|x − p|²`; all of them in `[0, 1]` are isolated
+/// by the derivative cascade with safeguarded Newton, and `φ` is the least value over them
+/// and the ends.
+pub fn quadratic_tube<T: Scalar>(x: V3<T>, tube: &QuadTube<T>) -> T {
+    let two = T::cst(2.0);
+    let [b0, b1, b2] = tube.b;
+    // Relative to b₀ (precision): p = A t² + B t, D = x − p.
+    let a = b0 - b1 * two + b2;
+    let b = (b1 - b0) * two;
+    let xr = x - b0;
+    let d = [xr, -b, -a];
+    let dp = [b, a * two];
+    let [r0, r1, r2] = tube.r;
+    let rp = [(r1 - r0) * two, (r0 - r1 * two + r2) * two];
+    // D·p' (cubic), |D|² (quartic).
+    let mut dpp = [T::zero(); 4];
+    for i in 0..3 {
+        for j in 0..2 {
+            dpp[i + j] += d[i].dot(dp[j]);
+        }
+    }
+    let mut dd = [T::zero(); 5];
+    for i in 0..3 {
+        for j in 0..3 {
+            dd[i + j] += d[i].dot(d[j]);
+        }
+    }
+    let s1: [T; 7] = poly_mul(&dpp, &dpp);
+    let rp2: [T; 3] = poly_mul(&rp, &rp);
+    let s2: [T; 7] = poly_mul(&rp2, &dd);
+    let mut q = [T::zero(); 7];
+    for i in 0..7 {
+        q[i] = s1[i] - s2[i];
+    }
+    let (bp, n) = poly_breakpoints(&q, T::zero(), T::one(), Bracket::Newton);
+    let mut best = T::infinity();
+    for &t in &bp[..n] {
+        let v = (x - tube.point(t)).length() - tube.radius(t);
+        best = best.min(v);
+    }
+    best
+}
