@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Regenerate the reference fixtures in a fresh venv with the pinned wheels and fail if they
+# differ numerically from the committed ones. Needs network access to PyPI; fails loudly
+# (non-zero) if it cannot install, never skips.
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+work="$(mktemp -d "${TMPDIR:-/tmp}/tubecast-reference.XXXXXX")"
+trap 'rm -rf "$work"' EXIT
+
+die() { echo "reference/check.sh: FAILED: $*" >&2; exit 1; }
+
+python="${PYTHON:-python3}"
+command -v "$python" >/dev/null || die "$python not found"
+"$python" -m venv "$work/venv" || die "could not create a venv with $python"
+if ! "$work/venv/bin/pip" install --quiet --disable-pip-version-check --only-binary=:all: \
+        -r "$here/requirements.txt"; then
+    die "pip could not install the pinned wheels from reference/requirements.txt (is PyPI reachable?)"
+fi
+
+echo "reference/check.sh: regenerating fixtures into $work/fixtures"
+"$work/venv/bin/python" "$here/generate.py" --out "$work/fixtures" \
+    || die "generate.py failed"
+if ! "$work/venv/bin/python" "$here/compare.py" "$here/fixtures" "$work/fixtures"; then
+    die "regenerated fixtures differ from the committed ones in reference/fixtures (see above); \
+if the change is intended, run: python reference/generate.py (in a venv with reference/requirements.txt) and commit"
+fi
+echo "reference/check.sh: OK, committed fixtures reproduce"
