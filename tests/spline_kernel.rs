@@ -1,0 +1,330 @@
+//! Spline kernel vs an independent dense-sampling oracle, surface and normal checks, lanes,
+//! precision, hard regions and bad input.
+//!
+//! Case counts are small by default so `cargo test` stays fast; set `PROPTEST_CASES=100000`
+//! (read by `common_spline::config`) for a long run.
+
+mod common_spline;
+use common_spline::*;
+use proptest::prelude::*;
+use tubecast::kernel::spline::{quadratic_tube, QuadTube};
+use tubecast::kernel::roots::Solver;
+use tubecast::{GeometryError, Ray, RoundCone, V3};
+
+const SOLVERS: [Solver; 5] =
+    [Solver::Polynomial, Solver::Itp, Solver::Newton, Solver::Bisection { iters: 40 }, Solver::Bisection { iters: 10 }];
+
+/// Error bound on the ray-space entry/exit distance for a solver that locates critical points
+/// to a few ulps of `t` (Polynomial, ITP, Newton, and bisection with ≥ 40 steps: 2⁻⁴⁰ in t,
+/// whose effect at a critical point is ½|f''|·2⁻⁸⁰, negligible):
+/// `g`'s coefficients are sums of ≤ 8 products of ray-space coordinates of size ≤ S, so
+/// `g(t*)` carries an absolute error ≤ 64ε·S²; `√g` then errs by ≤ √(64ε)·S (worst case, at
+/// a tangency) — this bound dominates; `h` errs by ≤ 8εS. In units of the ray parameter,
+/// divide by |d| (the strategies use |d| ≥ 0.2 and unit-free targets; we compare `t·|d|`).
+fn bound(eps: f64, s: f64) -> f64 {
+    (64.0 * eps).sqrt() * s + 8.0 * eps * s
+}
+
+fn norm(v: [f64; 3]) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+}
+
+proptest! {
+    #![proptest_config(config(64))]
+
+    /// Entry and exit agree with the oracle for every accurate solver; Bisection{10} is held to
+    /// its own, looser bound (t error 2⁻¹⁰ of the bracket).
+    #[test]
+    fn entry_exit_match_oracle((b, r) in tube_strategy(0.02, 0.6), (o, d) in ray_strategy()) {
+        let t = tube(&b, &r);
+        let ray = Ray::new(V3::from(o), V3::from(d));
+        let dl = norm(d);
+        let s = scale(&b, &r) + 2.0; // ray-space coordinates reach |b − o'| ≤ 2·(bounding radius)
+        let want = oracle(&b, &r, o, d, 4000);
+        for solver in SOLVERS {
+            let iv = t.intersect_with(&ray, solver);
+            match want {
+                // Robust hits only: a half chord ≥ 1e-3 is far beyond the oracle's sampling
+                // (4000 samples: a curve step ≤ 1e-3) and the kernel's tangency error.
+                Some((ti, _, to, _, depth)) if depth > 1e-3 => {
+                    prop_assert!(iv.hit, "{solver:?} missed a hit of depth {depth}");
+                    let tol = match solver {
+                        // ½|f''|δt² with δt = 2⁻¹⁰ and |f''| ≤ |h''| + |g''|/(2√g) + g'²/(4g^{3/2});
+                        // for depth ≥ 1e-3 we allow 1e-3·S (reported by the error chart).
+                        Solver::Bisection { iters: 10 } => 1e-3 * s,
+                        _ => bound(f64::EPSILON, s),
+                    };
+                    prop_assert!((iv.t_in - ti).abs() * dl <= tol, "{solver:?} entry {} vs {ti}", iv.t_in);
+                    prop_assert!((iv.t_out - to).abs() * dl <= tol, "{solver:?} exit {} vs {to}", iv.t_out);
+                }
+                None => prop_assert!(!iv.hit || iv.t_out - iv.t_in < 1e-3, "{solver:?} hit where the oracle misses"),
+                _ => {}
+            }
+        }
+    }
+
+    /// Hit points lie on the surface (exact SDF), normals are unit and match the SDF
+    /// gradient (central differences), and u is the touching sphere's parameter.
+    #[test]
+    fn hit_on_surface_normal_matches_gradient((b, r) in tube_strategy(0.05, 0.6), (o, d) in ray_strategy()) {
+        let t = tube(&b, &r);
+        let ray = Ray::new(V3::from(o), V3::from(d));
+        let iv = t.intersect(&ray);
+        prop_assume!(iv.hit);
+        let s = scale(&b, &r) + 2.0;
+        for (tt, n) in [(iv.t_in, iv.n_in), (iv.t_out, iv.n_out)] {
+            let x = ray.at(tt);
+            let sdf = quadratic_tube(x, &t);
+            // |d|·(t error) ≤ bound(ε, S), and the SDF is 1-Lipschitz; plus the SDF's own
+            // rounding (|x − p| − r: ≤ 8εS).
+            prop_assert!(sdf.abs() <= bound(f64::EPSILON, s) + 8.0 * f64::EPSILON * s, "sdf {sdf}");
+            prop_assert!((n.length() - 1.0).abs() < 1e-12);
+            // Gradient by central differences with step h = 1e-5: truncation error ≤ h²·|∇³φ|/6,
+            // |∇³φ| ≲ 1/ρ² with ρ ≥ r_min ≥ 0.05 → 7e-8; rounding 2·(8εS)/(2h) ≈ 1e-9... so 1e-5
+            // is loose; where the gradient is not smooth (two spheres touch the point: the surface
+            // has a crease) the difference quotient averages both sides, so skip points whose
+            // one-sided quotients disagree by more than 1e-3.
+            let h = 1e-5;
+            let mut g = [0.0; 3];
+            let mut crease = false;
+            for k in 0..3 {
+                let mut e = [0.0; 3];
+                e[k] = h;
+                let (xp, xm) = (x + V3::from(e), x - V3::from(e));
+                let (fp, f0, fm) = (quadratic_tube(xp, &t), quadratic_tube(x, &t), quadratic_tube(xm, &t));
+                g[k] = (fp - fm) / (2.0 * h);
+                crease |= ((fp - f0) / h - (f0 - fm) / h).abs() > 1e-3;
+            }
+            if !crease {
+                let err = norm([g[0] - n.x, g[1] - n.y, g[2] - n.z]);
+                prop_assert!(err < 1e-4, "normal {n:?} vs gradient {g:?}");
+            }
+        }
+    }
+
+    /// Bulge region: radii larger than the centre line's curvature radius (~0.25..1 here).
+    #[test]
+    fn bulge_region((b, r) in tube_strategy(0.8, 2.0), (o, d) in ray_strategy()) {
+        let t = tube(&b, &r);
+        let ray = Ray::new(V3::from(o), V3::from(d));
+        let s = scale(&b, &r) + 2.0;
+        if let Some((ti, _, to, _, depth)) = oracle(&b, &r, o, d, 4000) {
+            if depth > 1e-3 {
+                for solver in [Solver::Polynomial, Solver::Itp] {
+                    let iv = t.intersect_with(&ray, solver);
+                    prop_assert!(iv.hit);
+                    prop_assert!((iv.t_in - ti).abs() * norm(d) <= bound(f64::EPSILON, s), "{solver:?}");
+                    prop_assert!((iv.t_out - to).abs() * norm(d) <= bound(f64::EPSILON, s), "{solver:?}");
+                }
+            }
+        }
+    }
+
+    /// Cusps: b₂ = b₀ (the tangent vanishes at t = ½ and the curve folds back) and b₁ = b₀
+    /// (zero tangent at t = 0).
+    #[test]
+    fn cusps((b, r) in tube_strategy(0.02, 0.5), (o, d) in ray_strategy(), fold in any::<bool>()) {
+        let mut b = b;
+        if fold { b[2] = b[0]; } else { b[1] = b[0]; }
+        let t = tube(&b, &r);
+        let ray = Ray::new(V3::from(o), V3::from(d));
+        let s = scale(&b, &r) + 2.0;
+        if let Some((ti, _, to, _, depth)) = oracle(&b, &r, o, d, 4000) {
+            if depth > 1e-3 {
+                for solver in [Solver::Polynomial, Solver::Itp, Solver::Newton] {
+                    let iv = t.intersect_with(&ray, solver);
+                    prop_assert!(iv.hit);
+                    prop_assert!((iv.t_in - ti).abs() * norm(d) <= bound(f64::EPSILON, s), "{solver:?}");
+                    prop_assert!((iv.t_out - to).abs() * norm(d) <= bound(f64::EPSILON, s), "{solver:?}");
+                }
+            }
+        }
+    }
+
+    /// A straight segment (b₁, r₁ at the midpoints) is the round cone: both kernels agree.
+    #[test]
+    fn straight_matches_round_cone(a in prop::array::uniform3(-1.0f64..1.0), c in prop::array::uniform3(-1.0f64..1.0),
+                                   ra in 0.05f64..0.6, rb in 0.05f64..0.6, (o, d) in ray_strategy()) {
+        let link = RoundCone::new(V3::from(a), ra, V3::from(c), rb).unwrap();
+        let t = QuadTube::from_link(&link).unwrap();
+        let ray = Ray::new(V3::from(o), V3::from(d));
+        let want = link.intersect(&ray);
+        let got = t.intersect(&ray);
+        let s = 2.0 * 3f64.sqrt() + 0.6 + 2.0;
+        if want.hit && want.t_out - want.t_in > 1e-3 {
+            prop_assert!(got.hit);
+            // Both kernels are within their rounding bounds of the exact surface.
+            prop_assert!((got.t_in - want.t_in).abs() * norm(d) <= 2.0 * bound(f64::EPSILON, s));
+            prop_assert!((got.t_out - want.t_out).abs() * norm(d) <= 2.0 * bound(f64::EPSILON, s));
+        }
+        if !want.hit {
+            prop_assert!(!got.hit || got.t_out - got.t_in < 1e-3);
+        }
+    }
+
+    /// Far origins: tube and ray shifted by 10⁶; the kernel re-centres, so the error grows only
+    /// by the rounding of the shifted inputs (≤ ε·10⁶ per coordinate ≈ 2.2e-10, times a
+    /// condition factor ≤ 10 for the shifted control points moving the surface).
+    #[test]
+    fn far_origins((b, r) in tube_strategy(0.05, 0.6), (o, d) in ray_strategy()) {
+        let off = 1.0e6;
+        let sh = |p: [f64; 3]| [p[0] + off, p[1] - off, p[2] + off];
+        let bs = [sh(b[0]), sh(b[1]), sh(b[2])];
+        let t = tube(&bs, &r);
+        let ray = Ray::new(V3::from(sh(o)), V3::from(d));
+        let s = scale(&b, &r) + 2.0;
+        if let Some((ti, _, to, _, depth)) = oracle(&b, &r, o, d, 4000) {
+            if depth > 1e-3 {
+                let iv = t.intersect(&ray);
+                prop_assert!(iv.hit);
+                let tol = bound(f64::EPSILON, s) + 10.0 * off * f64::EPSILON * 4.0;
+                prop_assert!((iv.t_in - ti).abs() * norm(d) <= tol);
+                prop_assert!((iv.t_out - to).abs() * norm(d) <= tol);
+            }
+        }
+    }
+
+    /// Rays starting inside: the line interval straddles the origin; the hit is reported.
+    #[test]
+    fn rays_inside((b, r) in tube_strategy(0.05, 0.6), dir in prop::array::uniform3(-1.0f64..1.0), u in 0.0f64..1.0) {
+        prop_assume!(norm(dir) > 0.2);
+        let (p, _) = eval(&b, &r, u);
+        let t = tube(&b, &r);
+        let ray = Ray::new(V3::from(p), V3::from(dir));
+        let iv = t.intersect(&ray);
+        prop_assert!(iv.hit);
+        prop_assert!(iv.t_in < 0.0 && iv.t_out > 0.0);
+        let (ti, _, to, _, _) = oracle(&b, &r, p, dir, 4000).unwrap();
+        let s = scale(&b, &r) + 2.0;
+        prop_assert!((iv.t_in - ti).abs() * norm(dir) <= bound(f64::EPSILON, s));
+        prop_assert!((iv.t_out - to).abs() * norm(dir) <= bound(f64::EPSILON, s));
+    }
+
+    /// Every lane of a WideF64x4 / WideF32x8 call equals the scalar call bit for bit (0 ulp):
+    /// the kernel uses the same IEEE operations per lane (no fused multiply-add, converged
+    /// lanes are frozen, skipped branches are masked).
+    #[test]
+    fn lanes_equal_scalar(cases in prop::collection::vec((tube_strategy(0.02, 0.6), ray_strategy()), 8)) {
+        use tubecast::real::{WideF32x8, WideF64x4};
+        for solver in SOLVERS {
+            let t4 = QuadTube::<WideF64x4>::from_lanes(|i| tube(&cases[i].0 .0, &cases[i].0 .1));
+            let r4 = Ray::<WideF64x4>::from_fn(|i| Ray::new(V3::from(cases[i].1 .0), V3::from(cases[i].1 .1)));
+            let w = t4.intersect_with(&r4, solver);
+            for i in 0..4 {
+                let sc = tube(&cases[i].0 .0, &cases[i].0 .1).intersect_with(&r4.lane(i), solver);
+                prop_assert_eq!(w.lane(i), sc, "f64x4 {:?} lane {}", solver, i);
+            }
+            let t8 = QuadTube::<WideF32x8>::from_lanes(|i| tube(&cases[i].0 .0, &cases[i].0 .1).cast::<f32>());
+            let r8 = Ray::<WideF32x8>::from_fn(|i| Ray::new(V3::from(cases[i].1 .0).cast(), V3::from(cases[i].1 .1).cast()));
+            let w = t8.intersect_with(&r8, solver);
+            for i in 0..8 {
+                let sc = tube(&cases[i].0 .0, &cases[i].0 .1).cast::<f32>().intersect_with(&r8.lane(i), solver);
+                let (a, b) = (w.lane(i), sc);
+                prop_assert!(a == b || (a.hit == b.hit && a.t_in.to_bits() == b.t_in.to_bits()), "f32x8 {:?} lane {}: {:?} vs {:?}", solver, i, a, b);
+            }
+        }
+    }
+
+    /// f32 kernel vs the f64 oracle: the same bound with ε = 2⁻²³ (rounding the inputs to f32
+    /// moves the surface by ≤ εS, inside the bound).
+    #[test]
+    fn f32_within_bound((b, r) in tube_strategy(0.02, 0.6), (o, d) in ray_strategy()) {
+        let t = tube(&b, &r).cast::<f32>();
+        let ray = Ray::new(V3::from(o).cast::<f32>(), V3::from(d).cast::<f32>());
+        let s = scale(&b, &r) + 2.0;
+        if let Some((ti, _, to, _, depth)) = oracle(&b, &r, o, d, 4000) {
+            if depth > 0.05 {
+                for solver in [Solver::Polynomial, Solver::Itp, Solver::Newton] {
+                    let iv = t.intersect_with(&ray, solver);
+                    prop_assert!(iv.hit, "{solver:?}");
+                    let tol = bound(f32::EPSILON as f64, s) + 4.0 * f32::EPSILON as f64 * s;
+                    prop_assert!((iv.t_in as f64 - ti).abs() * norm(d) <= tol, "{solver:?} {} {ti}", iv.t_in);
+                    prop_assert!((iv.t_out as f64 - to).abs() * norm(d) <= tol, "{solver:?}");
+                }
+            }
+        }
+    }
+
+    /// The SDF function agrees with dense sampling of min_t(|x − p| − r) (it is the exact
+    /// minimum, so it is ≤ every sample and within the sampling error of the best one:
+    /// step 1/4000 moves p by ≤ |p'|/4000 ≤ 1e-3 and r by ≤ 3e-4).
+    #[test]
+    fn sdf_matches_sampling((b, r) in tube_strategy(0.02, 0.6), x in prop::array::uniform3(-2.0f64..2.0)) {
+        let t = tube(&b, &r);
+        let phi = quadratic_tube(V3::from(x), &t);
+        let mut best = f64::INFINITY;
+        for k in 0..=4000 {
+            let (p, rr) = eval(&b, &r, k as f64 / 4000.0);
+            best = best.min(norm([x[0] - p[0], x[1] - p[1], x[2] - p[2]]) - rr);
+        }
+        prop_assert!(phi <= best + 1e-12, "{phi} > sampled {best}");
+        prop_assert!(phi >= best - 2e-3, "{phi} far below sampled {best}");
+    }
+}
+
+/// Grazing: a ray perpendicular to a straight cylinder of radius 1 at distance 1 ∓ δ.
+#[test]
+fn grazing() {
+    let t = QuadTube::new([V3::new(-1.0, 0.0, 0.0), V3::new(0.0, 0.0, 0.0), V3::new(1.0, 0.0, 0.0)], [1.0, 1.0, 1.0]).unwrap();
+    for delta in [1e-3, 1e-6] {
+        for solver in SOLVERS {
+            let inside = t.intersect_with(&Ray::new(V3::new(0.3, -5.0, 1.0 - delta), V3::new(0.0, 1.0, 0.0)), solver);
+            let half: f64 = (1.0 - (1.0f64 - delta).powi(2)).sqrt();
+            assert!(inside.hit, "{solver:?} δ={delta}");
+            // Exact entry 5 − half; error ≤ √(64ε)·S (tangency regime), S ≈ 3; bisection(10)
+            // locates the flat minimum of f only to 2⁻¹⁰ in t: f error ½|f''|δt² ≤ 1e-3.
+            let tol = if solver == (Solver::Bisection { iters: 10 }) { 1e-3 } else { bound(f64::EPSILON, 3.0) };
+            assert!((inside.t_in - (5.0 - half)).abs() <= tol, "{solver:?} δ={delta}: {}", inside.t_in);
+            let outside = t.intersect_with(&Ray::new(V3::new(0.3, -5.0, 1.0 + delta), V3::new(0.0, 1.0, 0.0)), solver);
+            assert!(!outside.hit, "{solver:?} δ={delta}: false hit");
+        }
+    }
+}
+
+/// A minimum exactly at the joint t = 0 (entry through the end sphere) is found.
+#[test]
+fn minimum_at_segment_end() {
+    let t = QuadTube::<f64>::new([V3::new(0.0, 0.0, 0.0), V3::new(1.0, 0.5, 0.0), V3::new(2.0, 0.0, 0.0)], [0.5, 0.3, 0.2]).unwrap();
+    // Along −x towards the start sphere's centre: enters the sphere at x = −0.5.
+    for solver in SOLVERS {
+        let iv = t.intersect_with(&Ray::new(V3::new(-3.0, 0.0, 0.0), V3::new(1.0, 0.0, 0.0)), solver);
+        assert!(iv.hit);
+        assert!((iv.t_in - 2.5).abs() < 1e-12, "{solver:?}: {}", iv.t_in);
+        assert_eq!(iv.u_in, 0.0);
+        assert!((iv.n_in.x + 1.0).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn bad_input_is_rejected() {
+    let p = [V3::new(0.0, 0.0, 0.0), V3::new(1.0, 1.0, 0.0), V3::new(2.0, 0.0, 0.0)];
+    assert_eq!(QuadTube::new(p, [1.0, -2.0, 1.0]), Err(GeometryError::NegativeRadius));
+    assert_eq!(QuadTube::new(p, [-0.1, 1.0, 1.0]), Err(GeometryError::NegativeRadius));
+    // r(t) = (1−t)² − 2·0.9·t(1−t)·… stays ≥ 0 with a negative middle control radius:
+    assert!(QuadTube::new(p, [1.0, -0.5, 1.0]).is_ok());
+    assert_eq!(QuadTube::new(p, [0.0, 0.0, 0.0]), Err(GeometryError::ZeroRadius));
+    assert!(matches!(QuadTube::new(p, [f64::NAN, 1.0, 1.0]), Err(GeometryError::NonFinite { .. })));
+    let mut q = p;
+    q[1].y = f64::INFINITY;
+    assert!(matches!(QuadTube::new(q, [1.0, 1.0, 1.0]), Err(GeometryError::NonFinite { .. })));
+    q[1].y = 1e80;
+    assert!(matches!(QuadTube::new(q, [1.0, 1.0, 1.0]), Err(GeometryError::NonFinite { .. })));
+    let qf = [V3::new(0.0f32, 0.0, 0.0), V3::new(1e10, 0.0, 0.0), V3::new(2.0, 0.0, 0.0)];
+    assert!(matches!(QuadTube::new(qf, [1.0, 1.0, 1.0]), Err(GeometryError::NonFinite { .. })));
+}
+
+/// Degenerate rays give no NaN: a zero direction is rejected by Ray::validate; a valid ray
+/// through a zero-length, constant-radius segment (a sphere) works with every solver.
+#[test]
+fn degenerate_segment_is_a_sphere() {
+    let c = V3::new(1.0f64, 2.0, 3.0);
+    let t = QuadTube::<f64>::new([c, c, c], [0.5, 0.5, 0.5]).unwrap();
+    let ray = Ray::new(V3::new(1.0, 2.0, -2.0), V3::new(0.0, 0.0, 2.0));
+    assert!(Ray::new(c, V3::zero()).validate().is_err());
+    for solver in SOLVERS {
+        let iv = t.intersect_with(&ray, solver);
+        assert!(iv.hit);
+        assert!((iv.t_in - 2.25).abs() < 1e-12 && (iv.t_out - 2.75).abs() < 1e-12, "{solver:?} {iv:?}");
+        assert!((iv.n_in.z + 1.0).abs() < 1e-12 && (iv.n_out.z - 1.0).abs() < 1e-12);
+    }
+}
