@@ -144,5 +144,5 @@ pub fn scale(b: &[[f64; 3]; 3], r: &[f64; 3]) -> f64 {
 /// defaults are small so that `cargo test` stays fast.
 pub fn config(default: u32) -> ProptestConfig {
     let cases = std::env::var("PROPTEST_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(default);
-    ProptestConfig { cases, failure_persistence: None, ..ProptestConfig::default() }
+    ProptestConfig { cases, max_global_rejects: 20 * cases + 1024, failure_persistence: None, ..ProptestConfig::default() }
 }
