@@ -78,8 +78,13 @@ impl<T: Scalar> Ray<T> {
         if !self.o.is_finite() || !self.d.is_finite() {
             return Err(E::NonFinite { what: "ray origin or direction" });
         }
-        if self.d.length2() <= T::zero() || !self.d.length2().is_finite() {
+        // |d|² must be a normal number and |o|² finite: kernels square both.
+        let d2 = self.d.length2();
+        if !(d2 >= T::MIN_POSITIVE) {
             return Err(E::ZeroDirection);
+        }
+        if !d2.is_finite() || !self.o.length2().is_finite() {
+            return Err(E::NonFinite { what: "ray origin or direction (overflows when squared)" });
         }
         if self.t_min.to_f64().is_nan() || self.t_max.to_f64().is_nan() || self.t_min > self.t_max {
             return Err(E::BadRange);

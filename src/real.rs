@@ -152,6 +152,8 @@ pub trait Real:
 pub trait Scalar: Real<Mask = bool, Elem = Self> + PartialOrd + Default + core::fmt::Display {
     /// Machine epsilon.
     const EPS: Self;
+    /// Smallest positive normal number.
+    const MIN_POSITIVE: Self;
     /// Convert from `f64` (rounding to nearest).
     fn from_f64(x: f64) -> Self;
     /// Convert to `f64` (exact).
@@ -237,6 +239,7 @@ macro_rules! impl_scalar {
         }
         impl Scalar for $t {
             const EPS: Self = <$t>::EPSILON;
+            const MIN_POSITIVE: Self = <$t>::MIN_POSITIVE;
             #[inline(always)]
             fn from_f64(x: f64) -> Self {
                 x as $t
