@@ -35,8 +35,12 @@ pub(crate) fn sphere_line<T: Real>(ray: &Ray<T>, c: V3<T>, r: T, u: T) -> Interv
     let t_in = tc - h;
     let t_out = tc + h;
     // Hit points relative to c: l ∓ h·d (no o + t·d − c cancellation).
-    // Normalised explicitly: in f32 with |o − c| ≫ r the rounding of l is not small against r.
-    let n_in = (l - ray.d * h).normalize_or_zero();
-    let n_out = (l + ray.d * h).normalize_or_zero();
+    // Hit point − c = l ∓ h·d = l ∓ √disc·d̂. Formed with the unit direction so that nothing
+    // overflows even when t itself does (radius ≫ |d|), and normalised explicitly: in f32 with
+    // |o − c| ≫ r the rounding of l is not small against r.
+    let dn = ray.d * (T::one() / d2.sqrt());
+    let sq = disc.max(T::zero()).sqrt();
+    let n_in = (l - dn * sq).normalize_or_zero();
+    let n_out = (l + dn * sq).normalize_or_zero();
     Interval { t_in, t_out, n_in, n_out, u_in: u, u_out: u, hit: ok }.masked(ok)
 }
