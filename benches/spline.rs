@@ -1,1 +1,126 @@
-fn main(){}
+//! Spline-tube kernel cost: f32, f64, WideF32x8, WideF64x4 × each solver, and the stable link
+//! kernel `RoundCone::intersect` on the same rays in the same run (the unit of cost).
+//!
+//! `cargo bench --bench spline` (add `RUSTFLAGS="-C target-cpu=x86-64-v3"` for full-width
+//! lanes). Every benchmark runs the same fixed set of 64 (segment, ray) pairs, ~70% hits,
+//! and reports the time per ray (lane benches: per ray, i.e. divided by the lane count via
+//! `Throughput::Elements`).
+
+use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use rand::{Rng, SeedableRng};
+use tubecast::kernel::roots::Solver;
+use tubecast::kernel::spline::QuadTube;
+use tubecast::real::{Real, Scalar, WideF32x8, WideF64x4};
+use tubecast::{Ray, RoundCone, V3};
+
+const N: usize = 64;
+
+fn cases() -> Vec<(QuadTube<f64>, RoundCone<f64>, Ray<f64>)> {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(7);
+    let mut v = || V3::new(rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0));
+    let mut out = Vec::new();
+    while out.len() < N {
+        let (a, m, b) = (v(), v(), v());
+        let (tgt, dir) = (v() * 0.8, v());
+        if dir.length() < 0.2 {
+            continue;
+        }
+        let t = QuadTube::new([a, m, b], [0.3, 0.4, 0.2]).unwrap();
+        let l = RoundCone::new(a, 0.3, b, 0.2).unwrap();
+        let o = tgt - dir * (5.0 / dir.length());
+        out.push((t, l, Ray::new(o, dir)));
+    }
+    out
+}
+
+const SOLVERS: [(&str, Solver); 5] = [
+    ("bisection10", Solver::Bisection { iters: 10 }),
+    ("bisection20", Solver::Bisection { iters: 20 }),
+    ("itp", Solver::Itp),
+    ("newton", Solver::Newton),
+    ("polynomial", Solver::Polynomial),
+];
+
+fn scalar<T: Scalar>(c: &mut Criterion, name: &str) {
+    let cs = cases();
+    let ts: Vec<(QuadTube<T>, RoundCone<T>, Ray<T>)> = cs
+        .iter()
+        .map(|(t, l, r)| (t.cast(), l.cast(), Ray::new(r.o.cast(), r.d.cast())))
+        .collect();
+    let mut g = c.benchmark_group(format!("spline/{name}"));
+    g.throughput(Throughput::Elements(N as u64));
+    g.bench_function("round_cone_link", |b| {
+        b.iter(|| {
+            let mut acc = T::zero();
+            for (_, l, r) in &ts {
+                acc += black_box(l).intersect(black_box(r)).t_in.min(T::cst(1e9));
+            }
+            acc
+        })
+    });
+    for (sn, s) in SOLVERS {
+        g.bench_with_input(BenchmarkId::new("spline", sn), &s, |b, &s| {
+            b.iter(|| {
+                let mut acc = T::zero();
+                for (t, _, r) in &ts {
+                    acc += black_box(t).intersect_with(black_box(r), s).t_in.min(T::cst(1e9));
+                }
+                acc
+            })
+        });
+    }
+    g.finish();
+}
+
+fn lanes<T: Real>(c: &mut Criterion, name: &str)
+where
+    T::Elem: Scalar,
+{
+    let cs = cases();
+    let w = T::LANES;
+    let packs: Vec<(QuadTube<T>, RoundCone<T>, Ray<T>)> = (0..N / w)
+        .map(|k| {
+            let t = QuadTube::<T>::from_lanes(|i| cs[k * w + i].0.cast());
+            let l = RoundCone::<T>::from_lanes(|i| cs[k * w + i].1.cast());
+            let r = Ray::<T>::from_fn(|i| Ray::new(cs[k * w + i].2.o.cast(), cs[k * w + i].2.d.cast()));
+            (t, l, r)
+        })
+        .collect();
+    let mut g = c.benchmark_group(format!("spline/{name}"));
+    g.throughput(Throughput::Elements(N as u64));
+    g.bench_function("round_cone_link", |b| {
+        b.iter(|| {
+            let mut acc = T::zero();
+            for (_, l, r) in &packs {
+                acc += black_box(l).intersect(black_box(r)).t_in.min(T::cst(1e9));
+            }
+            acc
+        })
+    });
+    for (sn, s) in SOLVERS {
+        g.bench_with_input(BenchmarkId::new("spline", sn), &s, |b, &s| {
+            b.iter(|| {
+                let mut acc = T::zero();
+                for (t, _, r) in &packs {
+                    acc += black_box(t).intersect_with(black_box(r), s).t_in.min(T::cst(1e9));
+                }
+                acc
+            })
+        });
+    }
+    g.finish();
+}
+
+fn benches(c: &mut Criterion) {
+    scalar::<f32>(c, "f32");
+    scalar::<f64>(c, "f64");
+    lanes::<WideF32x8>(c, "f32x8");
+    lanes::<WideF64x4>(c, "f64x4");
+}
+
+criterion_group! {
+    name = spline;
+    config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(1)).warm_up_time(std::time::Duration::from_millis(300));
+    targets = benches
+}
+criterion_main!(spline);

@@ -1,0 +1,89 @@
+// Shared by fuzz/fuzz_targets/spline.rs and tests/fuzz_corpus_spline.rs.
+// Bytes -> (quadratic tube, ray, solver). Byte 0: bits 0..2 the solver, bit 7 "raw" mode
+// (coordinates are arbitrary f64 bit patterns: NaN, ∞, huge — validators must reject without
+// panicking); otherwise coordinates are i16/1000 (|x| ≤ 32.8). Valid input must give, in f64
+// and f32 and for every solver: no NaN, t_in ≤ t_out, unit normals, u ∈ [0, 1]; and for f64
+// with an accurate solver, hit points within √(64ε)·S + 8εS (tests/spline_kernel.rs) of the
+// surface, measured with the exact tube SDF, on intervals at least 1e-6·S long.
+#[allow(unused_imports)]
+use tubecast::{kernel::roots::Solver, kernel::spline::{quadratic_tube, QuadTube}, Interval, Ray, Scalar, V3};
+
+fn val(data: &[u8], i: usize, raw: bool) -> f64 {
+    if raw {
+        let mut b = [0u8; 8];
+        for k in 0..8 {
+            b[k] = *data.get(1 + i * 8 + k).unwrap_or(&0);
+        }
+        f64::from_le_bytes(b)
+    } else {
+        let lo = *data.get(1 + 2 * i).unwrap_or(&0);
+        let hi = *data.get(2 + 2 * i).unwrap_or(&0);
+        i16::from_le_bytes([lo, hi]) as f64 / 1000.0
+    }
+}
+
+pub fn sane<T: Scalar>(iv: &Interval<T>) {
+    let all = [iv.t_in, iv.t_out, iv.u_in, iv.u_out, iv.n_in.x, iv.n_in.y, iv.n_in.z, iv.n_out.x, iv.n_out.y, iv.n_out.z];
+    assert!(all.iter().all(|x| !x.to_f64().is_nan()), "NaN in {iv:?}");
+    if iv.hit {
+        assert!(iv.t_in <= iv.t_out, "t_in > t_out: {iv:?}");
+        let tol = if T::EPS.to_f64() < 1e-10 { 1e-12 } else { 1e-5 };
+        for n in [iv.n_in, iv.n_out] {
+            assert!((n.length().to_f64() - 1.0).abs() <= tol, "normal not unit: {iv:?}");
+        }
+        for u in [iv.u_in, iv.u_out] {
+            assert!(u.to_f64() >= 0.0 && u.to_f64() <= 1.0, "u out of range: {iv:?}");
+        }
+    }
+}
+
+pub fn check(data: &[u8]) {
+    let mode = *data.first().unwrap_or(&0);
+    let raw = mode & 0x80 != 0;
+    let solver = match mode & 7 {
+        0 | 5 => Solver::Polynomial,
+        1 => Solver::Itp,
+        2 | 6 => Solver::Newton,
+        3 => Solver::Bisection { iters: 10 },
+        _ => Solver::Bisection { iters: 40 },
+    };
+    let v = |i: usize| val(data, i, raw);
+    let b = [V3::new(v(0), v(1), v(2)), V3::new(v(3), v(4), v(5)), V3::new(v(6), v(7), v(8))];
+    let r = [v(9).abs(), v(10), v(11).abs()];
+    let ray = Ray::new(V3::new(v(12), v(13), v(14)), V3::new(v(15), v(16), v(17)));
+    let t = match QuadTube::new(b, r) {
+        Ok(t) => t,
+        Err(_) => return,
+    };
+    if ray.validate().is_err() {
+        return;
+    }
+    let iv = t.intersect_with(&ray, solver);
+    sane(&iv);
+    for p in t.intersect_pieces(&ray, solver) {
+        sane(&p);
+    }
+    let accurate = !matches!(solver, Solver::Bisection { iters: 10 });
+    if iv.hit && accurate {
+        let mut s: f64 = 0.0;
+        for i in 0..3 {
+            s = s.max((b[i] - b[0]).max_abs()).max(r[i].abs());
+        }
+        // Ray-space coordinates reach the bounding radius twice: S ≤ 4·(extent + radius).
+        let s = 4.0 * (s * 3f64.sqrt() + s);
+        let dl = ray.d.length();
+        if (iv.t_out - iv.t_in) * dl > 1e-6 * s {
+            for tt in [iv.t_in, iv.t_out] {
+                let e = quadratic_tube(ray.at(tt), &t).abs();
+                let bound = (64.0 * f64::EPSILON).sqrt() * s + 8.0 * f64::EPSILON * s;
+                assert!(e <= bound, "hit {tt} off the surface by {e} > {bound}: {t:?} {ray:?} {solver:?}");
+            }
+        }
+    }
+    if let Ok(t32) = QuadTube::new([b[0].cast::<f32>(), b[1].cast(), b[2].cast()], [r[0] as f32, r[1] as f32, r[2] as f32]) {
+        let r32 = Ray::new(ray.o.cast::<f32>(), ray.d.cast::<f32>());
+        if r32.validate().is_ok() {
+            sane(&t32.intersect_with(&r32, solver));
+        }
+    }
+}
