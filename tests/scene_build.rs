@@ -80,6 +80,7 @@ fn far_from_origin_keeps_precision_and_naive_f32_does_not() {
             }
         }
     }
+    eprintln!("worst |dt|: local-origin f32 {worst_local:e}, naive absolute f32 {worst_naive:e}");
     // Local path: offsets ≤ 0.6 are rounded to f32 (≤ 0.6·2⁻²⁴ ≈ 3.6e-8 per component), the
     // f32 kernel adds a few ulps of the same size, and the hit is at most r/√(r² − z²) ≈ 2.03
     // times more sensitive than a head-on hit for |z| ≤ 0.0087; so ≈ 2·(few·3.6e-8) ≲ 5e-7.
