@@ -54,6 +54,11 @@ pub enum GeometryError {
     ZeroRadius,
     /// A ray direction is zero.
     ZeroDirection,
+    /// A non-zero size is so small that its square underflows.
+    TooSmall {
+        /// What was too small.
+        what: &'static str,
+    },
     /// A ray range is NaN or has `t_min > t_max`.
     BadRange,
 }
@@ -64,7 +69,8 @@ impl core::fmt::Display for GeometryError {
             Self::NonFinite { what } => write!(f, "{what} is NaN or infinite"),
             Self::NegativeRadius => write!(f, "radius is negative"),
             Self::ZeroRadius => write!(f, "radius is zero (the primitive has no volume)"),
-            Self::ZeroDirection => write!(f, "ray direction is zero"),
+            Self::ZeroDirection => write!(f, "ray direction is zero (or its squared length underflows)"),
+            Self::TooSmall { what } => write!(f, "{what} is too small"),
             Self::BadRange => write!(f, "ray range is NaN or t_min > t_max"),
         }
     }

@@ -305,6 +305,10 @@ fn constructors_reject_bad_input() {
     assert_eq!(RoundCone::new(o, -1.0, x, 1.0), Err(E::NegativeRadius));
     assert_eq!(RoundCone::new(o, 1.0, x, -0.5), Err(E::NegativeRadius));
     assert_eq!(RoundCone::new(o, 0.0, x, 0.0), Err(E::ZeroRadius));
+    assert!(matches!(RoundCone::new(o, 1e-300, x, 1.0), Err(E::TooSmall { .. })));
+    assert!(matches!(RoundCone::new(o, 1.0, x, 1e-20f32 as f64 * 1e-150), Err(E::TooSmall { .. })));
+    assert!(matches!(RoundCone::<f32>::new(o.cast(), 1e-30, x.cast(), 1.0), Err(E::TooSmall { .. })));
+    assert!(Ray::new(o, V3::new(1e-160, 0.0, 0.0)).validate().is_err());
     assert!(matches!(RoundCone::new(o, 1e300, x, 1.0), Err(E::NonFinite { .. })));
     // Valid degenerate links: zero length, one sphere inside the other, one zero radius.
     assert_eq!(RoundCone::new(o, 1.0, o, 2.0).unwrap().shape(), LinkShape::Sphere);

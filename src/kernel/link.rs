@@ -71,6 +71,11 @@ impl<T: Scalar> RoundCone<T> {
         if ra == T::zero() && rb == T::zero() {
             return Err(GeometryError::ZeroRadius);
         }
+        // Kernels square radii: a non-zero radius whose square underflows has no usable surface.
+        let tiny = |r: T| r > T::zero() && r * r < T::MIN_POSITIVE;
+        if tiny(ra) || tiny(rb) {
+            return Err(GeometryError::TooSmall { what: "link radius (its square underflows)" });
+        }
         // Squared length must not overflow, or every kernel sees L = ∞.
         let e = (b - a).max_abs().max(ra).max(rb);
         if !(e * e * T::cst(4.0)).is_finite() {
