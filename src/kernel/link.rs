@@ -178,18 +178,21 @@ impl<T: Real> RoundCone<T> {
         // 3) the new ray origin is the ray's closest point to c0. Near a crossing, o' = X0 − c0
         // is then as short as the ray–axis distance, so the quadratic's coefficients are formed
         // from numbers of the size of the radius rather than of the link length or of |o − m|.
-        let d2 = ray.d.length2();
-        let zd = ray.d.dot(axis);
-        let q = ray.d.cross(axis);
+        // Work with the unit direction (t = τ/|d| at the end): no coefficient over- or
+        // underflows because |d| is far from 1, and the error analysis is |d|-free.
+        let dl = ray.d.length();
+        let dn = ray.d * (one / dl);
+        let zd = dn.dot(axis);
+        let q = dn.cross(axis);
         let q2 = q.length2();
         let w = mid - ray.o;
-        let skew = q2.gt(d2 * T::cst(1e-12));
-        let t_ax = (w.dot(ray.d) - w.dot(axis) * zd) / T::select(skew, q2, T::one());
-        let t_ax = T::select(skew, t_ax, w.dot(ray.d) / d2);
-        let z0 = (ray.o + ray.d * t_ax - mid).dot(axis).clamp(-hl, hl);
+        let skew = q2.gt(T::cst(1e-12));
+        let t_ax = (w.dot(dn) - w.dot(axis) * zd) / T::select(skew, q2, T::one());
+        let t_ax = T::select(skew, t_ax, w.dot(dn));
+        let z0 = (ray.o + dn * t_ax - mid).dot(axis).clamp(-hl, hl);
         let c0 = mid + axis * z0;
-        let tc = (c0 - ray.o).dot(ray.d) / d2;
-        let o = ray.o + ray.d * tc - c0;
+        let tc = (c0 - ray.o).dot(dn);
+        let o = ray.o + dn * tc - c0;
         // Cone side c·ρ + s·z = rm in coordinates centred at the midpoint; at c0 it reads
         // c·ρ + s·z' = rm − s·z0 with z' = z − z0.
         let rm = (self.ra + self.rb) * half - s * z0;
@@ -206,7 +209,7 @@ impl<T: Real> RoundCone<T> {
         // Outward normal on the cone: c·ρ̂ + s·â; on a cap plane: ∓â.
         let cc = c2.sqrt();
         let normal = |t: T, on_side: T::Mask| {
-            let y = o + ray.d * t;
+            let y = o + dn * t;
             let z = y.dot(axis);
             let radial = (y - axis * z).normalize_or_zero();
             let side = (radial * cc + axis * s).normalize_or_zero();
@@ -223,7 +226,8 @@ impl<T: Real> RoundCone<T> {
         let inv = one / (len_s * c2);
         let u_at = |t: T| ((zo + zd * t + z0 + hl - self.ra * s) * inv).clamp(zero, one);
         let (n_in, n_out) = (normal(t0, q0), normal(t1, q1));
-        let (t_in, t_out) = (t0 + tc, t1 + tc);
+        let inv_dl = one / dl;
+        let (t_in, t_out) = ((t0 + tc) * inv_dl, (t1 + tc) * inv_dl);
         let hit = ok & has_cone;
         Interval { t_in, t_out, n_in, n_out, u_in: u_at(t0), u_out: u_at(t1), hit }.masked(hit)
     }

@@ -23,24 +23,24 @@ pub fn intersect_sphere<T: Real>(ray: &Ray<T>, c: V3<T>, r: T, u: T) -> Interval
 /// the building block for unions of convex pieces, which must be formed before clipping.
 #[inline(always)]
 pub(crate) fn sphere_line<T: Real>(ray: &Ray<T>, c: V3<T>, r: T, u: T) -> Interval<T> {
-    let d2 = ray.d.length2();
+    // Unit direction: the closest-point parameter and the half chord are formed in units of
+    // length (τ), so nothing over/underflows because |d| is far from 1; t = τ/|d|.
+    let dl = ray.d.length();
+    let dn = ray.d * (T::one() / dl);
     let f = ray.o - c;
-    // t of the closest point of the line to c.
-    let tc = -f.dot(ray.d) / d2;
+    // τ of the closest point of the line to c.
+    let tc = -f.dot(dn);
     // Perpendicular from c to the line (accurate: no |f|² − (f·d)² cancellation).
-    let l = f + ray.d * tc;
+    let l = f + dn * tc;
     let disc = r * r - l.length2();
     let ok = disc.ge(T::zero()) & r.gt(T::zero());
-    let h = (disc.max(T::zero()) / d2).sqrt();
-    let t_in = tc - h;
-    let t_out = tc + h;
-    // Hit points relative to c: l ∓ h·d (no o + t·d − c cancellation).
-    // Hit point − c = l ∓ h·d = l ∓ √disc·d̂. Formed with the unit direction so that nothing
-    // overflows even when t itself does (radius ≫ |d|), and normalised explicitly: in f32 with
-    // |o − c| ≫ r the rounding of l is not small against r.
-    let dn = ray.d * (T::one() / d2.sqrt());
-    let sq = disc.max(T::zero()).sqrt();
-    let n_in = (l - dn * sq).normalize_or_zero();
-    let n_out = (l + dn * sq).normalize_or_zero();
+    let h = disc.max(T::zero()).sqrt();
+    let inv_dl = T::one() / dl;
+    let t_in = (tc - h) * inv_dl;
+    let t_out = (tc + h) * inv_dl;
+    // Hit point − c = l ∓ h·d̂, normalised explicitly: in f32 with |o − c| ≫ r the rounding
+    // of l is not small against r.
+    let n_in = (l - dn * h).normalize_or_zero();
+    let n_out = (l + dn * h).normalize_or_zero();
     Interval { t_in, t_out, n_in, n_out, u_in: u, u_out: u, hit: ok }.masked(ok)
 }

@@ -1,0 +1,62 @@
+// Shared by fuzz/fuzz_targets/sphere.rs and tests/fuzz_corpus_sphere.rs.
+// Bytes -> (centre, radius, ray). Valid input (finite, r² normal, ray validated) must give in
+// f64, f32 and f64x4/f32x8 lanes: no NaN, t_in <= t_out, unit normals, and for f64 hit points
+// within E = 16ε(|o − c| + r) of the sphere (re-centred formulation: ≤ 8 roundings on vectors of
+// size ≤ |o − c| + r, plus forming o + t·d).
+use tubecast::kernel::sphere::intersect_sphere;
+use tubecast::{Interval, Ray, Real, Scalar, V3};
+
+fn f(data: &[u8], i: usize) -> f64 {
+    let mut b = [0u8; 8];
+    for k in 0..8 {
+        b[k] = *data.get(i * 8 + k).unwrap_or(&0);
+    }
+    f64::from_le_bytes(b)
+}
+
+fn sane<T: Scalar>(iv: &Interval<T>) {
+    let all = [iv.t_in, iv.t_out, iv.u_in, iv.u_out, iv.n_in.x, iv.n_in.y, iv.n_in.z, iv.n_out.x, iv.n_out.y, iv.n_out.z];
+    assert!(all.iter().all(|x| !x.to_f64().is_nan()), "NaN in {iv:?}");
+    if iv.hit {
+        assert!(iv.t_in <= iv.t_out);
+        let tol = if T::EPS.to_f64() < 1e-10 { 1e-12 } else { 1e-5 };
+        for n in [iv.n_in, iv.n_out] {
+            assert!((n.length().to_f64() - 1.0).abs() <= tol, "normal not unit: {iv:?}");
+        }
+    }
+}
+
+pub fn check(data: &[u8]) {
+    let c = V3::new(f(data, 0), f(data, 1), f(data, 2));
+    let r = f(data, 3);
+    let ray = Ray::new(V3::new(f(data, 4), f(data, 5), f(data, 6)), V3::new(f(data, 7), f(data, 8), f(data, 9)));
+    if !c.is_finite() || !(r * r >= f64::MIN_POSITIVE) || !(r * r).is_finite() || ray.validate().is_err() {
+        return;
+    }
+    if !(c - ray.o).length2().is_finite() {
+        return;
+    }
+    let iv = intersect_sphere(&ray, c, r, 0.5);
+    sane(&iv);
+    if iv.hit {
+        let e = 16.0 * f64::EPSILON * ((ray.o - c).length() + r);
+        for t in [iv.t_in, iv.t_out].into_iter().filter(|t| t.is_finite()) {
+            let x = ray.at(t);
+            if x.is_finite() {
+                let d = (x - c).length() - r;
+                assert!(d.abs() <= e + 4.0 * f64::EPSILON * (t * ray.d.length()).abs(), "off sphere by {d:e} (E {e:e})");
+            }
+        }
+    }
+    let lanes = tubecast::real::WideF64x4::splat(0.5);
+    let iv4 = intersect_sphere(&Ray::<tubecast::real::WideF64x4>::splat(ray), V3::splat(c), Real::splat(r), lanes);
+    assert_eq!(iv4.lane(3), iv, "f64x4 lane differs from scalar");
+    let (c32, r32) = (c.cast::<f32>(), r as f32);
+    let ray32 = Ray::new(ray.o.cast::<f32>(), ray.d.cast::<f32>());
+    if c32.is_finite() && r32 * r32 >= f32::MIN_POSITIVE && (r32 * r32).is_finite() && ray32.validate().is_ok() && (c32 - ray32.o).length2().is_finite() {
+        let a = intersect_sphere(&ray32, c32, r32, 0.5);
+        sane(&a);
+        let iv8 = intersect_sphere(&Ray::<tubecast::real::WideF32x8>::splat(ray32), V3::splat(c32), Real::splat(r32), Real::splat(0.5));
+        assert_eq!(iv8.lane(5), a, "f32x8 lane differs from scalar");
+    }
+}
