@@ -171,7 +171,9 @@ pub const MAX_ITER: u32 = 64;
 
 /// ITP (Oliveira & Takahashi 2020) with `κ₁ = 0.2/(b − a)`, `κ₂ = 2`, `n₀ = 1`, on a valid
 /// bracket (`valid`: `fa`, `fb` of strictly opposite signs; other lanes return the midpoint).
-/// Stops when the bracket is at most `2·tol` wide.
+/// Stops when the bracket is at most `2·tol` wide (returning its midpoint) or when two
+/// successive ITP points are within `tol` (returning the last one: the interpolation
+/// converges superlinearly while one bracket end may stay put, as in regula falsi).
 #[inline(always)]
 pub fn itp<T: Real>(f: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask, tol: T) -> T {
     let zero = T::zero();
@@ -186,6 +188,9 @@ pub fn itp<T: Real>(f: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask
     let mut rmax = w0;
     let two_tol = tol * T::cst(2.0);
     let mut done = !valid | w0.le(two_tol);
+    let mut stepped = T::Mask::splat(false);
+    let mut xprev = (a + b) * half;
+    let mut xlast = xprev;
     let mut it = 0;
     while !done.all() && it < MAX_ITER {
         it += 1;
@@ -209,9 +214,13 @@ pub fn itp<T: Real>(f: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask
         b = T::select(hi | ex, x, b);
         yb = T::select(hi, y, yb);
         rmax = T::select(act, rmax * half, rmax);
-        done = done | (b - a).le(two_tol) | ex;
+        let st = act & (x - xprev).abs().le(tol) & T::Mask::splat(it > 1);
+        stepped = stepped | st | (act & ex);
+        xlast = T::select(act, x, xlast);
+        xprev = T::select(act, x, xprev);
+        done = done | (b - a).le(two_tol) | ex | st;
     }
-    (a + b) * half
+    T::select(stepped, xlast, (a + b) * half)
 }
 
 /// Safeguarded Newton (`rtsafe`) on a valid bracket: a Newton step of `f/df` where it falls
