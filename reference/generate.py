@@ -480,21 +480,27 @@ def first_boundary(geo, o, d, t_far):
 
 
 def certified_deep_until(geo, o, d, t_end, h):
-    """For rays starting inside: the largest T such that every point of o + t d, t in
-    [0, T], lies at per-piece depth > h (hence inside the inscribed mesh). Uses samples of
-    the per-piece depth (1-Lipschitz in x, so |d|-Lipschitz in t)."""
-    out = np.zeros(len(o))
-    for j in range(len(o)):
-        ts = np.linspace(0.0, t_end[j], 400)
-        depth = -geo.sdf(o[j] + ts[:, None] * d[j])[0]
-        reach = (depth - h) / norm(d[j])
-        covered = 0.0
-        for tk, rk in zip(ts, reach):
-            if rk <= 0.0 or tk - rk > covered:
-                break
-            covered = max(covered, tk + rk)
-        out[j] = min(covered, t_end[j])
-    return out
+    """For rays starting inside: a T such that every point of o + t d, t in [0, T], lies at
+    per-piece depth > h (hence inside the inscribed mesh). The per-piece depth D(t) (minus the
+    min over pieces of their exact SDF) is |d|-Lipschitz in t, so D > h on
+    [t, t + (D(t) - h)/|d|); stepping by that covers [0, T] without gaps. Steps shrink
+    geometrically where D approaches h; stop when they are below 1e-13 of the scene."""
+    dl = norm(d)
+    t = np.zeros(len(o))
+    active = np.ones(len(o), dtype=bool)
+    tiny = 1e-13 * geo.bounding_sphere()[1]
+    for _ in range(100000):
+        if not active.any():
+            break
+        idx = np.nonzero(active)[0]
+        depth = -geo.sdf(o[idx] + t[idx, None] * d[idx])[0]
+        step = (depth - h) / dl[idx]
+        stop = (step <= tiny / dl[idx]) | (t[idx] >= t_end[idx])
+        t[idx] = np.where(stop, t[idx], np.minimum(t[idx] + step, t_end[idx]))
+        active[idx[stop]] = False
+    else:
+        raise RuntimeError("certified_deep_until did not converge")
+    return t
 
 
 # --------------------------------------------------------------------------------------
@@ -615,6 +621,8 @@ def make_geometry(scene):
 
 
 def make_rays(scene, geo, h):
+    """Rays for a scene; h (for the grazing band) is that of the scene's ray_n resolution so
+    that scenes sharing rays (same_rays_as) get identical rays."""
     rng = np.random.default_rng(scene["seed"])
     centre, radius = geo.bounding_sphere()
     rays = []
@@ -664,7 +672,10 @@ def process(scene, geo, out_dir, log):
     log(f"  mesh: {info['triangles']} triangles, h = {h:.3e}, {time.time() - t_start:.1f}s")
     centre, radius = geo.bounding_sphere()
 
-    rays = make_rays(scene, geo, h)
+    ray_n = scene.get("ray_n", scene["n"])
+    r_max = float(geo.nodes[:, 3].max()) if scene["kind"] == "links" else float(geo.rg.max())
+    band_h = sphere_sagitta(1.0, ray_n)[0] * r_max  # the sphere mesh scales with r
+    rays = make_rays(scene, geo, band_h)
     o = np.array([r[1] for r in rays])
     d = np.array([r[2] for r in rays])
     kinds = [r[0] for r in rays]
@@ -772,6 +783,7 @@ def main():
             continue
         if "same_rays_as" in scene:
             base = dict(by_name[scene["same_rays_as"]])
+            base["ray_n"] = base["n"]
             base.update({k: v for k, v in scene.items() if k != "same_rays_as"})
             scene = base
         print(f"{scene['name']}:", flush=True)
