@@ -87,8 +87,8 @@ impl Camera {
     }
 
     /// A camera that frames the box `(lo, hi)`: looking at its centre from the direction
-    /// `(0.25, 0.35, 1)` (a three-quarter view from +z), far enough that the box's bounding
-    /// sphere fits both the vertical and the horizontal field of view.
+    /// `(0.25, 0.35, 1)` (a three-quarter view from +z), just far enough (plus 5%) that all
+    /// eight corners of the box project inside both the vertical and horizontal field of view.
     pub fn fit(lo: [f64; 3], hi: [f64; 3], fov_deg: f64, width: u32, height: u32) -> Result<Self, RenderError> {
         let c = V3::new(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2]));
         let r = 0.5 * (V3::from(hi) - V3::from(lo)).length();
@@ -98,8 +98,23 @@ impl Camera {
         let aspect = width.max(1) as f64 / height.max(1) as f64;
         let half_v = (fov_deg.clamp(1e-3, 179.0) * 0.5).to_radians();
         let half_h = (half_v.tan() * aspect).atan();
-        let dist = r / half_v.min(half_h).sin();
         let dir = V3::new(0.25, 0.35, 1.0).normalize_or_zero();
+        // Orientation only (eye distance 1), to measure the corners in the camera frame.
+        let probe = Self::look_at(c + dir, c, V3::new(0.0, 1.0, 0.0), fov_deg, width, height)?;
+        let (tv, th) = (half_v.tan(), half_h.tan());
+        let mut dist: f64 = 0.0;
+        for k in 0..8 {
+            let q = V3::new(
+                if k & 1 == 0 { lo[0] } else { hi[0] },
+                if k & 2 == 0 { lo[1] } else { hi[1] },
+                if k & 4 == 0 { lo[2] } else { hi[2] },
+            ) - c;
+            // A corner at depth (dist + z) is inside when |x| ≤ th·(dist + z) and |y| ≤ tv·(dist + z).
+            let z = q.dot(probe.forward);
+            dist = dist.max(q.dot(probe.right).abs() / th - z).max(q.dot(probe.up).abs() / tv - z);
+        }
+        // Keep the eye outside the box's bounding sphere as well.
+        let dist = (1.05 * dist).max(1.05 * r);
         Self::look_at(c + dir * dist, c, V3::new(0.0, 1.0, 0.0), fov_deg, width, height)
     }
 
