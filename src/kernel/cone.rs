@@ -251,7 +251,9 @@ pub(crate) fn stump_line<T: Real>(
     };
     let side_n = |t: T| {
         let p = o + d * t;
-        V3::new(p.x, p.y, -p.z)
+        // At the apex (a zero-radius end) the cone has no normal; the tip points along −Ẑ.
+        let at_apex = p.length2().eq(T::zero());
+        V3::new(p.x, p.y, T::select(at_apex, -T::one(), -p.z))
     };
     let n_in = m.normal_to_world(V3::select(q0, side_n(t0), cap_n(t0)));
     let n_out = m.normal_to_world(V3::select(q1, side_n(t1), cap_n(t1)));
