@@ -10,6 +10,7 @@ use tubecast::kernel::roots::Solver;
 use tubecast::kernel::spline::QuadTube;
 use tubecast::{HanLink, Ray, RoundCone, V3};
 
+
 pub type V = V3<f64>;
 
 /// What libigl and the numpy generator say about one ray.
@@ -263,3 +264,216 @@ pub fn depth_reach(r: f64, cos_a: f64, h: f64) -> Option<f64> {
         Some(r * cos_a - disc.sqrt())
     }
 }
+
+pub const EPS: f64 = f64::EPSILON;
+
+/// What one scene × kernel comparison saw (printed with --nocapture).
+#[derive(Default, Debug)]
+pub struct Stats {
+    rays: usize,
+    compared_exact: usize,
+    ambiguous_graze: usize,
+    mesh_compared: usize,
+    mesh_band_misses: usize,
+    mesh_band_hits_in_band: usize,
+    sdf_at_hit_checked: usize,
+    max_point_err: f64,
+    max_rel_t_err: f64,
+    max_mesh_dt: f64,
+    min_mesh_dt: f64,
+    max_mesh_sdf_at_hit: f64,
+    min_mesh_sdf_at_hit: f64,
+    inside_rays: usize,
+    inside_shallow: usize,
+}
+
+pub fn kernel_budget(fx: &Fixture, k: Kernel, o: V) -> f64 {
+    let s = fx.radius;
+    let d = (o - fx.centre).length();
+    match k {
+        Kernel::Stable | Kernel::Spline(_) => 64.0 * EPS * (s + d),
+        Kernel::Han => {
+            let Scene::Links(links) = &fx.scene else { unreachable!() };
+            links
+                .iter()
+                .map(|l: &RoundCone<f64>| {
+                    let len = (l.b - l.a).length();
+                    let dr = (l.ra - l.rb).abs();
+                    let p2 = if dr == 0.0 || dr >= len { 0.0 } else { len * l.ra.max(l.rb) / dr };
+                    let dd = d + p2 + s;
+                    let r_min = l.ra.min(l.rb);
+                    64.0 * EPS * dd * (dd / r_min).max(1.0)
+                })
+                .fold(0.0, f64::max)
+        }
+    }
+}
+
+/// Compare a kernel to one fixture; tolerances and their analysis: the module docs of
+/// `tests/reference_links.rs`. Panics with the list of failures.
+pub fn check_scene(name: &str, k: Kernel) -> Stats {
+    let fx = load(name);
+    let m = &fx.mesh;
+    let mu = m.manifold_tolerance + m.vertex_radius_error + m.chord_error;
+    let h_in = m.inward_bound();
+    let mut st = Stats { min_mesh_dt: f64::INFINITY, min_mesh_sdf_at_hit: f64::INFINITY, ..Default::default() };
+    let mut fails: Vec<String> = Vec::new();
+    for (j, r) in fx.rays.iter().enumerate() {
+        st.rays += 1;
+        let ray = Ray::new(r.o, r.d);
+        let dl = r.d.length();
+        let dist = (r.o - fx.centre).length();
+        let e_k = kernel_budget(&fx, k, r.o);
+        let e_ref = 32.0 * EPS * (dist + fx.radius + fx.centre.length());
+        let bs = boundaries(&fx, k, &ray);
+        let b0 = bs.first().copied();
+        let tag = format!("{name} {k:?} ray {j} ({})", r.kind);
+        // (1) kernel vs exact
+        let mut graze = false;
+        match (&r.exact, b0) {
+            (None, None) => {}
+            (None, Some(b)) => {
+                let c = r.clearance.unwrap_or(0.0);
+                if c > e_k + e_ref {
+                    fails.push(format!("{tag}: exact misses with clearance {c:e}, kernel hits at t={}", b.t));
+                } else {
+                    st.ambiguous_graze += 1;
+                    graze = true;
+                }
+            }
+            (Some(e), kb) => {
+                // depth of the ray in the generating ball at the exact hit: a lower bound on
+                // how deep it goes into the solid
+                let pen = e.radius * (1.0 - (1.0 - e.cos_angle * e.cos_angle).max(0.0).sqrt());
+                let touch = e.entering && pen <= e_k + e_ref;
+                match kb {
+                    None if touch => {
+                        st.ambiguous_graze += 1;
+                        graze = true;
+                    }
+                    None => fails.push(format!("{tag}: kernel misses, exact hits at t={} (depth {pen:e})", e.t)),
+                    Some(b) => {
+                        let x = ray.at(b.t);
+                        let perr = (x - e.point).length();
+                        let tol_t = (e_k + e_ref) / (e.cos_angle * dl);
+                        if touch && (b.t - e.t).abs() > tol_t {
+                            st.ambiguous_graze += 1; // tangential contact seen by one side only
+                            graze = true;
+                        } else {
+                            st.compared_exact += 1;
+                            st.max_point_err = st.max_point_err.max(perr);
+                            st.max_rel_t_err = st.max_rel_t_err.max((b.t - e.t).abs() / tol_t);
+                            if (b.t - e.t).abs() > tol_t {
+                                fails.push(format!("{tag}: t {} vs exact {} (tol {tol_t:e})", b.t, e.t));
+                            }
+                            if b.entering != e.entering {
+                                fails.push(format!("{tag}: entering {} vs exact {}", b.entering, e.entering));
+                            }
+                            // (3) libigl's SDF at the exact point must be in the mesh band; at our
+                            // point it then lies within perr of it (1-Lipschitz).
+                            if !(-mu..=h_in).contains(&e.mesh_sdf) {
+                                fails.push(format!("{tag}: libigl sdf at exact hit {:e} outside [-{mu:e}, {h_in:e}]", e.mesh_sdf));
+                            }
+                            if perr <= h_in / 16.0 {
+                                st.sdf_at_hit_checked += 1;
+                                let lo = e.mesh_sdf - perr;
+                                let hi = e.mesh_sdf + perr;
+                                st.max_mesh_sdf_at_hit = st.max_mesh_sdf_at_hit.max(hi);
+                                st.min_mesh_sdf_at_hit = st.min_mesh_sdf_at_hit.min(lo);
+                                if lo < -mu - perr || hi > h_in + perr {
+                                    fails.push(format!("{tag}: libigl sdf at our hit in [{lo:e}, {hi:e}]"));
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // (2) kernel vs mesh, one-sided
+        let b = match b0 {
+            Some(b) if !graze => b,
+            _ => {
+                if let (Some(tm), None, false) = (r.mesh_t, b0, graze) {
+                    fails.push(format!("{tag}: mesh hits at t={tm} but the kernel misses"));
+                }
+                continue;
+            }
+        };
+        let n = b.n;
+        let cos_a = (n.dot(r.d) / dl).abs();
+        let rad = radius_at(&fx, b.id, b.u);
+        let slack = (mu + e_k + e_ref + 8.0 * EPS * (dist + fx.radius)) / (cos_a * dl);
+        if b.entering {
+            let reach = depth_reach(rad, cos_a, h_in + e_k);
+            match (r.mesh_t, reach) {
+                (None, Some(s)) => fails.push(format!(
+                    "{tag}: mesh misses a non-grazing ray (cos α {cos_a:e}, reach {s:e}, t_K {})",
+                    b.t
+                )),
+                (None, None) => st.mesh_band_misses += 1,
+                (Some(tm), reach) => {
+                    let dt = (tm - b.t) * dl;
+                    if tm < b.t - slack {
+                        fails.push(format!("{tag}: mesh hit {tm} before the kernel's {} (slack {slack:e})", b.t));
+                    }
+                    match reach {
+                        Some(s) => {
+                            st.mesh_compared += 1;
+                            st.max_mesh_dt = st.max_mesh_dt.max(dt / s.max(1e-300));
+                            st.min_mesh_dt = st.min_mesh_dt.min(dt);
+                            if tm > b.t + s / dl + slack {
+                                fails.push(format!(
+                                    "{tag}: mesh hit {tm} beyond the band: kernel {} + reach {:e}",
+                                    b.t,
+                                    s / dl
+                                ));
+                            }
+                        }
+                        None => {
+                            // grazing band: the mesh point must lie inside our solid
+                            let inside = bs.windows(2).any(|w| {
+                                w[0].entering && !w[1].entering && tm >= w[0].t - slack && tm <= w[1].t + slack
+                            });
+                            if !inside {
+                                fails.push(format!("{tag}: grazing mesh hit {tm} outside every kernel interval"));
+                            } else {
+                                st.mesh_band_hits_in_band += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        } else {
+            let deep = r.exact.as_ref().and_then(|e| e.deep_until).unwrap_or(0.0);
+            match r.mesh_t {
+                None => fails.push(format!("{tag}: ray from inside, the mesh reports no exit")),
+                Some(tm) => {
+                    st.mesh_compared += 1;
+                    st.min_mesh_dt = st.min_mesh_dt.min((b.t - tm) * dl);
+                    if tm > b.t + slack || tm < deep - slack {
+                        fails.push(format!("{tag}: mesh exit {tm} outside [deep_until {deep}, kernel {}]", b.t));
+                    }
+                    // Usually the certified-deep stretch reaches the resolution band before the
+                    // exit; a ray that passes within h of the surface from inside (near a crease,
+                    // or skimming the wall) is certified only up to there, and the mesh may let it
+                    // out early. Counted, and bounded below.
+                    if let Some(s) = depth_reach(rad, cos_a, h_in + e_k) {
+                        st.inside_rays += 1;
+                        if deep < b.t - s / dl - slack {
+                            st.inside_shallow += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("{name} {k:?}: {st:?}");
+    assert!(fails.is_empty(), "{} failures, first ones:\n{}", fails.len(), fails[..fails.len().min(12)].join("\n"));
+    // Not vacuous: most rays were compared, and both outcomes occur.
+    assert!(st.compared_exact >= fx.rays.len() / 3, "{name}: only {} rays compared", st.compared_exact);
+    assert!(st.mesh_compared >= fx.rays.len() / 3, "{name}: only {} mesh comparisons", st.mesh_compared);
+    assert!(st.inside_shallow * 10 <= st.inside_rays, "{name}: {} of {} inside rays skim the wall", st.inside_shallow, st.inside_rays);
+    assert!(st.sdf_at_hit_checked * 10 >= st.compared_exact * 9, "{name}: SDF-at-hit check skipped too often");
+    st
+}
+
