@@ -75,11 +75,16 @@ impl<T: Real> V3<T> {
         Self::new(self.x * s, self.y * s, self.z * s)
     }
     /// `self / |self|`; the zero vector (and only it) maps to zero instead of NaN.
+    ///
+    /// Scaled by the largest component first, so components whose squares under- or overflow
+    /// still give a unit vector.
     #[inline(always)]
     pub fn normalize_or_zero(self) -> Self {
-        let l = self.length();
-        let pos = l.gt(T::zero());
-        self.scale(T::select(pos, T::one() / l, T::zero()))
+        let m = self.max_abs();
+        let pos = m.gt(T::zero()) & m.is_finite();
+        let v = self.scale(T::one() / T::select(pos, m, T::one()));
+        let l = v.length();
+        v.scale(T::select(pos, T::one() / l, T::zero()))
     }
     /// Lane-wise `if m { a } else { b }`.
     #[inline(always)]

@@ -62,7 +62,9 @@ pub fn check(data: &[u8]) {
             }
             // Forming x = o + t·d and the SDF add ≤ 4ε(|o − m| + |t·d|) + 8ε·S, within E's factor 2.
             let d = sdf::round_cone(x, &link);
-            assert!(d.abs() <= 2.0 * e, "hit point off the surface by {d:e} > 2E = {:e}", 2.0 * e);
+            // Plus the absolute rounding of x = o + t·d and of the SDF's x − a: 4ε(|o| + |t·d| + |a|).
+            let fx = 4.0 * f64::EPSILON * (ray.o.length() + (t * ray.d.length()).abs() + link.a.length());
+            assert!(d.abs() <= 2.0 * e + fx, "hit point off the surface by {d:e} > 2E + {fx:e} = {:e}", 2.0 * e + fx);
         }
     }
     // Same link and ray in f32, when representable.

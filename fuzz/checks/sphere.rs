@@ -44,7 +44,10 @@ pub fn check(data: &[u8]) {
             let x = ray.at(t);
             if x.is_finite() {
                 let d = (x - c).length() - r;
-                assert!(d.abs() <= e + 4.0 * f64::EPSILON * (t * ray.d.length()).abs(), "off sphere by {d:e} (E {e:e})");
+                // Forming x = o + t·d in absolute coordinates rounds by ε·(|o| + |t·d|) per
+                // component, and |x − c| by ε·|x|: 4ε(|o| + |t·d| + |c|) covers both.
+                let fx = 4.0 * f64::EPSILON * (ray.o.length() + (t * ray.d.length()).abs() + c.length());
+                assert!(d.abs() <= e + fx, "off sphere by {d:e} (E {e:e} + {fx:e})");
             }
         }
     }
