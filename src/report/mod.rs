@@ -1,1 +1,219 @@
 //! Accuracy, speed and stability reports (SVG charts + markdown).
+//!
+//! Each `run_*` function writes its charts and one markdown file into a folder, from seeded
+//! case sets, and returns the paths. Every number in the markdown is computed by the run:
+//!
+//! * [`run_accuracy`] — error of `t` (max, p99; in radii and in ulps) against an independent
+//!   `f64` oracle ([`oracle`]) versus nanoseconds per ray–primitive test, for every link kernel
+//!   (stable, faithful precomputed/on-the-fly, link-as-spline) and every spline solver setting,
+//!   in `f32`, `f64`, `f32x8` and `f64x4`, on the same ray sets;
+//! * [`run_stability`] — false-miss and false-hit rates and error percentiles per failure region
+//!   (grazing, near-equal radii, sphere inside sphere, long thin links, far origins, radius above
+//!   curvature radius, cusps, rays starting inside, …);
+//! * [`run_speed`] — BVH build and frame time and rays/s versus segment count (opaque and
+//!   transparent/CSG) on generated scenes;
+//! * `run_peers` (feature `embree`) — Embree 3's round linear curves on the same `f32` rays.
+//!
+//! The accuracy numbers (not the timings) are a pure function of [`ReportOptions`].
+
+pub mod chart;
+pub mod eval;
+pub mod oracle;
+#[cfg(feature = "embree")]
+mod peers;
+mod runs;
+
+#[cfg(feature = "embree")]
+pub use peers::run_peers;
+pub use runs::{run_accuracy, run_speed, run_stability};
+
+use std::path::{Path, PathBuf};
+
+/// Settings of a report run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReportOptions {
+    /// Seed of every case generator.
+    pub seed: u64,
+    /// Link cases per region (accuracy uses the `random` region; stability every region).
+    pub link_cases: usize,
+    /// Spline cases per region.
+    pub spline_cases: usize,
+    /// Timing budget per method, milliseconds (each method also runs at least 3 times; the
+    /// best repetition is reported). Zero: no timing (ns columns are NaN).
+    pub time_ms: u64,
+    /// Speed report: largest scene in segments (10³, 10⁴, … up to this).
+    pub max_segments: usize,
+    /// Speed report: image width and height in pixels.
+    pub image: u32,
+    /// Speed report: worker threads (1 makes frame times comparable across machines).
+    pub threads: usize,
+    /// Show progress bars on stderr.
+    pub progress: bool,
+}
+
+impl Default for ReportOptions {
+    /// The settings of the committed `docs/report/`.
+    fn default() -> Self {
+        Self {
+            seed: 1,
+            link_cases: 2000,
+            spline_cases: 400,
+            time_ms: 150,
+            max_segments: 100_000,
+            image: 256,
+            threads: 1,
+            progress: true,
+        }
+    }
+}
+
+impl ReportOptions {
+    /// A tiny run for tests and smoke checks (a few seconds).
+    pub fn quick() -> Self {
+        Self {
+            seed: 7,
+            link_cases: 120,
+            spline_cases: 30,
+            time_ms: 0,
+            max_segments: 1000,
+            image: 24,
+            threads: 1,
+            progress: false,
+        }
+    }
+
+    /// Check the settings. Errors name the bad field.
+    pub fn validate(&self) -> Result<(), ReportError> {
+        let bad = |m: &str| Err(ReportError::Options(m.to_string()));
+        if self.link_cases == 0 || self.link_cases > 10_000_000 {
+            return bad("link_cases must be in 1..=10^7");
+        }
+        if self.spline_cases == 0 || self.spline_cases > 1_000_000 {
+            return bad("spline_cases must be in 1..=10^6");
+        }
+        if self.time_ms > 600_000 {
+            return bad("time_ms must be at most 600000");
+        }
+        if self.max_segments < 1000 || self.max_segments > 10_000_000 {
+            return bad("max_segments must be in 1000..=10^7");
+        }
+        if self.image == 0 || self.image > 8192 {
+            return bad("image must be in 1..=8192");
+        }
+        if self.threads == 0 || self.threads > 1024 {
+            return bad("threads must be in 1..=1024");
+        }
+        Ok(())
+    }
+}
+
+/// Why a report could not be written.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ReportError {
+    /// Bad [`ReportOptions`].
+    Options(String),
+    /// A file or folder could not be written.
+    Io(String),
+    /// A chart could not be drawn.
+    Chart(String),
+    /// A generated scene or the renderer failed.
+    Render(String),
+    /// The peer library failed.
+    Peer(String),
+}
+
+impl std::fmt::Display for ReportError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Options(s) => write!(f, "bad report options: {s}"),
+            Self::Io(s) => write!(f, "cannot write report: {s}"),
+            Self::Chart(s) => write!(f, "cannot draw chart: {s}"),
+            Self::Render(s) => write!(f, "speed report: {s}"),
+            Self::Peer(s) => write!(f, "peer: {s}"),
+        }
+    }
+}
+
+impl std::error::Error for ReportError {}
+
+/// The files a report wrote.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReportFiles {
+    /// The markdown summary.
+    pub markdown: PathBuf,
+    /// The SVG charts.
+    pub charts: Vec<PathBuf>,
+}
+
+pub(crate) fn ensure_dir(out: &Path) -> Result<(), ReportError> {
+    std::fs::create_dir_all(out).map_err(|e| ReportError::Io(format!("{}: {e}", out.display())))
+}
+
+pub(crate) fn write_text(path: &Path, text: &str) -> Result<(), ReportError> {
+    std::fs::write(path, text).map_err(|e| ReportError::Io(format!("{}: {e}", path.display())))
+}
+
+pub(crate) fn progress(opts: &ReportOptions, len: u64, what: &str) -> indicatif::ProgressBar {
+    if !opts.progress {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    if let Ok(st) = indicatif::ProgressStyle::with_template("{msg:>12} [{bar:40}] {pos}/{len} {elapsed}") {
+        bar.set_style(st.progress_chars("=> "));
+    }
+    bar.set_message(what.to_string());
+    bar
+}
+
+/// Format a number for the markdown tables (`-` for NaN, scientific otherwise).
+pub fn fmt_num(x: f64) -> String {
+    if x.is_nan() {
+        "-".into()
+    } else if x == 0.0 {
+        "0".into()
+    } else {
+        format!("{x:.3e}")
+    }
+}
+
+/// Parse a number written by [`fmt_num`] (`-` is NaN).
+pub fn parse_num(s: &str) -> Option<f64> {
+    let s = s.trim();
+    if s == "-" {
+        Some(f64::NAN)
+    } else {
+        s.parse().ok()
+    }
+}
+
+/// The rows of the markdown table whose header row starts with `| <first_header> |`, as cells.
+/// Used by tests and tools to read numbers back from a report.
+pub fn table_rows(markdown: &str, first_header: &str) -> Vec<Vec<String>> {
+    let mut rows = Vec::new();
+    let mut lines = markdown.lines().peekable();
+    while let Some(l) = lines.next() {
+        let cells = |l: &str| l.trim().trim_matches('|').split('|').map(|c| c.trim().to_string()).collect::<Vec<_>>();
+        if l.starts_with('|') && cells(l).first().map(String::as_str) == Some(first_header) {
+            lines.next(); // separator
+            while let Some(r) = lines.peek() {
+                if !r.starts_with('|') {
+                    break;
+                }
+                rows.push(cells(r));
+                lines.next();
+            }
+            break;
+        }
+    }
+    rows
+}
+
+/// A short description of the machine for the report headers.
+pub(crate) fn machine() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| s.lines().find(|l| l.starts_with("model name")).map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string()))
+        .unwrap_or_else(|| "unknown CPU".into());
+    let simd = if cfg!(target_feature = "avx2") { "AVX2 enabled at compile time" } else { "no AVX2 at compile time (wide lanes use SSE halves)" };
+    format!("{cpu}; {simd}; {} logical CPUs", std::thread::available_parallelism().map_or(1, |n| n.get()))
+}

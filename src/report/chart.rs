@@ -1,0 +1,228 @@
+//! SVG charts with plotters' SVG backend. Text is written as SVG `<text>` elements; plotters is
+//! built without its `ttf`/`ab_glyph` features, so its "naive" font layout is used and no
+//! system font is ever loaded (the viewer's font renders the labels).
+//!
+//! Log axes are drawn as linear axes over `log10` of the values, labelled `1e<k>`: one code path
+//! for every chart, and zero or negative values are clamped to the axis floor (stated in the
+//! chart's axis description).
+
+use super::ReportError;
+use plotters::prelude::*;
+use std::path::Path;
+
+/// How a point is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Marker {
+    /// Filled circle.
+    Dot,
+    /// Cross.
+    Cross,
+    /// Filled triangle.
+    Triangle,
+}
+
+/// One point.
+#[derive(Clone, Debug)]
+pub struct Pt {
+    /// x (data units; log axes take the log themselves).
+    pub x: f64,
+    /// y (data units).
+    pub y: f64,
+    /// Marker.
+    pub marker: Marker,
+    /// Optional small text next to the point.
+    pub text: Option<String>,
+}
+
+/// A named, coloured set of points (optionally joined by a line).
+#[derive(Clone, Debug)]
+pub struct Series {
+    /// Legend label.
+    pub label: String,
+    /// Colour index into the palette.
+    pub color: usize,
+    /// Points.
+    pub points: Vec<Pt>,
+    /// Join the points with a line (in the given order).
+    pub line: bool,
+}
+
+/// An x axis.
+#[derive(Clone, Debug)]
+pub enum XAxis {
+    /// Logarithmic, data in `(0, ∞)`.
+    Log,
+    /// Categories at x = 0, 1, …, labelled with these names.
+    Categories(Vec<String>),
+}
+
+/// A chart description.
+#[derive(Clone, Debug)]
+pub struct Chart {
+    /// Caption.
+    pub title: String,
+    /// x axis description.
+    pub x_desc: String,
+    /// y axis description.
+    pub y_desc: String,
+    /// x axis kind.
+    pub x: XAxis,
+    /// Smallest y shown (values below are drawn at this floor).
+    pub y_floor: f64,
+    /// Series.
+    pub series: Vec<Series>,
+    /// A note under the legend (e.g. marker meanings).
+    pub note: Option<String>,
+}
+
+const PALETTE: [RGBColor; 10] = [
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+    RGBColor(188, 189, 34),
+    RGBColor(23, 190, 207),
+];
+
+/// Palette colour `i` (wraps).
+pub fn color(i: usize) -> RGBColor {
+    PALETTE[i % PALETTE.len()]
+}
+
+fn lg(v: f64, floor: f64) -> f64 {
+    if v.is_finite() && v > floor {
+        v.log10()
+    } else if v.is_finite() || v.is_nan() {
+        floor.log10()
+    } else {
+        // +∞: drawn at the floor too would hide it; callers filter infinities.
+        floor.log10()
+    }
+}
+
+fn err<E: std::fmt::Debug>(path: &Path) -> impl Fn(E) -> ReportError + '_ {
+    move |e| ReportError::Chart(format!("{}: {e:?}", path.display()))
+}
+
+/// Write `chart` as an SVG of `size` pixels.
+pub fn write_svg(path: &Path, chart: &Chart, size: (u32, u32)) -> Result<(), ReportError> {
+    let e = err(path);
+    let floor = chart.y_floor;
+    let pts = chart.series.iter().flat_map(|s| s.points.iter()).filter(|p| p.y.is_finite() && p.x.is_finite());
+    let ys: Vec<f64> = pts.clone().map(|p| lg(p.y, floor)).collect();
+    let xs: Vec<f64> = match chart.x {
+        XAxis::Log => pts.map(|p| lg(p.x, 1e-300)).collect(),
+        XAxis::Categories(_) => pts.map(|p| p.x).collect(),
+    };
+    let (mut y0, mut y1) = ys.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &y| (a.min(y), b.max(y)));
+    if !(y0.is_finite() && y1.is_finite()) {
+        (y0, y1) = (floor.log10(), floor.log10() + 1.0);
+    }
+    let (y0, y1) = ((y0 - 0.3).floor(), (y1 + 0.3).ceil().max(y0.floor() + 1.0));
+    let (x0, x1) = match &chart.x {
+        XAxis::Log => {
+            let (a, b) = xs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+            if a.is_finite() {
+                ((a - 0.15).floor().min(a - 0.1), (b + 0.15).ceil().max(b + 0.1))
+            } else {
+                (0.0, 1.0)
+            }
+        }
+        XAxis::Categories(c) => (-0.6, c.len() as f64 - 0.4),
+    };
+    let root = SVGBackend::new(path, size).into_drawing_area();
+    root.fill(&WHITE).map_err(&e)?;
+    let (plot, legend) = root.split_horizontally(size.0.saturating_sub(230));
+    let mut cc = ChartBuilder::on(&plot)
+        .caption(&chart.title, ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(match chart.x {
+            XAxis::Log => 40,
+            XAxis::Categories(_) => 120,
+        })
+        .y_label_area_size(60)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(&e)?;
+    let log_label = |v: &f64| {
+        if (v - v.round()).abs() < 1e-9 {
+            format!("1e{}", v.round() as i64)
+        } else {
+            String::new()
+        }
+    };
+    let cats = match &chart.x {
+        XAxis::Categories(c) => c.clone(),
+        XAxis::Log => Vec::new(),
+    };
+    let cat_label = |v: &f64| {
+        let k = v.round();
+        if (v - k).abs() < 1e-6 && k >= 0.0 && (k as usize) < cats.len() {
+            cats[k as usize].clone()
+        } else {
+            String::new()
+        }
+    };
+    {
+        let mut mesh = cc.configure_mesh();
+        mesh.x_desc(&chart.x_desc).y_desc(&chart.y_desc).y_labels((y1 - y0) as usize + 1).y_label_formatter(&log_label);
+        match &chart.x {
+            XAxis::Log => {
+                mesh.x_labels((x1 - x0) as usize + 1).x_label_formatter(&log_label);
+            }
+            XAxis::Categories(c) => {
+                mesh.x_labels(c.len() * 4 + 1)
+                    .x_label_formatter(&cat_label)
+                    .x_label_style(("sans-serif", 12).into_font().transform(FontTransform::Rotate90))
+                    .disable_x_mesh();
+            }
+        }
+        mesh.draw().map_err(&e)?;
+    }
+    let xmap = |x: f64| match chart.x {
+        XAxis::Log => lg(x, 1e-300),
+        XAxis::Categories(_) => x,
+    };
+    for s in &chart.series {
+        let c = color(s.color);
+        let pts: Vec<(f64, f64, &Pt)> =
+            s.points.iter().filter(|p| p.x.is_finite() && !p.y.is_nan()).map(|p| (xmap(p.x), lg(p.y, floor), p)).collect();
+        if s.line && pts.len() > 1 {
+            cc.draw_series(LineSeries::new(pts.iter().map(|&(x, y, _)| (x, y)), c.stroke_width(2))).map_err(&e)?;
+        }
+        for &(x, y, p) in &pts {
+            match p.marker {
+                Marker::Dot => cc.draw_series(std::iter::once(Circle::new((x, y), 4, c.filled()))).map_err(&e)?,
+                Marker::Cross => cc.draw_series(std::iter::once(Cross::new((x, y), 4, c.stroke_width(2)))).map_err(&e)?,
+                Marker::Triangle => {
+                    cc.draw_series(std::iter::once(TriangleMarker::new((x, y), 5, c.filled()))).map_err(&e)?
+                }
+            };
+            if let Some(t) = &p.text {
+                cc.draw_series(std::iter::once(Text::new(t.clone(), (x, y), ("sans-serif", 10).into_font().color(&c))))
+                    .map_err(&e)?;
+            }
+        }
+    }
+    // Legend in its own area (plotters' series legend needs per-series draw handles; this is
+    // simpler and never overlaps the data).
+    let mut yy = 30;
+    for s in &chart.series {
+        let c = color(s.color);
+        legend.draw(&Circle::new((12, yy), 5, c.filled())).map_err(&e)?;
+        legend.draw(&Text::new(s.label.clone(), (24, yy - 6), ("sans-serif", 12).into_font())).map_err(&e)?;
+        yy += 18;
+    }
+    if let Some(n) = &chart.note {
+        for line in n.lines() {
+            yy += 4;
+            legend.draw(&Text::new(line.to_string(), (6, yy), ("sans-serif", 11).into_font())).map_err(&e)?;
+            yy += 14;
+        }
+    }
+    root.present().map_err(&e)?;
+    Ok(())
+}
