@@ -404,3 +404,27 @@ fn solver_error_report() {
         }
     }
 }
+
+/// Fuzz finding (fuzz/corpus/spline/regression-behind-origin): the Russig-cascade solvers
+/// dropped a real interval lying wholly behind the ray origin from the hull, so their
+/// line interval differed from the polynomial solver's. The hull is now formed from the
+/// unclipped pieces; every solver returns the same line interval, with both ends on the
+/// surface (SDF within the usual bound, S ≈ 60 here).
+#[test]
+fn hull_keeps_pieces_behind_the_origin() {
+    let a: f64 = -14.393;
+    let t = QuadTube::new([V3::new(-1.0, 0.0, -14.552), V3::new(a, a, a), V3::new(a, a, a)], [14.393, -14.393, 14.393]).unwrap();
+    let ray = Ray::new(V3::new(a, a, a), V3::new(a, a, a));
+    let want = t.intersect_with(&ray, Solver::Polynomial);
+    assert!(want.hit && want.t_in < -0.9, "{want:?}");
+    for solver in SOLVERS {
+        let iv = t.intersect_with(&ray, solver);
+        assert!(iv.hit, "{solver:?}");
+        for tt in [iv.t_in, iv.t_out] {
+            assert!(quadratic_tube(ray.at(tt), &t).abs() <= bound(f64::EPSILON, 60.0), "{solver:?}: {iv:?}");
+        }
+        // Bisection{10}: t* off by ≤ 2⁻¹⁰ moves the entry by ≤ ½|f''|δt², < 1e-3 here.
+        let tol = if solver == (Solver::Bisection { iters: 10 }) { 1e-3 } else { 1e-9 };
+        assert!((iv.t_in - want.t_in).abs() <= tol && (iv.t_out - want.t_out).abs() <= tol, "{solver:?}: {iv:?}");
+    }
+}

@@ -286,7 +286,7 @@ impl<T: Real> RaySpace<T> {
 
     /// Assemble the interval from ray-space entry/exit distances and curve parameters.
     #[inline(always)]
-    fn interval(&self, ray: &Ray<T>, s_in: T, u_in: T, s_out: T, u_out: T, found: T::Mask) -> Interval<T> {
+    fn interval(&self, ray: &Ray<T>, s_in: T, u_in: T, s_out: T, u_out: T, found: T::Mask, clip: bool) -> Interval<T> {
         let normal = |s: T, u: T, fallback: V3<T>| {
             let v = self.dhat * s - self.q(u);
             let n = v.normalize_or_zero();
@@ -296,7 +296,9 @@ impl<T: Real> RaySpace<T> {
         let t_out = self.tc + s_out * self.inv_dlen;
         let n_in = normal(s_in, u_in, -self.dhat);
         let n_out = normal(s_out, u_out, self.dhat);
-        let hit = found & self.near & in_range(ray, t_in, t_out);
+        // `clip = false`: hit means only "the line meets it" (for hulls clipped later).
+        let range = if clip { in_range(ray, t_in, t_out) } else { t_in.le(t_out) };
+        let hit = found & self.near & range;
         Interval { t_in, t_out, n_in, n_out, u_in, u_out, hit }.masked(hit)
     }
 }
@@ -363,15 +365,17 @@ impl<T: Real> QuadTube<T> {
                 let p = rs.p_poly();
                 let (bp, n) = poly_breakpoints(&p, T::zero(), T::one(), Bracket::Newton);
                 let (si, ui, so, uo, any) = rs.from_candidates(&bp[..n], T::zero(), T::one(), false);
-                rs.interval(ray, si, ui, so, uo, any)
+                rs.interval(ray, si, ui, so, uo, any, true)
             }
             _ => {
-                let pieces = self.pieces_in(&rs, ray, solver);
+                // Hull of the line pieces, then clipped to the ray's range (a piece behind the
+                // origin still belongs to the line interval).
+                let pieces = self.pieces_in(&rs, ray, solver, false);
                 let mut iv = pieces[0];
                 for p in &pieces[1..] {
                     iv = iv.hull(*p);
                 }
-                iv
+                iv.masked(in_range(ray, iv.t_in, iv.t_out))
             }
         }
     }
@@ -386,11 +390,11 @@ impl<T: Real> QuadTube<T> {
         if rs.near.none() {
             return [Interval::miss(); 5];
         }
-        self.pieces_in(&rs, ray, solver)
+        self.pieces_in(&rs, ray, solver, true)
     }
 
     #[inline(always)]
-    fn pieces_in(&self, rs: &RaySpace<T>, ray: &Ray<T>, solver: Solver) -> [Interval<T>; 5] {
+    fn pieces_in(&self, rs: &RaySpace<T>, ray: &Ray<T>, solver: Solver, clip: bool) -> [Interval<T>; 5] {
         let half = T::cst(0.5);
         let method = match solver {
             Solver::Bisection { iters } => Bracket::Bisection(iters),
@@ -440,7 +444,7 @@ impl<T: Real> QuadTube<T> {
                     (vi, ui, -vo, uo)
                 }
             };
-            out[k] = rs.interval(ray, si, ui, so, uo, first);
+            out[k] = rs.interval(ray, si, ui, so, uo, first, clip);
         }
         out
     }
