@@ -186,13 +186,13 @@ pub fn parse_num(s: &str) -> Option<f64> {
     }
 }
 
-/// The rows of the markdown table whose header row starts with `| <first_header> |`, as cells.
-/// Used by tests and tools to read numbers back from a report.
+/// The rows of every markdown table whose header row starts with `| <first_header> |`, as
+/// cells. Used by tests and tools to read numbers back from a report.
 pub fn table_rows(markdown: &str, first_header: &str) -> Vec<Vec<String>> {
     let mut rows = Vec::new();
     let mut lines = markdown.lines().peekable();
+    let cells = |l: &str| l.trim().trim_matches('|').split('|').map(|c| c.trim().to_string()).collect::<Vec<_>>();
     while let Some(l) = lines.next() {
-        let cells = |l: &str| l.trim().trim_matches('|').split('|').map(|c| c.trim().to_string()).collect::<Vec<_>>();
         if l.starts_with('|') && cells(l).first().map(String::as_str) == Some(first_header) {
             lines.next(); // separator
             while let Some(r) = lines.peek() {
@@ -202,7 +202,6 @@ pub fn table_rows(markdown: &str, first_header: &str) -> Vec<Vec<String>> {
                 rows.push(cells(r));
                 lines.next();
             }
-            break;
         }
     }
     rows
