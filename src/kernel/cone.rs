@@ -131,7 +131,13 @@ impl<T: Real> UnitConeTransform<T> {
     /// Unit-space normal → world normal (`Rᵀ·n`, normalised).
     #[inline(always)]
     pub fn normal_to_world(&self, n: V3<T>) -> V3<T> {
-        (self.rows[0] * n.x + self.rows[1] * n.y + self.rows[2] * n.z).normalize_or_zero()
+        let w = (self.rows[0] * n.x + self.rows[1] * n.y + self.rows[2] * n.z).normalize_or_zero();
+        // Under/overflow of the transform (lengths spanning more than the exponent range) can
+        // leave nothing: fall back to the axis direction so the normal stays unit length.
+        let axis = self.rows[2].normalize_or_zero();
+        let fallback = V3::select(n.z.gt(T::zero()), axis, -axis);
+        let fallback = V3::select(fallback.length2().gt(T::zero()), fallback, V3::new(T::zero(), T::zero(), T::one()));
+        V3::select(w.length2().gt(T::zero()), w, fallback)
     }
 }
 
@@ -313,6 +319,8 @@ pub(crate) fn cylinder_line<T: Real>(ray: &Ray<T>, c1: V3<T>, c2: V3<T>, r: T) -
         let p = f + ray.d * t;
         let z = p.dot(axis);
         let side = (p - axis * z).normalize_or_zero();
+        // (On the axis only by rounding: any perpendicular keeps the normal unit length.)
+        let side = V3::select(side.length2().gt(T::zero()), side, orthonormal_basis(axis).0);
         let cap = axis * T::select(z.gt(len * T::cst(0.5)), T::one(), -T::one());
         V3::select(q, side, cap)
     };

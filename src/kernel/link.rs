@@ -208,10 +208,15 @@ impl<T: Real> RoundCone<T> {
         let (t0, t1, q0, q1, ok) = quadric_in_slab(qa, qb, qc, lo, hi);
         // Outward normal on the cone: c·ρ̂ + s·â; on a cap plane: ∓â.
         let cc = c2.sqrt();
+        let perp = super::cone::orthonormal_basis(axis).0;
         let normal = |t: T, on_side: T::Mask| {
             let y = o + dn * t;
             let z = y.dot(axis);
             let radial = (y - axis * z).normalize_or_zero();
+            // A point computed exactly on the axis (only by rounding, e.g. lengths spanning
+            // more than 1/ε) has no radial direction: take any perpendicular, so that the
+            // normal stays a unit vector.
+            let radial = V3::select(radial.length2().gt(zero), radial, perp);
             let side = (radial * cc + axis * s).normalize_or_zero();
             // A crossing of a cap plane lies in the adjacent end sphere (the cap disc is inside
             // it); it is exposed only when rounding loses that sphere's grazing interval. Report
