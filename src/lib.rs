@@ -28,6 +28,8 @@ pub mod vec;
 pub mod accel;
 #[cfg(feature = "render")]
 pub mod io;
+#[cfg(feature = "embree")]
+pub mod peer;
 #[cfg(feature = "render")]
 pub mod render;
 #[cfg(feature = "cli")]
