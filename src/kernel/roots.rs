@@ -293,11 +293,31 @@ pub fn cascade_level<T: Real>(
     out[0] = bp[0];
     out[n] = bp[n - 1];
     let tol = default_tol::<T>();
+    // A function value of exactly 0 at a piece end carries no sign. For polynomials that is a
+    // root at the end; for the spline's scaled sign functions (`2√g·f'` …) it happens where
+    // g = 0 while f' ≠ 0, so the sign is taken a little inside, at √ε of the piece width
+    // (a root closer than that to the end is represented by the end, a candidate anyway).
+    let nudge = T::epsilon().sqrt();
     for i in 0..n - 1 {
-        let (a, b, fa, fb) = (bp[i], bp[i + 1], fv[i], fv[i + 1]);
+        let (mut a, mut b, mut fa, mut fb) = (bp[i], bp[i + 1], fv[i], fv[i + 1]);
+        let (za, zb) = (fa.eq(T::zero()), fb.eq(T::zero()));
+        if (za | zb).any() {
+            let w = (b - a) * nudge;
+            let (a2, b2) = (a + w, b - w);
+            let ok = w.gt(T::zero());
+            let (za, zb) = (za & ok, zb & ok);
+            if za.any() {
+                a = T::select(za, a2, a);
+                fa = T::select(za, f(a2), fa);
+            }
+            if zb.any() {
+                b = T::select(zb, b2, b);
+                fb = T::select(zb, f(b2), fb);
+            }
+        }
         let valid = opposite(fa, fb);
         // Placeholder: the left end if f is exactly 0 there, else the right end.
-        let ph = T::select(fa.eq(T::zero()), a, b);
+        let ph = T::select(fv[i].eq(T::zero()), bp[i], bp[i + 1]);
         let x = if valid.none() {
             ph
         } else {
