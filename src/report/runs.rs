@@ -129,7 +129,7 @@ pub fn run_accuracy(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Rep
     }
     bar.finish_and_clear();
 
-    let mut md = header("Accuracy vs cost", opts, "tubecast report accuracy");
+    let mut md = header("Accuracy vs cost", opts, "cargo run --release --example report -- accuracy");
     md.push_str(
         "Error of the line interval's entry and exit `t` (the larger of the two) against an independent `f64` \
          oracle, on rays that robustly hit (outside the method's error band). `r`: units of the primitive's largest \
@@ -265,7 +265,7 @@ pub fn run_stability(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Re
     }
     bar.finish_and_clear();
 
-    let mut md = header("Stability per failure region", opts, "tubecast report stability");
+    let mut md = header("Stability per failure region", opts, "cargo run --release --example report -- stability");
     md.push_str(
         "Per region and method: cases the oracle says must hit / must miss (outside the method's error band \
          `E` of `tests/link_props.rs` for links, `64·ε·(S + D)` for splines), how many of them were answered \
@@ -379,7 +379,7 @@ pub fn run_speed(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
     }
     bar.finish_and_clear();
     let px = (opts.image as f64).powi(2);
-    let mut md = header("Speed and scale", opts, "tubecast report speed");
+    let mut md = header("Speed and scale", opts, "cargo run --release --example report -- speed");
     let _ = write!(
         md,
         "Generated *Furball* scenes (tapering hairs of 78 cone links, seed {}), BVH build and one {}×{} frame \
