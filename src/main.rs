@@ -80,7 +80,9 @@ enum Cmd {
         /// Vertical field of view in degrees.
         #[arg(long, default_value_t = 40.0)]
         fov: f64,
-        /// Render polylines as C¹ Hermite spline tubes.
+        /// Render the chains of links as C¹ cubic Hermite spline tubes (Catmull–Rom
+        /// derivatives; each branch between bifurcations is its own spline; straight runs
+        /// stay links).
         #[arg(long)]
         splines: bool,
         /// Hide the progress bar.
@@ -94,6 +96,9 @@ enum Cmd {
         /// Tube radius for formats without radii.
         #[arg(long, default_value_t = 0.2)]
         radius: f64,
+        /// Count the primitives of the spline model (as `render --splines` uses them).
+        #[arg(long)]
+        splines: bool,
     },
     /// Intersect rays (N×6 float64 .npy: origin, direction) with a scene; write N×8 hits.
     ///
@@ -163,13 +168,21 @@ fn load(input: &Path, radius: f64) -> Res<Scene> {
     Scene::load(input, radius).map_err(|e| e.to_string())
 }
 
-fn cmd_render(a: RenderArgs) -> Res<()> {
-    if a.splines {
-        return Err("--splines: spline tubes are not available in this build yet".into());
+/// The primitives of the link model, or of the spline model with `splines`.
+fn primitives(scene: &Scene, splines: bool) -> Res<Vec<tubecast::scene::Prim>> {
+    if splines {
+        scene.spline_primitives().map_err(|e| e.to_string())
+    } else {
+        Ok(scene.primitives())
     }
+}
+
+fn cmd_render(a: RenderArgs) -> Res<()> {
     let scene = load(&a.input, a.radius)?;
-    let bvh = Bvh::build(scene.primitives());
-    let st = scene.stats();
+    let prims = primitives(&scene, a.splines)?;
+    // Bounds of the primitives in use (a spline can bulge beyond its links' boxes).
+    let st = scene.stats_of(&prims);
+    let bvh = Bvh::build(prims);
     let cam = match (a.eye, a.look_at) {
         (None, None) => Camera::fit(st.bounds.0, st.bounds.1, a.fov, a.width, a.height),
         (eye, at) => {
@@ -215,10 +228,11 @@ struct RenderArgs {
     quiet: bool,
 }
 
-fn cmd_info(input: &Path, radius: f64) -> Res<()> {
+fn cmd_info(input: &Path, radius: f64, splines: bool) -> Res<()> {
     let scene = load(input, radius)?;
-    let st = scene.stats();
-    let bvh = Bvh::build(scene.primitives());
+    let prims = primitives(&scene, splines)?;
+    let st = if splines { scene.stats_of(&prims) } else { scene.stats() };
+    let bvh = Bvh::build(prims);
     let node_bytes = scene.nodes.len() * std::mem::size_of::<tubecast::scene::Node>()
         + scene.links.len() * std::mem::size_of::<[u32; 2]>();
     println!("file       {}", input.display());
@@ -227,7 +241,11 @@ fn cmd_info(input: &Path, radius: f64) -> Res<()> {
     println!("cylinders  {}", st.cylinders);
     println!("cones      {}", st.cones);
     println!("spheres    {}", st.spheres);
-    println!("splines    {}", st.splines);
+    if splines {
+        println!("splines    {} ({} quadratic sub-segments)", st.splines, 2 * st.splines);
+    } else {
+        println!("splines    {}", st.splines);
+    }
     println!("bounds min {:?}", st.bounds.0);
     println!("bounds max {:?}", st.bounds.1);
     println!("memory     scene {} B, primitives + BVH {} B ({} BVH nodes)", node_bytes, bvh.memory_bytes(), bvh.node_count());
@@ -332,7 +350,7 @@ fn main() -> ExitCode {
         Cmd::Render { input, out, width, height, radius, color, opacity, ao, shadows, eye, look_at, up, fov, splines, quiet } => {
             cmd_render(RenderArgs { input, out, width, height, radius, color, opacity, ao, shadows, eye, look_at, up, fov, splines, quiet })
         }
-        Cmd::Info { input, radius } => cmd_info(&input, radius),
+        Cmd::Info { input, radius, splines } => cmd_info(&input, radius, splines),
         Cmd::Intersect { input, rays, out, radius } => cmd_intersect(&input, &rays, &out, radius),
         Cmd::Generate { kind, out, count, segments, n, base, seed } => cmd_generate(kind, &out, count, segments, n, &base, seed),
         Cmd::Report { .. } => {

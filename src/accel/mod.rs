@@ -16,7 +16,7 @@
 //! The returned hits are exact kernel results in `f64`; only culling uses `f32`.
 
 use crate::kernel::csg::Tagged;
-use crate::ray::{Interval, Ray};
+use crate::ray::Ray;
 use crate::scene::Prim;
 use crate::V3;
 use glam::Vec3A;
@@ -181,12 +181,11 @@ impl Bvh {
         let margin = 8.0 * self.pad;
         self.bvh.ray_traverse(c.ray, &mut hit, |_, id| {
             let p = &self.prims[id];
-            let iv = p.intersect(ray);
-            let Some((t, n, u)) = iv.first_hit(ray.t_min, ray.t_max) else {
+            let Some((t, n, u, entering)) = p.first_hit(ray) else {
                 return f32::INFINITY;
             };
             if best.map_or(true, |h| t < h.t) {
-                best = Some(Hit { t, n, u, prim: id as u32, link: p.link, entering: t == iv.t_in });
+                best = Some(Hit { t, n, u, prim: id as u32, link: p.link, entering });
             }
             // Cull by the best hit so far, loosened by the box margin (see the module docs).
             let tb = best.map_or(t, |h| h.t);
@@ -203,7 +202,7 @@ impl Bvh {
             return false;
         };
         !self.bvh.ray_traverse_miss(c.ray, |_, id| {
-            if self.prims[id].intersect(ray).hit {
+            if self.prims[id].meets(ray) {
                 0.0
             } else {
                 f32::INFINITY
@@ -213,17 +212,15 @@ impl Bvh {
 
     /// Every primitive's interval with the ray's whole **line** (not only `[t_min, t_max]`),
     /// appended to `out` tagged with the primitive index — the input of
-    /// [`crate::kernel::csg::union`].
+    /// [`crate::kernel::csg::union`]. A spline sub-segment contributes one interval per
+    /// connected piece ([`Prim::pieces`]), so the union is exact for bent segments too.
     pub fn line_intervals(&self, ray: &Ray<f64>, out: &mut Vec<Tagged<f64>>) {
         let Some(c) = self.clip(ray, f64::NEG_INFINITY, f64::INFINITY) else {
             return;
         };
         let line = Ray::with_range(ray.o, ray.d, f64::NEG_INFINITY, f64::INFINITY);
         self.bvh.ray_traverse_anyhit(c.ray, |_, id| {
-            let iv: Interval<f64> = self.prims[id].intersect(&line);
-            if iv.hit {
-                out.push(Tagged { iv, id: id as u32 });
-            }
+            self.prims[id].pieces(&line, |iv| out.push(Tagged { iv, id: id as u32 }));
         });
     }
 }

@@ -6,13 +6,17 @@
 //!   ([`Bvh::line_intervals`]) goes through the CSG union ([`union`]); only the exterior
 //!   boundaries of the union are composited, front to back, each with opacity `α`, so
 //!   surfaces inside other tubes (overlaps at joints and crossings) never show.
+//! * Spline tubes ([`Scene::spline_primitives`]) go through the same paths: the closest hit is
+//!   the spline kernel's exact first entry, and a spline sub-segment contributes one interval
+//!   per connected piece to the union, so the joints between sub-segments and between
+//!   segments (where neighbouring sweeps overlap in the joint sphere) add no boundary.
 //!
 //! Colours are linear RGB in `[0, 1]`; [`Image::to_srgb8`] encodes them for PNG.
 
 use crate::accel::Bvh;
 use crate::kernel::csg::{union, Boundary, Tagged};
 use crate::ray::Ray;
-use crate::scene::Scene;
+use crate::scene::{Prim, PrimKind, Scene};
 use crate::V3;
 use rayon::prelude::*;
 use std::path::Path;
@@ -132,10 +136,11 @@ impl Camera {
 /// How surfaces are coloured.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ColorBy {
-    /// Tractography convention: `|unit link direction|` as RGB (x red, y green, z blue).
+    /// Tractography convention: `|unit link direction|` as RGB (x red, y green, z blue); the
+    /// curve's unit tangent at the hit for spline tubes.
     Direction,
-    /// Radius at the hit (interpolated along the link), through a blue→yellow colour map over
-    /// the scene's radius range.
+    /// Radius at the hit (interpolated along the link, or the spline's radius curve), through
+    /// a blue→yellow colour map over the scene's node radius range.
     Radius,
     /// SWC structure type (1 soma, 2 axon, 3 basal, 4 apical dendrite, others by palette).
     Type,
@@ -285,12 +290,20 @@ impl Palette {
         }
         Self { r_lo, r_hi }
     }
-    fn color(&self, scene: &Scene, by: ColorBy, link: u32, u: f64) -> [f32; 3] {
+    /// Colour of primitive `prim` at its curve parameter `u`.
+    fn color(&self, scene: &Scene, by: ColorBy, prim: &Prim, u: f64) -> [f32; 3] {
+        let link = prim.link;
         let l = scene.links[link as usize];
+        let spline = prim.kind == PrimKind::Spline;
         match by {
             ColorBy::Solid(c) => c,
             ColorBy::Direction => {
-                let d = scene.link_direction(link as usize);
+                // Spline: the curve's tangent at u; link: the link's direction.
+                let d = if spline {
+                    prim.quad().cast::<f64>().tangent(u).normalize_or_zero().to_array()
+                } else {
+                    scene.link_direction(link as usize)
+                };
                 if d == [0.0; 3] {
                     [0.6, 0.6, 0.6]
                 } else {
@@ -298,8 +311,12 @@ impl Palette {
                 }
             }
             ColorBy::Radius => {
-                let (a, b) = (scene.nodes[l[0] as usize].radius, scene.nodes[l[1] as usize].radius);
-                let r = a + (b - a) * u;
+                let r = if spline {
+                    prim.quad().cast::<f64>().radius(u)
+                } else {
+                    let (a, b) = (scene.nodes[l[0] as usize].radius, scene.nodes[l[1] as usize].radius);
+                    a + (b - a) * u
+                };
                 let span = self.r_hi - self.r_lo;
                 colormap(if span > 0.0 { (r - self.r_lo) / span } else { 0.5 })
             }
@@ -352,7 +369,7 @@ impl Ctx<'_> {
     /// primitive's size) and the `f64` position error (≈ 2⁻⁵⁰ of |p|).
     fn eps(&self, prim: u32, p: V3<f64>) -> f64 {
         let pr = &self.bvh.prims[prim as usize];
-        1e-3 * pr.ra.max(pr.rb) as f64 + 1e-12 * p.max_abs()
+        1e-3 * pr.max_radius() as f64 + 1e-12 * p.max_abs()
     }
 
     fn pixel(&self, x: u32, y: u32) -> ([f32; 3], f64) {
@@ -365,7 +382,7 @@ impl Ctx<'_> {
         let Some(hit) = self.bvh.closest_hit(&ray) else {
             return (bg, f64::INFINITY);
         };
-        let base = self.pal.color(self.scene, self.opts.color, hit.link, hit.u);
+        let base = self.pal.color(self.scene, self.opts.color, &self.bvh.prims[hit.prim as usize], hit.u);
         if self.opts.shading == Shading::Flat {
             return (base, hit.t);
         }
@@ -409,8 +426,7 @@ impl Ctx<'_> {
         let mut acc = [0.0f32; 3];
         let mut trans = 1.0f32;
         for b in &bounds {
-            let link = self.bvh.prims[b.id as usize].link;
-            let base = self.pal.color(self.scene, self.opts.color, link, b.u);
+            let base = self.pal.color(self.scene, self.opts.color, &self.bvh.prims[b.id as usize], b.u);
             let c = self.shade(base, b.n, view, 1.0, 1.0);
             for k in 0..3 {
                 acc[k] += trans * a * c[k];
@@ -423,7 +439,8 @@ impl Ctx<'_> {
     }
 }
 
-/// Render `scene` (with its BVH `bvh`, built from [`Scene::primitives`]) through `cam`.
+/// Render `scene` (with its BVH `bvh`, built from [`Scene::primitives`] for links or
+/// [`Scene::spline_primitives`] for spline tubes) through `cam`.
 /// Rows run in parallel (rayon); `opts.progress` shows a progress bar on stderr.
 pub fn render(scene: &Scene, bvh: &Bvh, cam: &Camera, opts: &Options) -> Result<Image, RenderError> {
     opts.validate()?;

@@ -7,6 +7,41 @@
 //! when one end sphere contains the other ([`RoundCone::shape`]). Primitives are stored in
 //! `f32` relative to a local origin in `f64` (the link's midpoint), so a scene far from the
 //! world origin keeps the precision of a scene at the origin ([`Prim`]).
+//!
+//! # Spline tubes ([`Scene::spline_primitives`])
+//! The polyline is modelled as a C¹ cubic Hermite spline tube, positions and radii alike:
+//!
+//! * **Chains.** The links are split into *chains*: maximal paths whose interior nodes have
+//!   exactly two links ([`Scene::chains`]). A bifurcation (a node with three or more links)
+//!   or an end ends every chain through it, so each branch is its own spline and the branches
+//!   meet in the node's sphere, which every one of them contains (each spline passes through
+//!   the node with the node's radius); the tube is C¹ along each chain and only connected
+//!   (like the link model) at bifurcations. A closed loop of two-link nodes is one periodic
+//!   chain.
+//! * **Derivatives** at chain node `i` (per unit of the segment parameter, each segment's
+//!   parameter running over `[0, 1]`): uniform Catmull–Rom, i.e. central differences
+//!   `mᵢ = (pᵢ₊₁ − pᵢ₋₁)/2`, `r'ᵢ = (rᵢ₊₁ − rᵢ₋₁)/2` in the interior (wrapping around on a
+//!   closed chain) and one-sided differences `m₀ = p₁ − p₀`, `m_N = p_N − p_{N−1}` (likewise
+//!   `r'`) at the chain ends. Both segments at a node use the same derivatives, so the tube is
+//!   C¹ in the chain parameter. Radius derivatives are then limited to `|r'ᵢ| ≤ 2rᵢ`: every
+//!   control radius of the split (below) is then `≥ rᵢ/3 ≥ 0`, so no sub-segment gets a
+//!   negative or identically zero radius (a tapering tip stays a tip). Uniform Catmull–Rom
+//!   assumes roughly even node spacing (streamlines and most reconstructions): very uneven
+//!   spacing can overshoot, as any interpolating cubic does.
+//! * **Split.** Each segment is split by [`HermiteSegment::split`] into two quadratic
+//!   sphere-swept sub-segments ([`QuadTube`]), each one [`Prim`] of kind
+//!   [`PrimKind::Spline`], stored in `f32` relative to its midpoint like the links.
+//! * **Straight runs stay links** ("model no more than a scene needs"): a segment whose
+//!   five control points `(bₖ, ρₖ)` lie on the chord with the link's affine radius — defect
+//!   `Dₖ = dist(bₖ, chord line) + |ρₖ − r(sₖ)|` with the projection parameter `sₖ ∈ [0, 1]`
+//!   — within `max Dₖ ≤ 2⁻²²·(½|p₁ − p₀| + max(r₀, r₁))` is modelled by its link. Why that is
+//!   safe: `D` is convex in `(x, ρ)` and the sweep's `(p(t), r(t))` are convex combinations of
+//!   the controls, so every sphere of the spline is within `max Dₖ` of a sphere of the link
+//!   and vice versa (Hausdorff distance ≤ `max Dₖ`); the threshold is 4× the rounding of
+//!   storing the primitive in `f32` relative to its midpoint, so the two models are
+//!   indistinguishable at storage precision. In practice this keeps exactly straight,
+//!   evenly sampled runs (and single-link chains, whose one-sided derivatives are the chord)
+//!   as links.
 
 pub mod generate;
 mod prim;
@@ -14,7 +49,10 @@ mod prim;
 pub use prim::{Prim, PrimKind};
 
 use crate::io::{self, IoError, Polyline};
+use crate::kernel::hermite::HermiteSegment;
 use crate::kernel::link::RoundCone;
+#[allow(unused_imports)] // documentation links
+use crate::kernel::spline::QuadTube;
 use crate::{LinkShape, V3};
 use std::fmt;
 use std::path::Path;
@@ -81,10 +119,71 @@ pub struct Stats {
     pub cones: usize,
     /// Links that are a sphere (one end inside the other, or an isolated node).
     pub spheres: usize,
-    /// Spline segments (when built with splines).
+    /// Spline segments: cubic Hermite segments, each two [`PrimKind::Spline`] primitives
+    /// (zero for the link model, [`Scene::stats`]).
     pub splines: usize,
     /// Axis-aligned bounds of the surface `(min, max)`.
     pub bounds: ([f64; 3], [f64; 3]),
+}
+
+/// A chain of links: a maximal path whose interior nodes have exactly two links.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Chain {
+    /// Nodes along the chain (`links.len() + 1` of them; a closed chain repeats its first
+    /// node at the end).
+    pub nodes: Vec<u32>,
+    /// Links along the chain: `links[i]` joins `nodes[i]` and `nodes[i + 1]`.
+    pub links: Vec<u32>,
+    /// A periodic loop (every node has two links).
+    pub closed: bool,
+}
+
+/// One cubic Hermite segment of a spline tube, modelling scene link `link`, oriented along
+/// its chain (`p0` is the node that comes first in the chain).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SplineSegment {
+    /// Scene link index.
+    pub link: u32,
+    /// The segment (finite-difference derivatives, see the module docs).
+    pub seg: HermiteSegment<f64>,
+}
+
+impl SplineSegment {
+    /// Greatest defect `Dₖ` of the five control points of the split from the link's straight
+    /// round cone (see the module docs): an upper bound on the Hausdorff distance between the
+    /// two sweeps; `+∞` when a control point projects outside the chord or the chord is empty.
+    pub fn chord_defect(&self) -> f64 {
+        let s = &self.seg;
+        let v = s.p1 - s.p0;
+        let len2 = v.length2();
+        if !(len2 > 0.0) {
+            return f64::INFINITY;
+        }
+        let ((pa, ra), (pb, rb)) = s.quad_controls();
+        let mut worst: f64 = 0.0;
+        for (x, rho) in pa.iter().zip(ra).chain(pb.iter().zip(rb)) {
+            let w = *x - s.p0;
+            let t = w.dot(v) / len2;
+            if !(0.0..=1.0).contains(&t) {
+                return f64::INFINITY;
+            }
+            let d = (w - v * t).length() + (rho - (s.r0 + (s.r1 - s.r0) * t)).abs();
+            worst = worst.max(d);
+        }
+        worst
+    }
+
+    /// The threshold below which the segment is modelled by its link:
+    /// `2⁻²²·(½|p₁ − p₀| + max(r₀, r₁))`.
+    pub fn straight_tolerance(&self) -> f64 {
+        let s = &self.seg;
+        2f64.powi(-22) * (0.5 * (s.p1 - s.p0).length() + s.r0.max(s.r1))
+    }
+
+    /// True when the segment is modelled by its link (see the module docs).
+    pub fn is_straight(&self) -> bool {
+        self.chord_defect() <= self.straight_tolerance()
+    }
 }
 
 impl Scene {
@@ -195,6 +294,144 @@ impl Scene {
     /// One primitive per link, each the cheapest exact shape (see the module docs).
     pub fn primitives(&self) -> Vec<Prim> {
         (0..self.links.len()).map(|k| Prim::from_link(&self.link(k), k as u32)).collect()
+    }
+
+    /// The link chains (see the module docs): every link except the zero-length links of
+    /// isolated nodes belongs to exactly one chain. Open chains run from a node without
+    /// exactly two links to the next such node; the remaining links form closed loops.
+    pub fn chains(&self) -> Vec<Chain> {
+        let n = self.nodes.len();
+        let mut adj: Vec<Vec<(u32, u32)>> = vec![Vec::new(); n];
+        for (k, &[a, b]) in self.links.iter().enumerate() {
+            if a != b {
+                adj[a as usize].push((k as u32, b));
+                adj[b as usize].push((k as u32, a));
+            }
+        }
+        let mut seen = vec![false; self.links.len()];
+        let walk = |seen: &mut Vec<bool>, s: u32, first: (u32, u32)| {
+            let (mut l, mut nxt) = first;
+            let mut c = Chain { nodes: vec![s], links: Vec::new(), closed: false };
+            loop {
+                seen[l as usize] = true;
+                c.links.push(l);
+                c.nodes.push(nxt);
+                let a = &adj[nxt as usize];
+                if a.len() != 2 {
+                    break;
+                }
+                let next = if a[0].0 == l { a[1] } else { a[0] };
+                if seen[next.0 as usize] {
+                    break;
+                }
+                (l, nxt) = next;
+            }
+            c
+        };
+        let mut out = Vec::new();
+        for s in 0..n {
+            if adj[s].len() == 2 {
+                continue;
+            }
+            for &e in &adj[s] {
+                if !seen[e.0 as usize] {
+                    out.push(walk(&mut seen, s as u32, e));
+                }
+            }
+        }
+        for k in 0..self.links.len() {
+            let [a, b] = self.links[k];
+            if a != b && !seen[k] {
+                // Every node here has two links: a loop.
+                let mut c = walk(&mut seen, a, (k as u32, b));
+                c.closed = c.nodes.first() == c.nodes.last();
+                out.push(c);
+            }
+        }
+        out
+    }
+
+    /// The cubic Hermite segment of every chain link (see the module docs for the
+    /// derivatives), in chain order.
+    pub fn spline_segments(&self) -> Vec<SplineSegment> {
+        let mut out = Vec::with_capacity(self.links.len());
+        for c in self.chains() {
+            let nn = c.links.len(); // segments; nodes 0..=nn
+            let p = |i: usize| V3::from(self.nodes[c.nodes[i] as usize].pos);
+            let r = |i: usize| self.nodes[c.nodes[i] as usize].radius;
+            // Central differences in the interior (wrapping around a closed chain, whose node
+            // nn is node 0), one-sided at the ends of an open chain.
+            let deriv = |i: usize| {
+                let (a, b) = if c.closed {
+                    ((i + nn - 1) % nn, (i + 1) % nn)
+                } else {
+                    (i.saturating_sub(1), (i + 1).min(nn))
+                };
+                let w = if c.closed { 2.0 } else { (b - a) as f64 };
+                let m = (p(b) - p(a)) * (1.0 / w);
+                let lim = 2.0 * r(i);
+                (m, ((r(b) - r(a)) / w).clamp(-lim, lim))
+            };
+            let d: Vec<(V3<f64>, f64)> = (0..=nn).map(deriv).collect();
+            for j in 0..nn {
+                let seg = HermiteSegment::new(p(j), d[j].0, r(j), d[j].1, p(j + 1), d[j + 1].0, r(j + 1), d[j + 1].1);
+                out.push(SplineSegment { link: c.links[j], seg });
+            }
+        }
+        out
+    }
+
+    /// Primitives of the spline model (see the module docs): two [`PrimKind::Spline`]
+    /// sub-segments per curved chain link, the link's own primitive for straight ones and for
+    /// isolated nodes. Errors when a segment cannot be stored as an `f32` spline primitive
+    /// (extents beyond ≈ 2·10⁸, whose fourth powers overflow `f32` in the kernel).
+    pub fn spline_primitives(&self) -> Result<Vec<Prim>, SceneError> {
+        let mut done = vec![false; self.links.len()];
+        let mut out = Vec::with_capacity(2 * self.links.len());
+        for s in self.spline_segments() {
+            done[s.link as usize] = true;
+            if s.is_straight() {
+                out.push(Prim::from_link(&self.link(s.link as usize), s.link));
+                continue;
+            }
+            let [a, b] = self.links[s.link as usize];
+            let err = |e: crate::GeometryError| {
+                SceneError::Geometry(format!("link {} (nodes {a} and {b}): cannot model it as a spline: {e}", s.link))
+            };
+            let [q0, q1] = s.seg.split().map_err(err)?;
+            out.push(Prim::from_quad(&q0, s.link, 0).map_err(err)?);
+            out.push(Prim::from_quad(&q1, s.link, 1).map_err(err)?);
+        }
+        for (k, d) in done.iter().enumerate() {
+            if !d {
+                out.push(Prim::from_link(&self.link(k), k as u32));
+            }
+        }
+        Ok(out)
+    }
+
+    /// Counts and bounds of a primitive list built from this scene ([`Self::primitives`] or
+    /// [`Self::spline_primitives`]): link primitives by kind, spline segments (pairs of
+    /// sub-segments), and the union of the primitives' boxes.
+    pub fn stats_of(&self, prims: &[Prim]) -> Stats {
+        let mut s = Stats { nodes: self.nodes.len(), links: self.links.len(), ..Default::default() };
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for p in prims {
+            match p.kind {
+                PrimKind::Cylinder => s.cylinders += 1,
+                PrimKind::Cone => s.cones += 1,
+                PrimKind::Sphere => s.spheres += 1,
+                PrimKind::Spline => s.splines += (p.half == 0) as usize,
+            }
+            let (a, b) = p.aabb();
+            for i in 0..3 {
+                lo[i] = lo[i].min(a[i]);
+                hi[i] = hi[i].max(b[i]);
+            }
+        }
+        s.bounds = (lo, hi);
+        s
     }
 
     /// Counts and bounds.

@@ -1,9 +1,12 @@
 //! Renderer primitives: `f32` geometry relative to an `f64` local origin.
 
 use crate::kernel::link::RoundCone;
+use crate::kernel::obb::Obb;
+use crate::kernel::roots::Solver;
 use crate::kernel::sphere::intersect_sphere;
+use crate::kernel::spline::QuadTube;
 use crate::ray::{Interval, Ray};
-use crate::{LinkShape, V3};
+use crate::{GeometryError, LinkShape, V3};
 
 /// Which exact shape a primitive is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -14,6 +17,10 @@ pub enum PrimKind {
     Cylinder,
     /// A tangent-cone link (different radii).
     Cone,
+    /// A quadratic sphere-swept spline sub-segment (control points `a`, `m`, `b`, control
+    /// radii `ra`, `rm`, `rb`): one half of a cubic Hermite segment
+    /// ([`crate::kernel::HermiteSegment::split`]).
+    Spline,
 }
 
 /// A link stored for rendering: centres in `f32` relative to the `f64` local origin
@@ -36,10 +43,20 @@ pub struct Prim {
     pub b: V3<f32>,
     /// Second radius.
     pub rb: f32,
+    /// Middle control point of a spline sub-segment relative to `origin` (links: the
+    /// midpoint of `a` and `b`, unused).
+    pub m: V3<f32>,
+    /// Middle control radius of a spline sub-segment (links: the mean radius, unused). May
+    /// be negative as long as the radius curve is not ([`QuadTube`]).
+    pub rm: f32,
     /// The shape.
     pub kind: PrimKind,
-    /// Index of the scene link this primitive models.
+    /// Index of the scene link this primitive models (a spline sub-segment: the link whose
+    /// Hermite segment it is half of).
     pub link: u32,
+    /// Which half of its link's Hermite segment a spline sub-segment is (0: from the link's
+    /// first node, 1: to its second); 0 for links.
+    pub half: u8,
 }
 
 impl Prim {
@@ -59,27 +76,80 @@ impl Prim {
                 ra: r as f32,
                 b: V3::zero(),
                 rb: r as f32,
+                m: V3::zero(),
+                rm: r as f32,
                 kind,
                 link,
+                half: 0,
             };
         }
         let mid = (l.a + l.b) * 0.5;
+        let (a, b): (V3<f32>, V3<f32>) = ((l.a - mid).cast(), (l.b - mid).cast());
+        let (ra, rb) = (l.ra as f32, l.rb as f32);
         Self {
             origin: mid.to_array(),
-            a: (l.a - mid).cast(),
-            ra: l.ra as f32,
-            b: (l.b - mid).cast(),
-            rb: l.rb as f32,
+            a,
+            ra,
+            b,
+            rb,
+            m: (a + b) * 0.5,
+            rm: 0.5 * (ra + rb),
             kind,
             link,
+            half: 0,
         }
     }
 
+    /// A spline sub-segment primitive from a validated `f64` quadratic segment: control
+    /// points stored in `f32` relative to the curve's midpoint `p(½)` (in `f64`), radii in
+    /// `f32`. Errors when the rounded segment is not a valid `f32` [`QuadTube`] (an extent so
+    /// large that the kernel's fourth powers overflow `f32`, ≳ 2·10⁸).
+    pub fn from_quad(q: &QuadTube<f64>, link: u32, half: u8) -> Result<Self, GeometryError> {
+        let mid = q.point(0.5);
+        let [b0, b1, b2] = q.b;
+        let c: [V3<f32>; 3] = [(b0 - mid).cast(), (b1 - mid).cast(), (b2 - mid).cast()];
+        let r = q.r.map(|x| x as f32);
+        QuadTube::new(c, r)?;
+        Ok(Self {
+            origin: mid.to_array(),
+            a: c[0],
+            ra: r[0],
+            b: c[2],
+            rb: r[2],
+            m: c[1],
+            rm: r[1],
+            kind: PrimKind::Spline,
+            link,
+            half,
+        })
+    }
+
+    /// The stored spline sub-segment (relative to `origin`); meaningful for
+    /// [`PrimKind::Spline`] (for a link it is the straight segment with the same sweep).
+    #[inline]
+    pub fn quad(&self) -> QuadTube<f32> {
+        QuadTube { b: [self.a, self.m, self.b], r: [self.ra, self.rm, self.rb] }
+    }
+
+    /// Largest control radius (the size of the primitive's cross-section).
+    pub fn max_radius(&self) -> f32 {
+        self.ra.max(self.rb).max(self.rm)
+    }
+
     /// World-space bounding box `(min, max)` of the stored (rounded) primitive, in `f64`.
+    ///
+    /// For a spline sub-segment this is [`Obb::aabb`] of the stored control data evaluated
+    /// in `f64` (exact extents up to a few `f64` roundings, far below the BVH's padding).
     pub fn aabb(&self) -> ([f64; 3], [f64; 3]) {
-        let rc = RoundCone { a: self.a, ra: self.ra, b: self.b, rb: self.rb };
-        let (lo, hi) = rc.aabb();
-        let (lo, hi) = (lo.cast::<f64>().to_array(), hi.cast::<f64>().to_array());
+        let (lo, hi) = if self.kind == PrimKind::Spline {
+            let q = self.quad().cast::<f64>();
+            let b = Obb::aabb(&q);
+            ((b.origin + b.lo).to_array(), (b.origin + b.hi).to_array())
+        } else {
+            let rc = RoundCone { a: self.a, ra: self.ra, b: self.b, rb: self.rb };
+            let (lo, hi) = rc.aabb();
+            (lo.cast::<f64>().to_array(), hi.cast::<f64>().to_array())
+        };
         (
             std::array::from_fn(|i| self.origin[i] + lo[i]),
             std::array::from_fn(|i| self.origin[i] + hi[i]),
@@ -92,18 +162,100 @@ impl Prim {
     /// The ray is moved in `f64` to the point of its line nearest the local origin and its
     /// direction normalised, then the `f32` kernel runs ([`RoundCone::intersect`], stable, or
     /// [`intersect_sphere`]) and `t` is mapped back in `f64`.
+    ///
+    /// A spline sub-segment returns the **hull** `[first entry, last exit]` of its line
+    /// pieces ([`QuadTube::intersect`], [`Solver::Polynomial`]): its entry is the exact first
+    /// entry, but a strongly bent segment may be crossed more than once, so the hull can
+    /// cover gaps; [`Self::pieces`] gives the exact pieces.
     #[inline]
     pub fn intersect(&self, ray: &Ray<f64>) -> Interval<f64> {
+        let (rl, tc, len) = self.local_ray(ray);
+        let iv = match self.kind {
+            PrimKind::Sphere => intersect_sphere(&rl, self.a, self.ra, 0.0),
+            PrimKind::Spline => self.quad().intersect_with(&rl, Solver::Polynomial),
+            _ => RoundCone { a: self.a, ra: self.ra, b: self.b, rb: self.rb }.intersect(&rl),
+        };
+        Self::to_world(&iv, tc, len, ray)
+    }
+
+    /// The exact intervals of the ray's **line** with the primitive, one per connected piece
+    /// (a link has one; a bent spline sub-segment up to three), each with the hit mask set
+    /// when it is non-empty and overlaps `[t_min, t_max]`; passed to `emit` in no particular
+    /// order. Spline pieces come from [`QuadTube::intersect_pieces`] ([`Solver::Polynomial`]).
+    #[inline]
+    pub fn pieces(&self, ray: &Ray<f64>, mut emit: impl FnMut(Interval<f64>)) {
+        if self.kind != PrimKind::Spline {
+            let iv = self.intersect(ray);
+            if iv.hit {
+                emit(iv);
+            }
+            return;
+        }
+        let (rl, tc, len) = self.local_ray(ray);
+        for iv in self.quad().intersect_pieces(&rl, Solver::Polynomial) {
+            let iv = Self::to_world(&iv, tc, len, ray);
+            if iv.hit {
+                emit(iv);
+            }
+        }
+    }
+
+    /// The first surface crossing in `[t_min, t_max]`: `(t, normal, u, entering)`. Exact
+    /// for every kind: a spline's hull entry is used when it lies in the range (it is the
+    /// first entry of the pieces), otherwise the pieces are searched (a ray starting inside
+    /// the hull, e.g. a shadow ray leaving a bent segment, may be in a gap between pieces).
+    #[inline]
+    pub fn first_hit(&self, ray: &Ray<f64>) -> Option<(f64, V3<f64>, f64, bool)> {
+        let iv = self.intersect(ray);
+        if !iv.hit {
+            return None;
+        }
+        if self.kind != PrimKind::Spline || (iv.t_in >= ray.t_min && iv.t_in <= ray.t_max) {
+            let (t, n, u) = iv.first_hit(ray.t_min, ray.t_max)?;
+            return Some((t, n, u, t == iv.t_in));
+        }
+        let mut best: Option<(f64, V3<f64>, f64, bool)> = None;
+        self.pieces(ray, |p| {
+            if let Some((t, n, u)) = p.first_hit(ray.t_min, ray.t_max) {
+                if best.map_or(true, |b| t < b.0) {
+                    best = Some((t, n, u, t == p.t_in));
+                }
+            }
+        });
+        best
+    }
+
+    /// True when the primitive's surface or interior meets `[t_min, t_max]` of the ray.
+    #[inline]
+    pub fn meets(&self, ray: &Ray<f64>) -> bool {
+        let iv = self.intersect(ray);
+        if !iv.hit {
+            return false;
+        }
+        if self.kind != PrimKind::Spline || iv.t_in >= ray.t_min {
+            return true;
+        }
+        let mut any = false;
+        self.pieces(ray, |_| any = true);
+        any
+    }
+
+    /// The ray moved in `f64` to the point of its line nearest the local origin, with a unit
+    /// direction, in `f32`; and `(tc, |d|)` to map distances back.
+    #[inline]
+    fn local_ray(&self, ray: &Ray<f64>) -> (Ray<f32>, f64, f64) {
         let len = ray.d.length();
         let dn = ray.d * (1.0 / len);
         let org = V3::from(self.origin);
         let tc = (org - ray.o).dot(dn); // distance along dn to the nearest point
         let o = (ray.o + dn * tc - org).cast::<f32>();
-        let rl = Ray::with_range(o, dn.cast::<f32>(), f32::NEG_INFINITY, f32::INFINITY);
-        let iv = match self.kind {
-            PrimKind::Sphere => intersect_sphere(&rl, self.a, self.ra, 0.0),
-            _ => RoundCone { a: self.a, ra: self.ra, b: self.b, rb: self.rb }.intersect(&rl),
-        };
+        (Ray::with_range(o, dn.cast::<f32>(), f32::NEG_INFINITY, f32::INFINITY), tc, len)
+    }
+
+    /// A local `f32` line interval mapped back to the world ray, with the hit mask clipped
+    /// to the ray's range.
+    #[inline]
+    fn to_world(iv: &Interval<f32>, tc: f64, len: f64, ray: &Ray<f64>) -> Interval<f64> {
         if !iv.hit {
             return Interval::miss();
         }
