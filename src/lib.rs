@@ -56,7 +56,7 @@ pub enum GeometryError {
     ZeroRadius,
     /// A ray direction is zero.
     ZeroDirection,
-    /// A non-zero size is so small that its square underflows.
+    /// A non-zero size is so small that its square (nearly) underflows.
     TooSmall {
         /// What was too small.
         what: &'static str,

@@ -306,6 +306,8 @@ fn constructors_reject_bad_input() {
     assert_eq!(RoundCone::new(o, 1.0, x, -0.5), Err(E::NegativeRadius));
     assert_eq!(RoundCone::new(o, 0.0, x, 0.0), Err(E::ZeroRadius));
     assert!(matches!(RoundCone::new(o, 1e-300, x, 1.0), Err(E::TooSmall { .. })));
+    assert!(matches!(RoundCone::new(o, 1e-150, x, 1e-150), Err(E::TooSmall { .. })));
+    assert!(RoundCone::new(o, 1e-140, x, 1e-140).is_ok());
     assert!(matches!(RoundCone::new(o, 1.0, x, 1e-20f32 as f64 * 1e-150), Err(E::TooSmall { .. })));
     assert!(matches!(RoundCone::<f32>::new(o.cast(), 1e-30, x.cast(), 1.0), Err(E::TooSmall { .. })));
     assert!(Ray::new(o, V3::new(1e-160, 0.0, 0.0)).validate().is_err());

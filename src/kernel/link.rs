@@ -71,8 +71,9 @@ impl<T: Scalar> RoundCone<T> {
         if ra == T::zero() && rb == T::zero() {
             return Err(GeometryError::ZeroRadius);
         }
-        // Kernels square radii: a non-zero radius whose square underflows has no usable surface.
-        let tiny = |r: T| r > T::zero() && r * r < T::MIN_POSITIVE;
+        // Kernels square radii and form differences of squares: a non-zero radius whose square
+        // is within a factor 1/ε of underflow loses its digits in subnormal arithmetic.
+        let tiny = |r: T| r > T::zero() && r * r < T::MIN_POSITIVE / T::EPS;
         if tiny(ra) || tiny(rb) {
             return Err(GeometryError::TooSmall { what: "link radius (its square underflows)" });
         }
