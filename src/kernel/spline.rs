@@ -242,6 +242,37 @@ impl<T: Real> RaySpace<T> {
         (best, bt)
     }
 
+    /// Two Newton steps on `f' ∝ F₁ = 2σh'√g − g'` from `t` (value `v` of `σh − √g`), each
+    /// kept only where it stays in `[lo, hi]` with `g > 0` and lowers the value. Polishes the
+    /// polynomial solver's critical points: `P`'s roots carry the cancellation of
+    /// `4h'²g − g'²`, while `F₁` and the value are evaluated from `g` directly.
+    #[inline(always)]
+    fn polish(&self, t: T, v: T, sigma: T, lo: T, hi: T) -> (T, T) {
+        let two = T::cst(2.0);
+        let g = self.g;
+        let g1 = [g[1], two * g[2], T::cst(3.0) * g[3], T::cst(4.0) * g[4]];
+        let g2 = [two * g[2], T::cst(6.0) * g[3], T::cst(12.0) * g[4]];
+        let h1 = [self.h[1] * sigma, two * self.h[2] * sigma];
+        let h2 = two * self.h[2] * sigma;
+        let (mut t, mut v) = (t, v);
+        for _ in 0..2 {
+            let gv = horner(&g, t);
+            let pos = gv.gt(T::zero());
+            let sg = T::select(pos, gv, T::one()).sqrt();
+            let (d1, d2, hp) = (horner(&g1, t), horner(&g2, t), horner(&h1, t));
+            let f1 = two * hp * sg - d1;
+            let df1 = two * h2 * sg + hp * d1 / sg - d2;
+            let tn = t - f1 / df1;
+            let inside = pos & tn.ge(lo) & tn.le(hi); // false for NaN
+            let tn = T::select(inside, tn, t);
+            let vn = self.val(tn, sigma);
+            let better = inside & vn.lt(v) & horner(&g, tn).ge(T::zero());
+            t = T::select(better, tn, t);
+            v = T::select(better, vn, v);
+        }
+        (v, t)
+    }
+
     /// `P = 4h'²g − g'²` (degree 6).
     #[inline(always)]
     fn p_poly(&self) -> [T; 7] {
@@ -365,7 +396,9 @@ impl<T: Real> QuadTube<T> {
                 let p = rs.p_poly();
                 let (bp, n) = poly_breakpoints(&p, T::zero(), T::one(), Bracket::Newton);
                 let (si, ui, so, uo, any) = rs.from_candidates(&bp[..n], T::zero(), T::one(), false);
-                rs.interval(ray, si, ui, so, uo, any, true)
+                let (vi, ui) = rs.polish(ui, si, T::one(), T::zero(), T::one());
+                let (vo, uo) = rs.polish(uo, -so, -T::one(), T::zero(), T::one());
+                rs.interval(ray, vi, ui, -vo, uo, any, true)
             }
             _ => {
                 // Hull of the line pieces, then clipped to the ray's range (a piece behind the
@@ -436,7 +469,9 @@ impl<T: Real> QuadTube<T> {
             let (si, ui, so, uo) = match ppoly {
                 Some((bp, n)) => {
                     let (si, ui, so, uo, _) = rs.from_candidates(&bp[..n], lo, hi, true);
-                    (si, ui, so, uo)
+                    let (vi, ui) = rs.polish(ui, si, T::one(), lo, hi);
+                    let (vo, uo) = rs.polish(uo, -so, -T::one(), lo, hi);
+                    (vi, ui, -vo, uo)
                 }
                 None => {
                     let (vi, ui) = rs.russig_min(lo, hi, T::one(), method);
@@ -458,8 +493,8 @@ impl<T: Real> QuadTube<T> {
 ///
 /// The critical points of `|x − p| − r` satisfy `(x − p)·p' = −r'|x − p|`, so they are roots of
 /// the degree-6 polynomial `((x − p)·p')² − r'²|x − p|²`; all of them in `[0, 1]` are isolated
-/// by the derivative cascade with safeguarded Newton, and `φ` is the least value over them
-/// and the ends.
+/// by the derivative cascade with safeguarded Newton, each is polished by a golden-section
+/// search between its neighbours, and `φ` is the least value seen (ends included).
 pub fn quadratic_tube<T: Scalar>(x: V3<T>, tube: &QuadTube<T>) -> T {
     let two = T::cst(2.0);
     let [b0, b1, b2] = tube.b;
@@ -492,10 +527,40 @@ pub fn quadratic_tube<T: Scalar>(x: V3<T>, tube: &QuadTube<T>) -> T {
         q[i] = s1[i] - s2[i];
     }
     let (bp, n) = poly_breakpoints(&q, T::zero(), T::one(), Bracket::Newton);
+    let phi = |t: T| (xr - (a * (t * t) + b * t)).length() - tube.radius(t);
     let mut best = T::infinity();
     for &t in &bp[..n] {
-        let v = (x - tube.point(t)).length() - tube.radius(t);
-        best = best.min(v);
+        best = best.min(phi(t));
+    }
+    // The polynomial's roots can be off where its coefficients cancel (a thin tube far from
+    // b₀: |x − p| ≪ |x − b₀|), though φ itself is evaluated to ~ε|x − b₀|. Between the
+    // neighbours of a computed root φ has one critical point, so a golden-section search
+    // there polishes it (every value it sees is a value of φ: the minimum can only improve).
+    let gr = T::cst(0.618_033_988_749_894_8);
+    for i in 1..n - 1 {
+        let (mut lo, mut hi) = (bp[i - 1], bp[i + 1]);
+        let mut x1 = hi - gr * (hi - lo);
+        let mut x2 = lo + gr * (hi - lo);
+        let (mut f1, mut f2) = (phi(x1), phi(x2));
+        for _ in 0..100 {
+            if hi - lo <= T::epsilon() * T::cst(4.0) {
+                break;
+            }
+            if f1 < f2 {
+                hi = x2;
+                x2 = x1;
+                f2 = f1;
+                x1 = hi - gr * (hi - lo);
+                f1 = phi(x1);
+            } else {
+                lo = x1;
+                x1 = x2;
+                f1 = f2;
+                x2 = lo + gr * (hi - lo);
+                f2 = phi(x2);
+            }
+            best = best.min(f1).min(f2);
+        }
     }
     best
 }
