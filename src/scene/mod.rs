@@ -386,11 +386,17 @@ impl Scene {
     /// isolated nodes. Errors when a segment cannot be stored as an `f32` spline primitive
     /// (extents beyond ≈ 2·10⁸, whose fourth powers overflow `f32` in the kernel).
     pub fn spline_primitives(&self) -> Result<Vec<Prim>, SceneError> {
+        self.spline_primitives_with(true)
+    }
+
+    /// [`Self::spline_primitives`], optionally keeping straight segments as splines too
+    /// (`straight_as_links = false`; for comparing the two models on the same surface).
+    pub fn spline_primitives_with(&self, straight_as_links: bool) -> Result<Vec<Prim>, SceneError> {
         let mut done = vec![false; self.links.len()];
         let mut out = Vec::with_capacity(2 * self.links.len());
         for s in self.spline_segments() {
             done[s.link as usize] = true;
-            if s.is_straight() {
+            if straight_as_links && s.is_straight() {
                 out.push(Prim::from_link(&self.link(s.link as usize), s.link));
                 continue;
             }
