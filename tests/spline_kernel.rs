@@ -47,6 +47,14 @@ proptest! {
                 // Robust hits only: a half chord ≥ 1e-3 is far beyond the oracle's sampling
                 // (4000 samples: a curve step ≤ 1e-3) and the kernel's tangency error.
                 Some((ti, _, to, _, depth)) if depth > 1e-3 => {
+                    // Bisection{10} locates g's roots only to 2⁻¹⁰ of their bracket, so a real
+                    // interval narrower than a few 2⁻¹⁰ in t can be lost (its computed piece
+                    // has the wrong sign at its midpoint): a documented miss of that solver.
+                    if !iv.hit && solver == (Solver::Bisection { iters: 10 }) {
+                        let w = hit_measure(&b, &r, o, d, 20000);
+                        prop_assert!(w < 4.0 / 1024.0, "Bisection(10) missed a real interval of width {w}");
+                        continue;
+                    }
                     prop_assert!(iv.hit, "{solver:?} missed a hit of depth {depth}");
                     let tol = match solver {
                         // ½|f''|δt² with δt = 2⁻¹⁰ and |f''| ≤ |h''| + |g''|/(2√g) + g'²/(4g^{3/2});
@@ -307,9 +315,9 @@ fn bad_input_is_rejected() {
     let mut q = p;
     q[1].y = f64::INFINITY;
     assert!(matches!(QuadTube::new(q, [1.0, 1.0, 1.0]), Err(GeometryError::NonFinite { .. })));
-    q[1].y = 1e80;
+    q[1].y = 1e160; // squared: overflows
     assert!(matches!(QuadTube::new(q, [1.0, 1.0, 1.0]), Err(GeometryError::NonFinite { .. })));
-    let qf = [V3::new(0.0f32, 0.0, 0.0), V3::new(1e10, 0.0, 0.0), V3::new(2.0, 0.0, 0.0)];
+    let qf = [V3::new(0.0f32, 0.0, 0.0), V3::new(1e20, 0.0, 0.0), V3::new(2.0, 0.0, 0.0)];
     assert!(matches!(QuadTube::new(qf, [1.0, 1.0, 1.0]), Err(GeometryError::NonFinite { .. })));
 }
 
@@ -467,5 +475,35 @@ fn thin_long_tube_far_end() {
             assert!(quadratic_tube(ray.at(tt), &t).abs() <= 1e-9, "{solver:?} {iv:?}");
         }
         assert!((iv.t_in - want.t_in).abs() <= 1e-8 && (iv.t_out - want.t_out).abs() <= 1e-8, "{solver:?}");
+    }
+}
+
+proptest! {
+    #![proptest_config(config(32))]
+
+    /// Scale invariance: positions, radii and the ray origin scaled by 2^k (exact) give ray
+    /// parameters scaled by exactly 2^k, bit for bit, for every solver and k from −500 to 500 (squares of the extents stay normal and finite):
+    /// the kernel re-centres and works in units of the bounding radius, so every intermediate
+    /// is the same number. (Fuzz finding fuzz/corpus/spline/regression-tiny-scale: at 1e-33
+    /// the sign functions, products of six coordinates, underflowed and ITP/Newton missed
+    /// the minimum.)
+    #[test]
+    fn exact_scale_invariance((b, r) in tube_strategy(0.02, 0.6), (o, d) in ray_strategy(), k in -500i32..500) {
+        let f = 2f64.powi(k);
+        let sc = |p: [f64; 3]| [p[0] * f, p[1] * f, p[2] * f];
+        let t1 = tube(&b, &r);
+        let tk = tube(&[sc(b[0]), sc(b[1]), sc(b[2])], &[r[0] * f, r[1] * f, r[2] * f]);
+        let r1 = Ray::new(V3::from(o), V3::from(d));
+        let rk = Ray::new(V3::from(sc(o)), V3::from(d));
+        for solver in SOLVERS {
+            let (a, c) = (t1.intersect_with(&r1, solver), tk.intersect_with(&rk, solver));
+            prop_assert_eq!(a.hit, c.hit);
+            if a.hit {
+                prop_assert_eq!(a.t_in * f, c.t_in, "{:?}", solver);
+                prop_assert_eq!(a.t_out * f, c.t_out, "{:?}", solver);
+                prop_assert_eq!(a.n_in, c.n_in);
+                prop_assert_eq!(a.u_in, c.u_in);
+            }
+        }
     }
 }

@@ -83,7 +83,7 @@ impl<T: Scalar> QuadTube<T> {
     /// A validated segment. Errors: non-finite input ([`GeometryError::NonFinite`]), a radius
     /// curve that is negative somewhere on `[0, 1]` ([`GeometryError::NegativeRadius`]), a
     /// radius that is zero everywhere ([`GeometryError::ZeroRadius`]), or an extent whose
-    /// fourth power overflows (the kernel's degree-6 polynomial is quartic in coordinates).
+    /// square overflows ([`GeometryError::NonFinite`]).
     pub fn new(b: [V3<T>; 3], r: [T; 3]) -> Result<Self, GeometryError> {
         if b.iter().any(|p| !p.is_finite()) {
             return Err(GeometryError::NonFinite { what: "spline control point" });
@@ -101,10 +101,10 @@ impl<T: Scalar> QuadTube<T> {
         for i in 0..3 {
             e = e.max((b[i] - b[0]).max_abs()).max(r[i].abs());
         }
-        // Ray-space coordinates are bounded by ~4e after the far-ray early-out; P's
-        // coefficients by a few hundred (4e)⁴.
-        let e4 = e * e * e * e * T::cst(65536.0);
-        if !e4.is_finite() {
+        // The kernel works in units of the bounding radius (≤ 4e), which it computes from
+        // squared lengths: those must not overflow.
+        let e2 = e * e * T::cst(64.0);
+        if !e2.is_finite() {
             return Err(GeometryError::NonFinite { what: "spline extent (overflows in the kernel)" });
         }
         Ok(Self { b, r })
@@ -134,13 +134,15 @@ struct RaySpace<T: Real> {
     h: [T; 3],
     /// `g` coefficients.
     g: [T; 5],
-    /// Power-basis position relative to the re-centred origin: `q = qa t² + qb t + qc`.
+    /// Power-basis position relative to the re-centred origin, in units of the bounding
+    /// radius: `q = qa t² + qb t + qc`.
     qa: V3<T>,
     qb: V3<T>,
     qc: V3<T>,
     dhat: V3<T>,
     /// Ray parameter of the re-centred origin.
     tc: T,
+    /// Bounding radius / |d|: converts a ray-space distance to a ray parameter step.
     inv_dlen: T,
     /// Lanes whose line comes within the bounding sphere.
     near: T::Mask,
@@ -160,14 +162,19 @@ impl<T: Real> RaySpace<T> {
         let tc = (m - ray.o).dot(ray.d) / d2;
         // l = o' − m, o' the closest point of the line to m.
         let l = (ray.o - m) + ray.d * tc;
-        let (c0, c1, c2) = (b0 - m - l, b1 - m - l, b2 - m - l);
         let rmax = tube.r[0].abs().max(tube.r[1].abs()).max(tube.r[2].abs());
         let big = (b0 - m).length().max((b1 - m).length()).max((b2 - m).length()) + rmax;
         let near = l.length2().le(big * big);
+        // Work in units of the bounding radius: g, P and the sign functions are products of up
+        // to six coordinates, which would over/underflow for large or tiny tubes. (One
+        // rounding per coordinate: a relative change of ε, inside the error model.)
+        let big_s = T::select(big.gt(T::zero()) & big.is_finite(), big, T::one());
+        let inv = T::one() / big_s;
+        let (c0, c1, c2) = ((b0 - m - l) * inv, (b1 - m - l) * inv, (b2 - m - l) * inv);
         let qa = c0 - c1 * two + c2;
         let qb = (c1 - c0) * two;
         let qc = c0;
-        let [r0, r1, r2] = tube.r;
+        let [r0, r1, r2] = [tube.r[0] * inv, tube.r[1] * inv, tube.r[2] * inv];
         let (ra, rb, rc) = (r0 - r1 * two + r2, (r1 - r0) * two, r0);
         let h = [qc.dot(dhat), qb.dot(dhat), qa.dot(dhat)];
         let (wa, wb, wc) = (qa.cross(dhat), qb.cross(dhat), qc.cross(dhat));
@@ -180,7 +187,8 @@ impl<T: Real> RaySpace<T> {
         ];
         let r2 = [rc * rc, two * rc * rb, rb * rb + two * rc * ra, two * rb * ra, ra * ra];
         let g = [r2[0] - w2[0], r2[1] - w2[1], r2[2] - w2[2], r2[3] - w2[3], r2[4] - w2[4]];
-        Self { h, g, qa, qb, qc, dhat, tc, inv_dlen, near }
+        // Ray-space distances are in units of `big`: t = tc + s·big/|d|.
+        Self { h, g, qa, qb, qc, dhat, tc, inv_dlen: inv_dlen * big_s, near }
     }
 
     #[inline(always)]

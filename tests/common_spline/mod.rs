@@ -146,3 +146,14 @@ pub fn config(default: u32) -> ProptestConfig {
     let cases = std::env::var("PROPTEST_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(default);
     ProptestConfig { cases, max_global_rejects: 20 * cases + 1024, failure_persistence: None, ..ProptestConfig::default() }
 }
+
+/// Measure (in t) of the set of spheres the ray's line meets, by `n` uniform samples.
+pub fn hit_measure(b: &[[f64; 3]; 3], r: &[f64; 3], o: [f64; 3], d: [f64; 3], n: usize) -> f64 {
+    let hits = (0..=n)
+        .filter(|&k| {
+            let (p, rr) = eval(b, r, k as f64 / n as f64);
+            sphere_hit(o, d, p, rr).is_some()
+        })
+        .count();
+    hits as f64 / (n + 1) as f64
+}
