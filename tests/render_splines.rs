@@ -290,3 +290,34 @@ fn transparent_splines_show_no_interior_surfaces_at_joints() {
     }
     assert!(n_two > 200 && n_bg > 200, "{n_two} tube pixels, {n_bg} background");
 }
+
+#[test]
+fn far_from_origin_spline_render_keeps_its_depth() {
+    // The same helix and camera at the origin and shifted by ~10⁶: spline primitives are
+    // stored in f32 relative to their midpoints, so both renders are within `depth_tol` of
+    // the same surface. (World f32 at 10⁶ has a spacing of 1/16, a quarter of the radius.)
+    let shift = V3::new(1.0e6 + 0.3, -1.0e6 + 0.7, 1.0e6 + 0.1);
+    let render_at = |off: V3<f64>| {
+        let lines: Vec<Polyline> = generate::helix(24)
+            .into_iter()
+            .map(|l| Polyline { points: l.points.iter().map(|p| (V3::from(*p) + off).to_array()).collect(), radii: l.radii })
+            .collect();
+        let scene = Scene::from_polylines(&lines, 1.0, "helix").unwrap();
+        let bvh = Bvh::build(scene.spline_primitives().unwrap());
+        let cam = Camera::look_at(off + V3::new(8.0, 12.0, 30.0), off, V3::new(0.0, 1.0, 0.0), 40.0, 24, 24).unwrap();
+        (render(&scene, &bvh, &cam, &flat(ColorBy::Direction, 1.0)).unwrap(), cam)
+    };
+    let (near, cam) = render_at(V3::zero());
+    let (far, _) = render_at(shift);
+    // Each within depth_tol(1.4, 0.25, c) of the surface on non-grazing pixels (s, radii as
+    // in the helix depth test); the shifted inputs and camera rays carry f64 rounding of
+    // ~10⁶·2⁻⁵³ ≈ 1e-10, negligible. Grazing pixels (|n·d̂| < 0.1 by the f64 kernels) skipped.
+    let segs: Vec<_> = generate::helix(24).iter().flat_map(catmull_rom).collect();
+    let tol = 2.0 * depth_tol(1.4, 0.25, 0.1) + 1e-9;
+    let w = cam.width;
+    let (hits, _, worst) = compare_depth(&far, &cam, 0.1, tol, |x, y, r| {
+        reference_hit(&segs, r).map(|(_, n)| (near.depth[(y * w + x) as usize], n))
+    });
+    eprintln!("far: {hits} hits, worst |Δt| far vs near {worst:e} (tol {tol:e})");
+    assert!(hits > 60, "{hits}");
+}
