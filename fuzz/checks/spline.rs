@@ -2,9 +2,10 @@
 // Bytes -> (quadratic tube, ray, solver). Byte 0: bits 0..2 the solver, bit 7 "raw" mode
 // (coordinates are arbitrary f64 bit patterns: NaN, ∞, huge — validators must reject without
 // panicking); otherwise coordinates are i16/1000 (|x| ≤ 32.8). Valid input must give, in f64
-// and f32 and for every solver: no NaN, t_in ≤ t_out, unit normals, u ∈ [0, 1]; and for f64
-// with an accurate solver, hit points within √(64ε)·S + 8εS (tests/spline_kernel.rs) of the
-// surface, measured with the exact tube SDF, on intervals at least 1e-6·S long.
+// and f32 and for every solver: no NaN, t_in ≤ t_out, unit normals, u ∈ [0, 1]; and in f64,
+// on intervals at least 1e-6·S long, hit points not outside the tube by more than
+// E = √(64ε)·S + 8εS (tests/spline_kernel.rs), and for the polynomial solver within E of the
+// surface (exact tube SDF).
 #[allow(unused_imports)]
 use tubecast::{kernel::roots::Solver, kernel::spline::{quadratic_tube, QuadTube}, Interval, Ray, Scalar, V3};
 
@@ -63,8 +64,11 @@ pub fn check(data: &[u8]) {
     for p in t.intersect_pieces(&ray, solver) {
         sane(&p);
     }
-    let accurate = !matches!(solver, Solver::Bisection { iters: 10 });
-    if iv.hit && accurate {
+    // Every solver reports points of the closed tube (sdf ≤ bound); the polynomial solver,
+    // which rests on no empirical claim, reports surface points (|sdf| ≤ bound). The Russig
+    // cascade can miss a minimum where the claims fail (tests/spline_claims.rs documents a
+    // case) and then reports a point inside.
+    if iv.hit {
         let mut s: f64 = 0.0;
         for i in 0..3 {
             s = s.max((b[i] - b[0]).max_abs()).max(r[i].abs());
@@ -74,9 +78,12 @@ pub fn check(data: &[u8]) {
         let dl = ray.d.length();
         if (iv.t_out - iv.t_in) * dl > 1e-6 * s {
             for tt in [iv.t_in, iv.t_out] {
-                let e = quadratic_tube(ray.at(tt), &t).abs();
+                let e = quadratic_tube(ray.at(tt), &t);
                 let bound = (64.0 * f64::EPSILON).sqrt() * s + 8.0 * f64::EPSILON * s;
-                assert!(e <= bound, "hit {tt} off the surface by {e} > {bound}: {t:?} {ray:?} {solver:?}");
+                assert!(e <= bound, "hit {tt} outside the tube by {e} > {bound}: {t:?} {ray:?} {solver:?}");
+                if solver == Solver::Polynomial {
+                    assert!(e.abs() <= bound, "hit {tt} off the surface by {e} > {bound}: {t:?} {ray:?} {solver:?}");
+                }
             }
         }
     }

@@ -36,6 +36,8 @@ pub enum Solver {
     /// Russig's cascade (real intervals of `g` by `g''` analytic → `g'` → `g`; minima of `f`
     /// by `f'''` → `f''` → `f'` on each real interval) with fixed-iteration bisection in every
     /// bracket. `iters = 10` is Salm's setting; the `t` error is `2^-iters` of the bracket.
+    /// The cascade relies on Russig's empirical claim (at most one root of `f'''` per real
+    /// interval), which has counterexamples (`tests/spline_claims.rs`); so do `Itp`, `Newton`.
     Bisection {
         /// Bisection steps per bracket.
         iters: u32,

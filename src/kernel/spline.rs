@@ -23,7 +23,10 @@
 //!   so they stay finite at the interval ends: `F₁ = 2h'√g − g'`,
 //!   `F₂ = 4h''g√g − 2g''g + g'²`, `F₃ = −4g'''g² + 6g'g''g − 3g'³`), and the same for the exit
 //!   with `h → −h`. This assumes Russig's empirical claim that `f'''` has at most one root per
-//!   real interval (`f'` at most three); `tests/spline_claims.rs` tests it.
+//!   real interval (`f'` at most three). `tests/spline_claims.rs` tests it: it holds on random
+//!   segments, but **fails** on a real interval bounded by the segment ends (a radius
+//!   shrinking 600-fold; f''' has two roots, the middle of f''s three roots is the minimum), where
+//!   these solvers report a point inside the tube instead of the entry.
 //! * [`Solver::Polynomial`]: the critical points of `f` **and** `e` are exactly the roots of
 //!   `P = 4h'²g − g'² = (2h'√g − g')(2h'√g + g')` where `g > 0`; all roots of `P` in `[0, 1]`
 //!   by the derivative cascade, then `f` and `e` at every root with `g ≥ 0` and at `t = 0, 1`.
