@@ -79,7 +79,18 @@ pub fn check(data: &[u8]) {
         if (iv.t_out - iv.t_in) * dl > 1e-6 * s {
             for tt in [iv.t_in, iv.t_out] {
                 let e = quadratic_tube(ray.at(tt), &t);
-                let bound = (64.0 * f64::EPSILON).sqrt() * s + 8.0 * f64::EPSILON * s;
+                let mut bound = (64.0 * f64::EPSILON).sqrt() * s + 8.0 * f64::EPSILON * s;
+                if let Solver::Bisection { iters } = solver {
+                    // A root of g located to δ = 2^-iters (of a bracket ≤ 1) is a sphere missed
+                    // by ≤ (max|p'| + max|r'|)·δ, with |p'| ≤ 2·max|bᵢ − bⱼ|, |r'| ≤ 2·max|rᵢ − rⱼ|.
+                    let mut lip: f64 = 0.0;
+                    for i in 0..3 {
+                        for j in 0..3 {
+                            lip = lip.max(2.0 * (b[i] - b[j]).length() + 2.0 * (r[i] - r[j]).abs());
+                        }
+                    }
+                    bound += 2.0 * lip * 0.5f64.powi(iters as i32);
+                }
                 assert!(e <= bound, "hit {tt} outside the tube by {e} > {bound}: {t:?} {ray:?} {solver:?}");
                 if solver == Solver::Polynomial {
                     assert!(e.abs() <= bound, "hit {tt} off the surface by {e} > {bound}: {t:?} {ray:?} {solver:?}");
