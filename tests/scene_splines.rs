@@ -5,7 +5,8 @@
 use tubecast::io::swc::SwcNode;
 use tubecast::io::Polyline;
 use tubecast::kernel::HermiteSegment;
-use tubecast::scene::{Chain, Node, PrimKind, Scene};
+use tubecast::kernel::QuadTube;
+use tubecast::scene::{Chain, Node, Prim, PrimKind, Scene};
 use tubecast::{GeometryError, V3};
 
 fn line(points: &[[f64; 3]], radii: &[f64]) -> Polyline {
@@ -117,7 +118,7 @@ fn straight_runs_stay_links_and_curved_ones_do_not() {
 }
 
 #[test]
-fn link_model_counts_match_and_errors_are_clear() {
+fn link_model_counts_match_and_f32_storage_is_guarded() {
     // The link model through stats_of counts what stats counts.
     let s = Scene::from_polylines(
         &[line(&[[0.0; 3], [2.0, 0.0, 0.0], [4.0, 0.0, 0.0], [4.1, 0.0, 0.0]], &[0.5, 0.5, 0.3, 0.1])],
@@ -129,10 +130,13 @@ fn link_model_counts_match_and_errors_are_clear() {
     assert_eq!((a.cylinders, a.cones, a.spheres, a.splines), (b.cylinders, b.cones, b.spheres, b.splines));
     assert!(s.primitives().iter().all(|p| p.kind != PrimKind::Spline));
 
-    // Extents of 1e9 overflow the f32 spline kernel's fourth powers: a clear error (the link
-    // model of the same scene is fine).
+    // Far and huge (extents 1e9, radius 1): a valid f32 spline model, every box finite.
     let big = Scene::from_polylines(&[line(&[[0.0; 3], [1e9, 0.0, 0.0], [2e9, 1e9, 0.0]], &[1.0; 3])], 1.0, "big").unwrap();
-    assert_eq!(big.primitives().len(), 2);
-    let e = big.spline_primitives().unwrap_err().to_string();
-    assert!(e.contains("cannot model it as a spline") && e.contains("link 0"), "{e}");
+    let prims = big.spline_primitives().unwrap();
+    assert_eq!(prims.len(), 4);
+    assert!(prims.iter().all(|p| { let (a, b) = p.aabb(); a.iter().chain(&b).all(|v| v.is_finite()) }));
+    // The f32 guard: a segment whose extent squared overflows f32 (1e20) is an error, not a
+    // primitive that would make the kernel return NaN.
+    let q = QuadTube::new([V3::zero(), V3::new(1e20, 1e20, 0.0), V3::new(2e20, 0.0, 0.0)], [1.0; 3]).unwrap();
+    assert!(matches!(Prim::from_quad(&q, 0, 0), Err(GeometryError::NonFinite { .. })));
 }

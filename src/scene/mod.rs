@@ -329,11 +329,11 @@ impl Scene {
             c
         };
         let mut out = Vec::new();
-        for s in 0..n {
-            if adj[s].len() == 2 {
+        for (s, es) in adj.iter().enumerate() {
+            if es.len() == 2 {
                 continue;
             }
-            for &e in &adj[s] {
+            for &e in es {
                 if !seen[e.0 as usize] {
                     out.push(walk(&mut seen, s as u32, e));
                 }
@@ -383,8 +383,8 @@ impl Scene {
 
     /// Primitives of the spline model (see the module docs): two [`PrimKind::Spline`]
     /// sub-segments per curved chain link, the link's own primitive for straight ones and for
-    /// isolated nodes. Errors when a segment cannot be stored as an `f32` spline primitive
-    /// (extents beyond ≈ 2·10⁸, whose fourth powers overflow `f32` in the kernel).
+    /// isolated nodes. Errors (a guard; see [`Prim::from_quad`]) when a segment cannot be stored
+    /// as an `f32` spline primitive.
     pub fn spline_primitives(&self) -> Result<Vec<Prim>, SceneError> {
         self.spline_primitives_with(true)
     }

@@ -102,8 +102,9 @@ impl Prim {
 
     /// A spline sub-segment primitive from a validated `f64` quadratic segment: control
     /// points stored in `f32` relative to the curve's midpoint `p(½)` (in `f64`), radii in
-    /// `f32`. Errors when the rounded segment is not a valid `f32` [`QuadTube`] (an extent so
-    /// large that the kernel's fourth powers overflow `f32`, ≳ 2·10⁸).
+    /// `f32`. Errors when the rounded segment is not a valid `f32` [`QuadTube`] (an extent
+    /// whose square overflows `f32` in the kernel, beyond ≈ 2·10¹⁸; the segments of scenes
+    /// within [`super::MAX_COORD`] stay below it, so this is a guard, not an expected outcome).
     pub fn from_quad(q: &QuadTube<f64>, link: u32, half: u8) -> Result<Self, GeometryError> {
         let mid = q.point(0.5);
         let [b0, b1, b2] = q.b;
