@@ -134,26 +134,27 @@ impl<T: Real> RoundCone<T> {
     /// Stable ray–round-cone interval (no apex; see the module docs).
     #[inline(always)]
     pub fn intersect(&self, ray: &Ray<T>) -> Interval<T> {
-        // Pieces are combined on the whole line, then clipped: a piece lying behind the origin
-        // can still hold the entry of a ray that starts inside.
-        let s1 = sphere_line(ray, self.a, self.ra, T::zero());
-        let s2 = sphere_line(ray, self.b, self.rb, T::one());
-        let iv = s1.hull(s2).hull(self.stump_stable_line(ray));
+        let iv = self.stable_line(ray, true);
         iv.masked(in_range(ray, iv.t_in, iv.t_out))
     }
 
-    /// The tangent-cone stump alone, stable form (half-angle, locally centred).
+    /// The tangent-cone stump alone (no end spheres), stable form.
     #[inline(always)]
     pub fn intersect_stump_stable(&self, ray: &Ray<T>) -> Interval<T> {
-        let iv = self.stump_stable_line(ray);
+        let iv = self.stable_line(ray, false);
         iv.masked(in_range(ray, iv.t_in, iv.t_out))
     }
 
+    /// The stable kernel on the ray's whole line. All pieces (two spheres, the stump) are
+    /// solved in one local frame, combined by `t` (the hull is convex and equals their union,
+    /// so its interval is the earliest entry and the latest exit), and only then are the
+    /// normals and curve parameters of the two winning crossings computed.
     #[inline(always)]
-    fn stump_stable_line(&self, ray: &Ray<T>) -> Interval<T> {
+    fn stable_line(&self, ray: &Ray<T>, spheres: bool) -> Interval<T> {
         let zero = T::zero();
         let one = T::one();
         let half = T::cst(0.5);
+        let no = T::Mask::splat(false);
         let v = self.b - self.a;
         let len = v.length();
         let dr = self.ra - self.rb;
@@ -166,21 +167,18 @@ impl<T: Real> RoundCone<T> {
         // sphere almost inside the other, the hull exceeds the union of the two spheres by at
         // most L − |ra − rb| = L·(1 − |s|) ≤ L·c² < 64ε·L, within the kernel's error bound.
         let has_cone = dr.abs().lt(len) & c2.ge(T::epsilon() * T::cst(64.0));
-        if has_cone.none() {
-            return Interval::miss();
-        }
         let axis = v * (one / len_s);
         let s = T::select(has_cone, s, zero);
         let c2 = T::select(has_cone, c2, one);
         let mid = (self.a + self.b) * half;
         let hl = len_s * half;
-        // Local frame. 1) The ray's closest approach to the axis line (midpoint if parallel),
-        // 2) its axial position clamped into the segment gives a local centre c0 on the axis,
-        // 3) the new ray origin is the ray's closest point to c0. Near a crossing, o' = X0 − c0
-        // is then as short as the ray–axis distance, so the quadratic's coefficients are formed
-        // from numbers of the size of the radius rather than of the link length or of |o − m|.
-        // Work with the unit direction (t = τ/|d| at the end): no coefficient over- or
-        // underflows because |d| is far from 1, and the error analysis is |d|-free.
+
+        // Local frame. Work with the unit direction (t = τ/|d| at the end): nothing over- or
+        // underflows because |d| is far from 1. 1) The ray's closest approach to the axis line
+        // (to the midpoint if parallel); 2) its axial position clamped into the segment gives a
+        // local centre c0 on the axis; 3) the new origin o is the ray's closest point to c0.
+        // Near a crossing, o is then as short as the ray–axis distance, so every coefficient
+        // below is formed from numbers of the size of the radius, not of L or |o − m|.
         let dl = ray.d.length();
         let dn = ray.d * (one / dl);
         let zd = dn.dot(axis);
@@ -188,54 +186,123 @@ impl<T: Real> RoundCone<T> {
         let q2 = q.length2();
         let w = mid - ray.o;
         let skew = q2.gt(T::cst(1e-12));
-        let t_ax = (w.dot(dn) - w.dot(axis) * zd) / T::select(skew, q2, T::one());
+        let t_ax = (w.dot(dn) - w.dot(axis) * zd) / T::select(skew, q2, one);
         let t_ax = T::select(skew, t_ax, w.dot(dn));
         let z0 = (ray.o + dn * t_ax - mid).dot(axis).clamp(-hl, hl);
         let c0 = mid + axis * z0;
         let tc = (c0 - ray.o).dot(dn);
         let o = ray.o + dn * tc - c0;
-        // Cone side c·ρ + s·z = rm in coordinates centred at the midpoint; at c0 it reads
+        // End-sphere centres in the local frame.
+        let ca = axis * (-hl - z0);
+        let cb = axis * (hl - z0);
+
+        // Spheres: closest point to the centre, then the half chord (no far-origin cancellation).
+        let sphere = |c: V3<T>, r: T| {
+            let f = o - c;
+            let tcs = -f.dot(dn);
+            let l = f + dn * tcs;
+            let disc = r * r - l.length2();
+            let ok = disc.ge(zero) & r.gt(zero);
+            let h = disc.max(zero).sqrt();
+            (tcs - h, tcs + h, ok)
+        };
+        let inf = T::infinity();
+        let (mut t_in, mut t_out) = (inf, -inf);
+        let (mut in_a, mut in_b, mut out_a, mut out_b) = (no, no, no, no);
+        if spheres {
+            let (a0, a1, oka) = sphere(ca, self.ra);
+            let (b0, b1, okb) = sphere(cb, self.rb);
+            t_in = T::select(oka, a0, inf);
+            t_out = T::select(oka, a1, -inf);
+            in_a = oka;
+            out_a = oka;
+            let bi = okb & b0.lt(t_in);
+            let bo = okb & b1.gt(t_out);
+            t_in = T::select(bi, b0, t_in);
+            t_out = T::select(bo, b1, t_out);
+            in_a = in_a & !bi;
+            out_a = out_a & !bo;
+            in_b = bi;
+            out_b = bo;
+        }
+
+        // Cone side: c·ρ + s·z = rm in midpoint-centred coordinates; at c0 it reads
         // c·ρ + s·z' = rm − s·z0 with z' = z − z0.
         let rm = (self.ra + self.rb) * half - s * z0;
         let zo = o.dot(axis);
         let p = o.cross(axis);
         let e = rm - s * zo;
-        // F(τ) = c²|y × â|² − (rm − s·(y·â))², y = o + τd;  F = Aτ² + 2Bτ + C.
-        let qa = c2 * q2 - s * s * zd * zd;
-        let qb = c2 * p.dot(q) + s * zd * e;
-        let qc = c2 * p.length2() - e * e;
-        // Slab between the tangent circles: zm ∈ [ra·s − L/2, L/2 + rb·s].
-        let (lo, hi) = slab(zo, zd, self.ra * s - hl - z0, hl + self.rb * s - z0);
-        let (t0, t1, q0, q1, ok) = quadric_in_slab(qa, qb, qc, lo, hi);
-        // Outward normal on the cone: c·ρ̂ + s·â; on a cap plane: ∓â.
+        let (mut cone_in, mut cone_out, mut side_in, mut side_out) = (no, no, no, no);
+        if has_cone.any() {
+            // F(τ) = c²|y × â|² − (rm − s·(y·â))², y = o + τ·d̂;  F = Aτ² + 2Bτ + C.
+            let qa = c2 * q2 - s * s * zd * zd;
+            let qb = c2 * p.dot(q) + s * zd * e;
+            let qc = c2 * p.length2() - e * e;
+            // Slab between the tangent circles: z ∈ [ra·s − L/2, L/2 + rb·s] (midpoint frame).
+            let (lo, hi) = slab(zo, zd, self.ra * s - hl - z0, hl + self.rb * s - z0);
+            let (k0, k1, q0, q1, ok) = quadric_in_slab(qa, qb, qc, lo, hi);
+            // F squares the distance-like g(τ) = c·|p + τq| − (e − s·zd·τ) (zero on the side,
+            // |∇g| = 1): near a thin end seen from a far c0, F's root loses digits that g keeps.
+            // One safeguarded Newton step on g restores them.
+            let cc = c2.sqrt();
+            let polish = |k: T, on: T::Mask| {
+                let pq = p + q * k;
+                let rho = pq.length();
+                let g = cc * rho - (e - s * zd * k);
+                let dg = cc * pq.dot(q) / T::select(rho.gt(zero), rho, one) + s * zd;
+                let step = g / T::select(dg.abs().gt(zero), dg, one);
+                let lim = T::cst(1e-6) * (k.abs() + hl + self.ra.max(self.rb));
+                let good = on & rho.gt(zero) & dg.abs().gt(T::cst(1e-3)) & step.abs().le(lim);
+                T::select(good, k - step, k)
+            };
+            let k0 = polish(k0, q0 & ok);
+            let k1 = polish(k1, q1 & ok);
+            let ok = ok & has_cone & k0.le(k1);
+            let ci = ok & k0.lt(t_in);
+            let co = ok & k1.gt(t_out);
+            t_in = T::select(ci, k0, t_in);
+            t_out = T::select(co, k1, t_out);
+            in_a = in_a & !ci;
+            in_b = in_b & !ci;
+            out_a = out_a & !co;
+            out_b = out_b & !co;
+            cone_in = ci;
+            cone_out = co;
+            side_in = ci & q0;
+            side_out = co & q1;
+        }
+        let hit = in_a | in_b | cone_in;
+
+        // Normals and u of the two winners only. A crossing of a cap plane lies in the adjacent
+        // end sphere (the cap disc is inside it); it is exposed only when rounding loses that
+        // sphere's grazing interval, and then the sphere's normal is the right one.
         let cc = c2.sqrt();
         let perp = super::cone::orthonormal_basis(axis).0;
-        let normal = |t: T, on_side: T::Mask| {
-            let y = o + dn * t;
+        let inv = one / (len_s * c2);
+        let finish = |k: T, on_a: T::Mask, on_b: T::Mask, cone: T::Mask, side: T::Mask| {
+            let y = o + dn * k;
             let z = y.dot(axis);
             let radial = (y - axis * z).normalize_or_zero();
-            // A point computed exactly on the axis (only by rounding, e.g. lengths spanning
-            // more than 1/ε) has no radial direction: take any perpendicular, so that the
-            // normal stays a unit vector.
+            // A point computed exactly on the axis (only by rounding) has no radial direction:
+            // any perpendicular keeps the normal a unit vector.
             let radial = V3::select(radial.length2().gt(zero), radial, perp);
-            let side = (radial * cc + axis * s).normalize_or_zero();
-            // A crossing of a cap plane lies in the adjacent end sphere (the cap disc is inside
-            // it); it is exposed only when rounding loses that sphere's grazing interval. Report
-            // the sphere's normal there, not the plane's: it is the surface the ray grazes.
-            let at_b = (z + z0).gt((self.ra + self.rb) * s * half);
-            let to_end = y + axis * (z0 + T::select(at_b, -hl, hl));
+            let side_n = radial * cc + axis * s;
+            let cap_b = cone & !side & (z + z0).gt((self.ra + self.rb) * s * half);
+            let use_b = on_b | cap_b;
+            let use_a = on_a | (cone & !side & !cap_b);
+            let to_end = y - V3::select(use_b, cb, ca);
             // (At the tip of a zero-radius end there is no sphere: keep the side's normal.)
-            let cap = V3::select(to_end.length2().gt(zero), to_end.normalize_or_zero(), side);
-            V3::select(on_side, side, cap)
+            let sph = use_a | use_b;
+            let n = V3::select(sph & to_end.length2().gt(zero), to_end, side_n).normalize_or_zero();
+            let u_side = ((z + z0 + hl - self.ra * s) * inv).clamp(zero, one);
+            let u = T::select(use_b, one, T::select(use_a, zero, u_side));
+            (n, u)
         };
-        // u of the sphere touching the cone at axial position zm: (zm + L/2 − ra·s)/(L·c²).
-        let inv = one / (len_s * c2);
-        let u_at = |t: T| ((zo + zd * t + z0 + hl - self.ra * s) * inv).clamp(zero, one);
-        let (n_in, n_out) = (normal(t0, q0), normal(t1, q1));
+        let (n_in, u_in) = finish(t_in, in_a, in_b, cone_in, side_in);
+        let (n_out, u_out) = finish(t_out, out_a, out_b, cone_out, side_out);
         let inv_dl = one / dl;
-        let (t_in, t_out) = ((t0 + tc) * inv_dl, (t1 + tc) * inv_dl);
-        let hit = ok & has_cone;
-        Interval { t_in, t_out, n_in, n_out, u_in: u_at(t0), u_out: u_at(t1), hit }.masked(hit)
+        let (t_in, t_out) = ((t_in + tc) * inv_dl, (t_out + tc) * inv_dl);
+        Interval { t_in, t_out, n_in, n_out, u_in, u_out, hit }.masked(hit)
     }
 
     /// Faithful Han et al. round cone, tangent cone and transform built per call
