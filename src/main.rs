@@ -145,10 +145,82 @@ enum Cmd {
     },
     /// Accuracy, speed and stability reports (not yet implemented).
     Report {
-        /// Arguments for the report (ignored for now).
-        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
-        args: Vec<String>,
+        /// Which report.
+        #[arg(value_enum)]
+        which: ReportKind,
+        /// Output folder for the SVG charts and the markdown summary.
+        #[arg(long, default_value = "docs/report")]
+        out: PathBuf,
+        /// Seed of every case generator.
+        #[arg(long)]
+        seed: Option<u64>,
+        /// The tiny test-sized run (seconds).
+        #[arg(long)]
+        quick: bool,
+        /// Speed report up to 10⁶ segments (default 10⁵).
+        #[arg(long)]
+        big: bool,
+        /// Worker threads for the speed report (1 makes frame times comparable).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Hide the progress bars.
+        #[arg(long)]
+        quiet: bool,
     },
+}
+
+/// The reports of `tubecast report`.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum ReportKind {
+    /// Error (max, p99) against cost for every kernel × precision × solver.
+    Accuracy,
+    /// False-miss / false-hit rates and errors in each failure region.
+    Stability,
+    /// Frame time and rays/s against segment count, opaque and transparent.
+    Speed,
+    /// All three.
+    All,
+}
+
+fn run_report(
+    which: ReportKind,
+    out: &std::path::Path,
+    seed: Option<u64>,
+    quick: bool,
+    big: bool,
+    threads: Option<usize>,
+    quiet: bool,
+) -> Result<(), String> {
+    use tubecast::report::{run_accuracy, run_speed, run_stability, ReportOptions};
+    let mut opts = if quick { ReportOptions::quick() } else { ReportOptions::default() };
+    if let Some(s) = seed {
+        opts.seed = s;
+    }
+    if big {
+        opts.max_segments = 1_000_000;
+    }
+    if let Some(t) = threads {
+        opts.threads = t;
+    }
+    opts.progress = !quiet;
+    let mut files = Vec::new();
+    let kinds: &[ReportKind] = match which {
+        ReportKind::All => &[ReportKind::Accuracy, ReportKind::Stability, ReportKind::Speed],
+        _ => std::slice::from_ref(&which),
+    };
+    for k in kinds {
+        let r = match k {
+            ReportKind::Accuracy => run_accuracy(out, &opts),
+            ReportKind::Stability => run_stability(out, &opts),
+            _ => run_speed(out, &opts),
+        }
+        .map_err(|e| e.to_string())?;
+        files.push(r.markdown);
+    }
+    for f in files {
+        println!("wrote {}", f.display());
+    }
+    Ok(())
 }
 
 fn parse_v3(s: &str) -> Result<[f64; 3], String> {
@@ -353,9 +425,8 @@ fn main() -> ExitCode {
         Cmd::Info { input, radius, splines } => cmd_info(&input, radius, splines),
         Cmd::Intersect { input, rays, out, radius } => cmd_intersect(&input, &rays, &out, radius),
         Cmd::Generate { kind, out, count, segments, n, base, seed } => cmd_generate(kind, &out, count, segments, n, &base, seed),
-        Cmd::Report { .. } => {
-            eprintln!("tubecast report: not yet implemented");
-            return ExitCode::from(2);
+        Cmd::Report { which, out, seed, quick, big, threads, quiet } => {
+            run_report(which, &out, seed, quick, big, threads, quiet).map_err(Into::into)
         }
     };
     match r {
