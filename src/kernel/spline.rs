@@ -37,7 +37,7 @@
 //! interval per real interval of `g` (each exact: the part of the sweep over a connected
 //! `t`-interval meets the line in one interval), which is what CSG needs.
 
-use super::roots::{cascade_level, horner, poly_breakpoints, poly_mul, Bracket, Solver};
+use super::roots::{cascade_level, default_tol, horner, itp, opposite, poly_breakpoints, poly_mul, Bracket, Solver};
 use crate::kernel::link::RoundCone;
 use crate::ray::{in_range, Interval, Ray};
 use crate::real::{Mask, Real, Scalar};
@@ -253,35 +253,26 @@ impl<T: Real> RaySpace<T> {
         (best, bt)
     }
 
-    /// Two Newton steps on `f' ∝ F₁ = 2σh'√g − g'` from `t` (value `v` of `σh − √g`), each
-    /// kept only where it stays in `[lo, hi]` with `g > 0` and lowers the value. Polishes the
-    /// polynomial solver's critical points: `P`'s roots carry the cancellation of
-    /// `4h'²g − g'²`, while `F₁` and the value are evaluated from `g` directly.
+    /// Polishes a critical point of `σh − √g` found as a root of `P` (whose coefficients carry
+    /// the cancellation of `4h'²g − g'²`, so its roots can be off for thin, long tubes): ITP on
+    /// `F₁ = 2σh'√g − g'` (evaluated from `g` directly) in the bracket `[a, b]` of the
+    /// neighbouring breakpoints, kept where it lowers the value. Returns `(value, t)`.
     #[inline(always)]
-    fn polish(&self, t: T, v: T, sigma: T, lo: T, hi: T) -> (T, T) {
+    fn polish(&self, t: T, v: T, sigma: T, a: T, b: T) -> (T, T) {
         let two = T::cst(2.0);
         let g = self.g;
         let g1 = [g[1], two * g[2], T::cst(3.0) * g[3], T::cst(4.0) * g[4]];
-        let g2 = [two * g[2], T::cst(6.0) * g[3], T::cst(12.0) * g[4]];
         let h1 = [self.h[1] * sigma, two * self.h[2] * sigma];
-        let h2 = two * self.h[2] * sigma;
-        let (mut t, mut v) = (t, v);
-        for _ in 0..2 {
-            let gv = horner(&g, t);
-            let pos = gv.gt(T::zero());
-            let sg = T::select(pos, gv, T::one()).sqrt();
-            let (d1, d2, hp) = (horner(&g1, t), horner(&g2, t), horner(&h1, t));
-            let f1 = two * hp * sg - d1;
-            let df1 = two * h2 * sg + hp * d1 / sg - d2;
-            let tn = t - f1 / df1;
-            let inside = pos & tn.ge(lo) & tn.le(hi); // false for NaN
-            let tn = T::select(inside, tn, t);
-            let vn = self.val(tn, sigma);
-            let better = inside & vn.lt(v) & horner(&g, tn).ge(T::zero());
-            t = T::select(better, tn, t);
-            v = T::select(better, vn, v);
+        let f1 = move |x: T| two * horner(&h1, x) * horner(&g, x).max(T::zero()).sqrt() - horner(&g1, x);
+        let (fa, fb) = (f1(a), f1(b));
+        let valid = opposite(fa, fb);
+        if valid.none() {
+            return (v, t);
         }
-        (v, t)
+        let x = itp(f1, a, b, fa, fb, valid, default_tol::<T>());
+        let vx = self.val(x, sigma);
+        let better = valid & vx.lt(v) & horner(&g, x).ge(T::zero());
+        (T::select(better, vx, v), T::select(better, x, t))
     }
 
     /// `P = 4h'²g − g'²` (degree 6).
@@ -304,12 +295,17 @@ impl<T: Real> RaySpace<T> {
     /// Entry/exit from candidate parameters (clamped to `[lo, hi]`), keeping only those with
     /// `g ≥ 0` unless `all_real`. Returns `(s_in, t_in*, s_out, t_out*, any)`.
     #[inline(always)]
-    fn from_candidates(&self, c: &[T], lo: T, hi: T, all_real: bool) -> (T, T, T, T, T::Mask) {
+    fn from_candidates(&self, c: &[T], lo: T, hi: T, all_real: bool) -> (T, T, T, T, T::Mask, [T; 4]) {
         let inf = T::infinity();
         let (mut bi, mut ti, mut bo, mut to) = (inf, lo, inf, lo);
+        // Neighbouring candidates of the best ones: brackets for `polish`.
+        let mut nb = [lo, hi, lo, hi];
         let mut any = T::Mask::splat(false);
-        for &t in c {
+        let n = c.len();
+        for (k, &t) in c.iter().enumerate() {
             let t = t.clamp(lo, hi);
+            let left = c[k.saturating_sub(1)].clamp(lo, hi);
+            let right = c[(k + 1).min(n - 1)].clamp(lo, hi);
             let gv = horner(&self.g, t);
             let ok = if all_real { T::Mask::splat(true) } else { gv.ge(T::zero()) };
             let hv = horner(&self.h, t);
@@ -321,9 +317,15 @@ impl<T: Real> RaySpace<T> {
             ti = T::select(bi_, t, ti);
             bo = T::select(bo_, vo, bo);
             to = T::select(bo_, t, to);
+            nb = [
+                T::select(bi_, left, nb[0]),
+                T::select(bi_, right, nb[1]),
+                T::select(bo_, left, nb[2]),
+                T::select(bo_, right, nb[3]),
+            ];
             any = any | ok;
         }
-        (bi, ti, -bo, to, any)
+        (bi, ti, -bo, to, any, nb)
     }
 
     /// Assemble the interval from ray-space entry/exit distances and curve parameters.
@@ -406,9 +408,9 @@ impl<T: Real> QuadTube<T> {
             Solver::Polynomial => {
                 let p = rs.p_poly();
                 let (bp, n) = poly_breakpoints(&p, T::zero(), T::one(), Bracket::Newton);
-                let (si, ui, so, uo, any) = rs.from_candidates(&bp[..n], T::zero(), T::one(), false);
-                let (vi, ui) = rs.polish(ui, si, T::one(), T::zero(), T::one());
-                let (vo, uo) = rs.polish(uo, -so, -T::one(), T::zero(), T::one());
+                let (si, ui, so, uo, any, nb) = rs.from_candidates(&bp[..n], T::zero(), T::one(), false);
+                let (vi, ui) = rs.polish(ui, si, T::one(), nb[0], nb[1]);
+                let (vo, uo) = rs.polish(uo, -so, -T::one(), nb[2], nb[3]);
                 rs.interval(ray, vi, ui, -vo, uo, any, true)
             }
             _ => {
@@ -479,9 +481,9 @@ impl<T: Real> QuadTube<T> {
             }
             let (si, ui, so, uo) = match ppoly {
                 Some((bp, n)) => {
-                    let (si, ui, so, uo, _) = rs.from_candidates(&bp[..n], lo, hi, true);
-                    let (vi, ui) = rs.polish(ui, si, T::one(), lo, hi);
-                    let (vo, uo) = rs.polish(uo, -so, -T::one(), lo, hi);
+                    let (si, ui, so, uo, _, nb) = rs.from_candidates(&bp[..n], lo, hi, true);
+                    let (vi, ui) = rs.polish(ui, si, T::one(), nb[0], nb[1]);
+                    let (vo, uo) = rs.polish(uo, -so, -T::one(), nb[2], nb[3]);
                     (vi, ui, -vo, uo)
                 }
                 None => {
