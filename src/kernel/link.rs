@@ -251,8 +251,10 @@ impl<T: Real> RoundCone<T> {
                 let g = cc * rho - (e - s * zd * k);
                 let dg = cc * pq.dot(q) / T::select(rho.gt(zero), rho, one) + s * zd;
                 let step = g / T::select(dg.abs().gt(zero), dg, one);
-                let lim = T::cst(1e-6) * (k.abs() + hl + self.ra.max(self.rb));
-                let good = on & rho.gt(zero) & dg.abs().gt(T::cst(1e-3)) & step.abs().le(lim);
+                // Safeguard: a quadratic's root is never worse than ≈ √ε relative (double
+                // root), so a larger step means g's linearisation is not trustworthy here.
+                let lim = T::epsilon().sqrt() * T::cst(8.0) * (k.abs() + hl + self.ra.max(self.rb));
+                let good = on & dg.abs().gt(T::cst(1e-3)) & step.abs().le(lim);
                 T::select(good, k - step, k)
             };
             let k0 = polish(k0, q0 & ok);
