@@ -4,8 +4,8 @@
 // panicking); otherwise coordinates are i16/1000 (|x| ≤ 32.8). Valid input must give, in f64
 // and f32 and for every solver: no NaN, t_in ≤ t_out, unit normals, u ∈ [0, 1]; and in f64,
 // on intervals at least 1e-6·S long, hit points not outside the tube by more than
-// E = √(64ε)·S + 8εS (tests/spline_kernel.rs), and for the polynomial solver within E of the
-// surface (exact tube SDF).
+// E = √(64ε)·S + 8εS (tests/spline_kernel.rs) + 8ε(D + |t·d|) (rounding of o + t·d), and for
+// the polynomial solver within E of the surface (exact tube SDF).
 #[allow(unused_imports)]
 use tubecast::{kernel::roots::Solver, kernel::spline::{quadratic_tube, QuadTube}, Interval, Ray, Scalar, V3};
 
@@ -79,7 +79,10 @@ pub fn check(data: &[u8]) {
         if (iv.t_out - iv.t_in) * dl > 1e-6 * s {
             for tt in [iv.t_in, iv.t_out] {
                 let e = quadratic_tube(ray.at(tt), &t);
-                let mut bound = (64.0 * f64::EPSILON).sqrt() * s + 8.0 * f64::EPSILON * s;
+                // Plus the rounding of the hit point o + t·d itself (and of t): ≤ 8ε(D + |t·d|)
+                // with D = |o − b₀| (a far origin cancels against t·d).
+                let far = 8.0 * f64::EPSILON * ((ray.o - b[0]).length() + (ray.d * tt).length());
+                let mut bound = (64.0 * f64::EPSILON).sqrt() * s + 8.0 * f64::EPSILON * s + far;
                 if let Solver::Bisection { iters } = solver {
                     // A root of g located to δ = 2^-iters (of a bracket ≤ 1) is a sphere missed
                     // by ≤ (max|p'| + max|r'|)·δ, with |p'| ≤ 2·max|bᵢ − bⱼ|, |r'| ≤ 2·max|rᵢ − rⱼ|.
