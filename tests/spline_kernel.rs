@@ -522,3 +522,17 @@ fn thin_long_tube_exit() {
     assert!(iv.hit && quadratic_tube(ray.at(iv.t_out), &t).abs() <= 1e-9, "{iv:?}");
     assert!((iv.t_out - want.t_out).abs() <= 1e-6);
 }
+
+/// Fuzz finding (fuzz/corpus/spline/regression-zero-radius-tip): r = 0 at the end t = 1 and
+/// the ray starts exactly there, running along the folded centre line. g(1) = 0 exactly but
+/// evaluates to −1e-18, and the polynomial solver's `g ≥ 0` filter dropped the end point (its
+/// entry was 0.025 inside the tube). Candidates now count as real within g's evaluation error
+/// (16ε·Σ|gᵢ|), so the entry is the tip, t = 0, to rounding (t·|d| ≤ bound(ε, S ≈ 30)).
+#[test]
+fn zero_radius_tip_on_the_ray() {
+    let t = QuadTube::<f64>::new([V3::new(0.042, 0.0, 0.002), V3::new(0.0, -0.001, 7.423), V3::new(0.0, 0.0, 0.0)], [0.0, 0.137, 0.0]).unwrap();
+    let ray = Ray::new(V3::new(0.0, 0.0, 0.0), V3::new(0.0, -0.001, 0.255));
+    let iv = t.intersect(&ray);
+    assert!(iv.hit && iv.t_in.abs() * 0.255 <= bound(f64::EPSILON, 30.0), "{iv:?}");
+    assert!(quadratic_tube(ray.at(iv.t_out), &t).abs() <= bound(f64::EPSILON, 30.0));
+}

@@ -302,12 +302,16 @@ impl<T: Real> RaySpace<T> {
         let mut nb = [lo, hi, lo, hi];
         let mut any = T::Mask::splat(false);
         let n = c.len();
+        // g within its own rounding of 0 counts as real (e.g. r = 0 at an end on the ray:
+        // g = 0 exactly, computed as −1e-18): 16ε·Σ|gᵢ| bounds g's evaluation error on [0, 1].
+        let g = self.g;
+        let gtol = T::epsilon() * T::cst(16.0) * (g[0].abs() + g[1].abs() + g[2].abs() + g[3].abs() + g[4].abs());
         for (k, &t) in c.iter().enumerate() {
             let t = t.clamp(lo, hi);
             let left = c[k.saturating_sub(1)].clamp(lo, hi);
             let right = c[(k + 1).min(n - 1)].clamp(lo, hi);
             let gv = horner(&self.g, t);
-            let ok = if all_real { T::Mask::splat(true) } else { gv.ge(T::zero()) };
+            let ok = if all_real { T::Mask::splat(true) } else { gv.ge(-gtol) };
             let hv = horner(&self.h, t);
             let sq = gv.max(T::zero()).sqrt();
             let (vi, vo) = (hv - sq, -hv - sq);
