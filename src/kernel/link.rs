@@ -255,7 +255,8 @@ impl<T: Real> RoundCone<T> {
                 // root), so a larger step means g's linearisation is not trustworthy here.
                 let lim = T::epsilon().sqrt() * T::cst(8.0) * (k.abs() + hl + self.ra.max(self.rb));
                 let good = on & dg.abs().gt(T::cst(1e-3)) & step.abs().le(lim);
-                T::select(good, k - step, k)
+                // The polished root stays a crossing of the stump: clamp it into the slab.
+                T::select(good, (k - step).clamp(lo, hi), k)
             };
             let k0 = polish(k0, q0 & ok);
             let k1 = polish(k1, q1 & ok);
