@@ -345,9 +345,7 @@ pub fn poly_breakpoints<T: Real, const N: usize>(c: &[T; N], lo: T, hi: T, metho
     assert!((3..=7).contains(&N), "degree 2..=6");
     // Derivatives d[k] = c^(k), stored padded to 7 coefficients.
     let mut ders = [[T::zero(); 7]; 5];
-    for i in 0..N {
-        ders[0][i] = c[i];
-    }
+    ders[0][..N].copy_from_slice(c);
     for k in 1..N - 2 {
         for i in 0..N - k {
             ders[k][i] = ders[k - 1][i + 1] * T::cst((i + 1) as f64);

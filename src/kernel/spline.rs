@@ -295,7 +295,7 @@ impl<T: Real> RaySpace<T> {
     /// Entry/exit from candidate parameters (clamped to `[lo, hi]`), keeping only those with
     /// `g ≥ 0` unless `all_real`. Returns `(s_in, t_in*, s_out, t_out*, any)`.
     #[inline(always)]
-    fn from_candidates(&self, c: &[T], lo: T, hi: T, all_real: bool) -> (T, T, T, T, T::Mask, [T; 4]) {
+    fn best_of_candidates(&self, c: &[T], lo: T, hi: T, all_real: bool) -> (T, T, T, T, T::Mask, [T; 4]) {
         let inf = T::infinity();
         let (mut bi, mut ti, mut bo, mut to) = (inf, lo, inf, lo);
         // Neighbouring candidates of the best ones: brackets for `polish`.
@@ -333,6 +333,7 @@ impl<T: Real> RaySpace<T> {
     }
 
     /// Assemble the interval from ray-space entry/exit distances and curve parameters.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn interval(&self, ray: &Ray<T>, s_in: T, u_in: T, s_out: T, u_out: T, found: T::Mask, clip: bool) -> Interval<T> {
         let normal = |s: T, u: T, fallback: V3<T>| {
@@ -412,7 +413,7 @@ impl<T: Real> QuadTube<T> {
             Solver::Polynomial => {
                 let p = rs.p_poly();
                 let (bp, n) = poly_breakpoints(&p, T::zero(), T::one(), Bracket::Newton);
-                let (si, ui, so, uo, any, nb) = rs.from_candidates(&bp[..n], T::zero(), T::one(), false);
+                let (si, ui, so, uo, any, nb) = rs.best_of_candidates(&bp[..n], T::zero(), T::one(), false);
                 let (vi, ui) = rs.polish(ui, si, T::one(), nb[0], nb[1]);
                 let (vo, uo) = rs.polish(uo, -so, -T::one(), nb[2], nb[3]);
                 rs.interval(ray, vi, ui, -vo, uo, any, true)
@@ -485,7 +486,7 @@ impl<T: Real> QuadTube<T> {
             }
             let (si, ui, so, uo) = match ppoly {
                 Some((bp, n)) => {
-                    let (si, ui, so, uo, _, nb) = rs.from_candidates(&bp[..n], lo, hi, true);
+                    let (si, ui, so, uo, _, nb) = rs.best_of_candidates(&bp[..n], lo, hi, true);
                     let (vi, ui) = rs.polish(ui, si, T::one(), nb[0], nb[1]);
                     let (vo, uo) = rs.polish(uo, -so, -T::one(), nb[2], nb[3]);
                     (vi, ui, -vo, uo)
