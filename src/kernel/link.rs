@@ -254,7 +254,7 @@ impl<T: Real> RoundCone<T> {
                 // Safeguard: a quadratic's root is never worse than ≈ √ε relative (double
                 // root), so a larger step means g's linearisation is not trustworthy here.
                 let lim = T::epsilon().sqrt() * T::cst(8.0) * (k.abs() + hl + self.ra.max(self.rb));
-                let good = on & dg.abs().gt(T::cst(1e-3)) & step.abs().le(lim);
+                let good = on & dg.abs().gt(T::epsilon().sqrt()) & step.abs().le(lim);
                 // The polished root stays a crossing of the stump: clamp it into the slab.
                 T::select(good, (k - step).clamp(lo, hi), k)
             };
