@@ -149,6 +149,25 @@ struct RaySpace<T: Real> {
     inv_dlen: T,
     /// Lanes whose line comes within the bounding sphere.
     near: T::Mask,
+    /// `h` and `g` re-expanded about `tv` (coefficients of powers of `t − tv`), for `P`.
+    hv: [T; 3],
+    gv: [T; 5],
+    /// Expansion point of `hv`, `gv`: the vertex of the centre line (least `|p'|`), in `[0, 1]`.
+    tv: T,
+}
+
+/// `h` and `g` (ascending powers of the parameter) from the power-basis position
+/// `q = qa x² + qb x + qc` and radius `ra x² + rb x + rc`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn ray_polys<T: Real>(qa: V3<T>, qb: V3<T>, qc: V3<T>, ra: T, rb: T, rc: T, dhat: V3<T>) -> ([T; 3], [T; 5]) {
+    let two = T::cst(2.0);
+    let h = [qc.dot(dhat), qb.dot(dhat), qa.dot(dhat)];
+    let (wa, wb, wc) = (qa.cross(dhat), qb.cross(dhat), qc.cross(dhat));
+    let w2 = [wc.dot(wc), two * wc.dot(wb), wb.dot(wb) + two * wc.dot(wa), two * wb.dot(wa), wa.dot(wa)];
+    let r2 = [rc * rc, two * rc * rb, rb * rb + two * rc * ra, two * rb * ra, ra * ra];
+    let g = [r2[0] - w2[0], r2[1] - w2[1], r2[2] - w2[2], r2[3] - w2[3], r2[4] - w2[4]];
+    (h, g)
 }
 
 impl<T: Real> RaySpace<T> {
@@ -179,19 +198,26 @@ impl<T: Real> RaySpace<T> {
         let qc = c0;
         let [r0, r1, r2] = [tube.r[0] * inv, tube.r[1] * inv, tube.r[2] * inv];
         let (ra, rb, rc) = (r0 - r1 * two + r2, (r1 - r0) * two, r0);
-        let h = [qc.dot(dhat), qb.dot(dhat), qa.dot(dhat)];
-        let (wa, wb, wc) = (qa.cross(dhat), qb.cross(dhat), qc.cross(dhat));
-        let w2 = [
-            wc.dot(wc),
-            two * wc.dot(wb),
-            wb.dot(wb) + two * wc.dot(wa),
-            two * wb.dot(wa),
-            wa.dot(wa),
-        ];
-        let r2 = [rc * rc, two * rc * rb, rb * rb + two * rc * ra, two * rb * ra, ra * ra];
-        let g = [r2[0] - w2[0], r2[1] - w2[1], r2[2] - w2[2], r2[3] - w2[3], r2[4] - w2[4]];
+        let (h, g) = ray_polys(qa, qb, qc, ra, rb, rc, dhat);
+        // The same about the vertex tv of the centre line (|p'|² = |qb + 2qa·t|² least), from
+        // the control points (de Casteljau: each coefficient to ε of the local sizes). Where
+        // the curve is slow (p' ≈ 0, e.g. b₁ = b₂) the ray meets the tube over a wide range
+        // of t around tv, and h' ≈ 0 there: P = 4h'²g − g'² is tiny there, far below the
+        // rounding of its t-power coefficients (fuzz finding regression-pinched-slow-end:
+        // a 46-long tube with p'(1) = 0; P's roots near t = 1 were noise). About tv the
+        // coefficients of q, and so of h, g and P, carry no such cancellation.
+        let qq = qa.dot(qa);
+        let tv0 = -qb.dot(qa) / (two * T::select(qq.gt(T::zero()), qq, T::one()));
+        let tv = T::select(qq.gt(T::zero()) & tv0.is_finite(), tv0, T::zero()).clamp(T::zero(), T::one());
+        let sv = T::one() - tv;
+        let (wv0, wv1, wv2) = (sv * sv, two * sv * tv, tv * tv);
+        let qcv = c0 * wv0 + c1 * wv1 + c2 * wv2;
+        let qbv = ((c1 - c0) * sv + (c2 - c1) * tv) * two;
+        let rcv = r0 * wv0 + r1 * wv1 + r2 * wv2;
+        let rbv = ((r1 - r0) * sv + (r2 - r1) * tv) * two;
+        let (hv, gv) = ray_polys(qa, qbv, qcv, ra, rbv, rcv, dhat);
         // Ray-space distances are in units of `big`: t = tc + s·big/|d|.
-        Self { h, g, qa, qb, qc, dhat, tc, inv_dlen: inv_dlen * big_s, near }
+        Self { h, g, qa, qb, qc, dhat, tc, inv_dlen: inv_dlen * big_s, near, hv, gv, tv }
     }
 
     #[inline(always)]
@@ -275,12 +301,26 @@ impl<T: Real> RaySpace<T> {
         (T::select(better, vx, v), T::select(better, x, t))
     }
 
-    /// `P = 4h'²g − g'²` (degree 6).
+    /// All roots of `P` in `[0, 1]` as sorted breakpoints (`buf[0] = 0`, `buf[n−1] = 1`),
+    /// found in the expansion about `tv` and shifted back.
+    #[inline(always)]
+    fn p_breakpoints(&self) -> ([T; 8], usize) {
+        let (lo, hi) = (-self.tv, T::one() - self.tv);
+        let (bp, n) = poly_breakpoints(&self.p_poly(), lo, hi, Bracket::Newton);
+        let mut out = [T::one(); 8];
+        for i in 0..8 {
+            let t = (self.tv + bp[i]).clamp(T::zero(), T::one());
+            out[i] = T::select(bp[i].le(lo), T::zero(), T::select(bp[i].ge(hi), T::one(), t));
+        }
+        (out, n)
+    }
+
+    /// `P = 4h'²g − g'²` (degree 6) in powers of `t − tv`.
     #[inline(always)]
     fn p_poly(&self) -> [T; 7] {
         let two = T::cst(2.0);
-        let g = self.g;
-        let h1 = [self.h[1], two * self.h[2]];
+        let g = self.gv;
+        let h1 = [self.hv[1], two * self.hv[2]];
         let g1 = [g[1], two * g[2], T::cst(3.0) * g[3], T::cst(4.0) * g[4]];
         let h1s: [T; 3] = poly_mul(&h1, &h1);
         let a: [T; 7] = poly_mul(&h1s, &g);
@@ -411,8 +451,7 @@ impl<T: Real> QuadTube<T> {
         }
         match solver {
             Solver::Polynomial => {
-                let p = rs.p_poly();
-                let (bp, n) = poly_breakpoints(&p, T::zero(), T::one(), Bracket::Newton);
+                let (bp, n) = rs.p_breakpoints();
                 let (si, ui, so, uo, any, nb) = rs.best_of_candidates(&bp[..n], T::zero(), T::one(), false);
                 let (vi, ui) = rs.polish(ui, si, T::one(), nb[0], nb[1]);
                 let (vo, uo) = rs.polish(uo, -so, -T::one(), nb[2], nb[3]);
@@ -466,7 +505,7 @@ impl<T: Real> QuadTube<T> {
             cut[j] = !rj | horner(&rs.g, z[j]).le(T::zero());
         }
         let ppoly = if solver == Solver::Polynomial {
-            Some(poly_breakpoints(&rs.p_poly(), T::zero(), T::one(), Bracket::Newton))
+            Some(rs.p_breakpoints())
         } else {
             None
         };
