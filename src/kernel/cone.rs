@@ -154,9 +154,22 @@ pub(crate) fn quadric_in_slab<T: Real>(
     lo: T,
     hi: T,
 ) -> (T, T, T::Mask, T::Mask, T::Mask) {
+    quadric_in_slab_disc(a, b, c, b * b - a * c, lo, hi)
+}
+
+/// [`quadric_in_slab`] with the discriminant `b² − a·c` supplied by a caller that can form it
+/// without cancellation.
+#[inline(always)]
+pub(crate) fn quadric_in_slab_disc<T: Real>(
+    a: T,
+    b: T,
+    c: T,
+    disc: T,
+    lo: T,
+    hi: T,
+) -> (T, T, T::Mask, T::Mask, T::Mask) {
     let zero = T::zero();
     let no = T::Mask::splat(false);
-    let disc = b * b - a * c;
     let real = disc.ge(zero);
     let sq = disc.max(zero).sqrt();
     // Citardauq form: no cancellation. q = 0 only if b = 0 and disc = 0.

@@ -17,7 +17,7 @@
 //! Because the hull is convex and equals the union of its three pieces, the ray interval is
 //! the earliest entry and the latest exit over the pieces.
 
-use super::cone::{cylinder_line, quadric_in_slab, slab, stump_line};
+use super::cone::{cylinder_line, quadric_in_slab_disc, slab, stump_line};
 use super::cone::{TangentCone, UnitConeTransform};
 use super::sphere::sphere_line;
 use crate::ray::{in_range, Interval, Ray};
@@ -240,7 +240,14 @@ impl<T: Real> RoundCone<T> {
             let qc = c2 * p.length2() - e * e;
             // Slab between the tangent circles: z ∈ [ra·s − L/2, L/2 + rb·s] (midpoint frame).
             let (lo, hi) = slab(zo, zd, self.ra * s - hl - z0, hl + self.rb * s - z0);
-            let (k0, k1, q0, q1, ok) = quadric_in_slab(qa, qb, qc, lo, hi);
+            // B² − AC expanded and regrouped (P = o×â, Q = d̂×â, both ⊥ â):
+            //   B² − AC = c²·(|e·Q + s·zd·P|² − c²·|P×Q|²).
+            // The e²-sized terms of B² and AC cancel exactly in this form; formed directly they
+            // cancel in rounding, which loses every digit when the ray runs along a long link
+            // (e ≫ |P|) — the discriminant is then c²s²zd²|P|², tiny against e².
+            let eq = q * e + p * (s * zd);
+            let disc = c2 * (eq.length2() - c2 * p.cross(q).length2());
+            let (k0, k1, q0, q1, ok) = quadric_in_slab_disc(qa, qb, qc, disc, lo, hi);
             // F squares the distance-like g(τ) = c·|p + τq| − (e − s·zd·τ) (zero on the side,
             // |∇g| = 1): near a thin end seen from a far c0, F's root loses digits that g keeps.
             // One safeguarded Newton step on g restores them.
