@@ -178,6 +178,16 @@ pub(crate) fn quadric_in_slab_disc<T: Real>(
     let a_nz = !a.eq(zero);
     let r1 = q / T::select(a_nz, a, T::one());
     let r2 = c / T::select(q_nz, q, T::one());
+    // Citardauq keeps the small root accurate when the roots differ greatly in size (b² ≫ |ac|,
+    // e.g. a ray nearly parallel to a generator). When they are of comparable size its C/q can
+    // be noise over noise: near a tangency q = −(b ± √disc) is tiny and C carries its own
+    // rounding, inconsistent with a discriminant the caller formed without cancellation. There
+    // −b/a ± √disc/|a| is accurate to ε·|b/a| ≲ 4ε·√|c/a|, i.e. to ε of the roots' size.
+    let far_apart = (b * b).gt(T::cst(16.0) * (a * c).abs());
+    let mid = -b / T::select(a_nz, a, T::one());
+    let half = sq / T::select(a_nz, a, T::one()).abs();
+    let r1 = T::select(far_apart, r1, mid - half);
+    let r2 = T::select(far_apart, r2, mid + half);
     let (rl, rh) = (r1.min(r2), r1.max(r2));
 
     // a > 0: inside = [rl, rh] (empty without real roots).
