@@ -567,3 +567,29 @@ fn pinched_tube_slow_end() {
     let (ti, _, to, _, _) = oracle(&b, &r, o, d, 200_000).unwrap();
     assert!((iv.t_in - ti).abs() <= 1e-6 && (iv.t_out - to).abs() <= 1e-6, "{iv:?} vs oracle {ti} {to}");
 }
+
+/// Fuzz finding (fuzz/corpus/spline/regression-tiny-sdf-underflow): a tube 5e-304 small (one
+/// control radius subnormal). The kernel's hits were right (the kernel works in units of the
+/// bounding radius; its result scaled by 2¹⁰⁰⁰ has SDF 4e-19 at S ≈ 1e-3), but the "exact"
+/// SDF squared coordinates of 1e-304, which underflow to 0, and reported −r (−2.7e-304) at a
+/// surface point. `quadratic_tube` now works in units of a power of two near the extent, so
+/// it commutes exactly with scaling by 2^k, and the hits are on the surface within the bound.
+#[test]
+fn tiny_tube_sdf_does_not_underflow() {
+    let e = 5.468341514667298e-304;
+    let t = QuadTube::<f64>::new([V3::new(e, 1.61856e-319, 0.0), V3::zero(), V3::zero()], [0.0, e, 1.61856e-319]).unwrap();
+    let ray = Ray::new(V3::zero(), V3::new(0.0, 0.0, 9.230442488933376e-151));
+    let iv = t.intersect(&ray);
+    assert!(iv.hit, "{iv:?}");
+    let s = 4.0 * e * (3f64.sqrt() + 1.0);
+    for tt in [iv.t_in, iv.t_out] {
+        let sdf = quadratic_tube(ray.at(tt), &t);
+        assert!(sdf.abs() <= bound(f64::EPSILON, s), "{tt}: sdf {sdf:e} vs {:e}", bound(f64::EPSILON, s));
+    }
+    // Scaling by 2^k (exact) scales the SDF exactly, from 1e-304 up to ~1e0 and for far points.
+    let f = 2f64.powi(1000);
+    let tf = QuadTube::<f64>::new([t.b[0] * f, t.b[1] * f, t.b[2] * f], [t.r[0] * f, t.r[1] * f, t.r[2] * f]).unwrap();
+    for x in [ray.at(iv.t_in), V3::new(e, e, e), V3::new(-3.0 * e, 0.5 * e, 1e3 * e)] {
+        assert_eq!(quadratic_tube(x * f, &tf), quadratic_tube(x, &t) * f, "{x:?}");
+    }
+}

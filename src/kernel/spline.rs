@@ -29,7 +29,8 @@
 //!   these solvers report a point inside the tube instead of the entry.
 //! * [`Solver::Polynomial`]: the critical points of `f` **and** `e` are exactly the roots of
 //!   `P = 4h'²g − g'² = (2h'√g − g')(2h'√g + g')` where `g > 0`; all roots of `P` in `[0, 1]`
-//!   by the derivative cascade, then `f` and `e` at every root with `g ≥ 0` and at `t = 0, 1`.
+//!   by the derivative cascade (`P` formed in powers of `t − t_v`, `t_v` the vertex of the
+//!   centre line, where a slow curve makes `P` tiny), then `f` and `e` at every root with `g ≥ 0` and at `t = 0, 1`.
 //!   Needs no real intervals and no claim.
 //!
 //! The kernel returns the hull `[first entry, last exit]` ([`QuadTube::intersect`]). A strongly
@@ -555,10 +556,24 @@ impl<T: Real> QuadTube<T> {
 pub fn quadratic_tube<T: Scalar>(x: V3<T>, tube: &QuadTube<T>) -> T {
     let two = T::cst(2.0);
     let [b0, b1, b2] = tube.b;
-    // Relative to b₀ (precision): p = A t² + B t, D = x − p.
+    // Relative to b₀ (precision), in units of a power of two near the extent (exact scaling;
+    // the polynomial below has products of up to six coordinates, and |x − p| squares them,
+    // which would underflow for a tube 1e-304 small — fuzz finding
+    // regression-tiny-sdf-underflow: the SDF said −r at a surface point — or overflow far out).
+    let xr = x - b0;
+    let mut e = xr.max_abs();
+    for i in 0..3 {
+        e = e.max((tube.b[i] - b0).max_abs()).max(tube.r[i].abs());
+    }
+    let kmax = if T::EPS.to_f64() < 1e-10 { 1000 } else { 120 };
+    let k = if e > T::zero() && e.is_finite() { (e.to_f64().log2().floor() as i32).clamp(-kmax, kmax) } else { 0 };
+    let (sc, unsc) = (T::from_f64(2f64.powi(-k)), T::from_f64(2f64.powi(k)));
+    let (b0, b1, b2) = (V3::zero(), (b1 - b0) * sc, (b2 - b0) * sc);
+    let xr = xr * sc;
+    let tube = &QuadTube { b: [b0, b1, b2], r: [tube.r[0] * sc, tube.r[1] * sc, tube.r[2] * sc] };
+    // p = A t² + B t, D = x − p.
     let a = b0 - b1 * two + b2;
     let b = (b1 - b0) * two;
-    let xr = x - b0;
     let d = [xr, -b, -a];
     let dp = [b, a * two];
     let [r0, r1, r2] = tube.r;
@@ -619,5 +634,5 @@ pub fn quadratic_tube<T: Scalar>(x: V3<T>, tube: &QuadTube<T>) -> T {
             best = best.min(f1).min(f2);
         }
     }
-    best
+    best * unsc
 }
