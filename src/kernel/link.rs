@@ -252,7 +252,7 @@ impl<T: Real> RoundCone<T> {
             // |∇g| = 1): near a thin end seen from a far c0, F's root loses digits that g keeps.
             // One safeguarded Newton step on g restores them.
             let cc = c2.sqrt();
-            let polish = |k: T, on: T::Mask| {
+            let polish = |k: T, root: T::Mask| {
                 let pq = p + q * k;
                 let rho = pq.length();
                 let g = cc * rho - (e - s * zd * k);
@@ -260,13 +260,25 @@ impl<T: Real> RoundCone<T> {
                 let step = g / T::select(dg.abs().gt(zero), dg, one);
                 // Safeguard: a quadratic's root is never worse than ≈ √ε relative (double
                 // root), so a larger step means g's linearisation is not trustworthy here.
-                let lim = T::epsilon().sqrt() * T::cst(8.0) * (k.abs() + hl + self.ra.max(self.rb));
-                let good = on & dg.abs().gt(T::epsilon().sqrt()) & step.abs().le(lim);
+                let scale = k.abs() + hl + self.ra.max(self.rb) + rho;
+                let lim = T::epsilon().sqrt() * T::cst(8.0) * scale;
+                // Ends that are roots are polished. So are cap ends lying outside the cone
+                // (g > 0): a cap disc is inside the cone, so such an end is a root lost to the
+                // near-double root F has where a line passes close to an apex (a zero-radius
+                // tip), where F's two nappes meet.
+                let cap_out = ok & !root & g.gt(T::zero());
+                let good = (root | cap_out) & dg.abs().gt(T::epsilon().sqrt()) & step.abs().le(lim);
+                // A posteriori check: at a real crossing g ≈ 0 (|g| ≲ √ε·scale even at a double
+                // root, where the quadratic's root is √ε-accurate). When A = c²|Q|² − s²zd² is
+                // pure rounding (a ray parallel to a generator, far from the axis) the roots
+                // are noise and g there is of the size of the ray–axis distance: not a crossing.
+                let real = !(root | cap_out) | g.abs().le(lim);
                 // The polished root stays a crossing of the stump: clamp it into the slab.
-                T::select(good, (k - step).clamp(lo, hi), k)
+                (T::select(good, (k - step).clamp(lo, hi), k), real, root | (good & cap_out))
             };
-            let k0 = polish(k0, q0 & ok);
-            let k1 = polish(k1, q1 & ok);
+            let (k0, real0, q0) = polish(k0, q0 & ok);
+            let (k1, real1, q1) = polish(k1, q1 & ok);
+            let ok = ok & real0 & real1;
             let ok = ok & has_cone & k0.le(k1);
             let ci = ok & k0.lt(t_in);
             let co = ok & k1.gt(t_out);
