@@ -222,3 +222,67 @@ fn shading_options_render_without_nan() {
     assert!(ao.rgb.iter().zip(&plain.rgb).all(|(a, p)| (0..3).all(|c| a[c] <= p[c] + 1e-6)));
     assert!(ao.rgb.iter().zip(&plain.rgb).any(|(a, p)| a[0] < p[0] - 1e-3));
 }
+
+/// Every BVH query on a dense furball (BVH leaves of several links, tested as lane packets
+/// with the `wide` feature) against brute force over the same primitives: closest hit
+/// (`t`, normal, `u`, primitive, link — all bit for bit), any hit, and the set of line
+/// intervals with their primitive ids. The packet path must equal the scalar path exactly
+/// (the lane kernel equals the scalar kernel bit for bit), so the tolerance is zero.
+#[test]
+fn bvh_queries_on_dense_links_equal_brute_force_bitwise() {
+    let scene = Scene::from_polylines(&generate::furball(40, 20, 7), 0.05, "furball").unwrap();
+    let bvh = Bvh::build(scene.primitives());
+    let mut rng = generate::Rng(11);
+    let (mut hits, mut intervals) = (0, 0);
+    for i in 0..300 {
+        // Aim near a random link's axis (within two radii), so most rays hit.
+        let p = &bvh.prims[(rng.uniform() * bvh.prims.len() as f64) as usize];
+        let u = rng.uniform();
+        let c = V3::from(p.origin) + (p.a.cast::<f64>() * (1.0 - u) + p.b.cast::<f64>() * u);
+        let target = c + V3::from(rng.unit()) * (2.0 * p.max_radius() as f64 * rng.uniform());
+        let dir = V3::from(rng.unit());
+        // Some rays start inside the scene (shadow-ray-like), some far outside.
+        let back = if i % 3 == 0 { 0.0 } else { 50.0 };
+        let ray = Ray::new(target - dir * back, dir * (0.5 + rng.uniform()));
+        // Closest hit.
+        let mut best: Option<(f64, V3<f64>, f64, u32)> = None;
+        for (k, q) in bvh.prims.iter().enumerate() {
+            if let Some((t, n, u, _)) = q.first_hit(&ray) {
+                if best.map_or(true, |b| t < b.0) {
+                    best = Some((t, n, u, k as u32));
+                }
+            }
+        }
+        let got = bvh.closest_hit(&ray);
+        assert_eq!(got.map(|h| h.t), best.map(|b| b.0), "ray {i}: closest t");
+        if let (Some(h), Some(b)) = (got, best) {
+            // A tie in t between two primitives may pick either; compare that primitive's own result.
+            let own = bvh.prims[h.prim as usize].first_hit(&ray).unwrap();
+            assert_eq!((h.t, h.n, h.u), (own.0, own.1, own.2), "ray {i}: hit data of its primitive");
+            assert_eq!(h.link, bvh.prims[h.prim as usize].link, "ray {i}: link of the hit primitive");
+            if h.prim != b.3 {
+                assert_eq!(h.t, b.0, "ray {i}: a different primitive only on a tie");
+            }
+            hits += 1;
+        }
+        assert_eq!(bvh.any_hit(&ray), best.is_some(), "ray {i}: any-hit");
+        // Line intervals, as sets of (id, bits of every field).
+        let key = |id: u32, iv: &tubecast::Interval<f64>| {
+            (id, [iv.t_in, iv.t_out, iv.u_in, iv.u_out, iv.n_in.x, iv.n_in.y, iv.n_in.z, iv.n_out.x].map(f64::to_bits))
+        };
+        let mut ivs = Vec::new();
+        bvh.line_intervals(&ray, &mut ivs);
+        let mut got: Vec<_> = ivs.iter().map(|t| key(t.id, &t.iv)).collect();
+        let line = Ray::with_range(ray.o, ray.d, f64::NEG_INFINITY, f64::INFINITY);
+        let mut want = Vec::new();
+        for (k, q) in bvh.prims.iter().enumerate() {
+            q.pieces(&line, |iv| want.push(key(k as u32, &iv)));
+        }
+        got.sort();
+        want.sort();
+        assert_eq!(got, want, "ray {i}: line intervals");
+        intervals += want.len();
+    }
+    assert!(hits > 100, "most rays must hit ({hits})");
+    assert!(intervals > 300, "rays must cross many links ({intervals} intervals)");
+}

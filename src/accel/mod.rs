@@ -14,6 +14,13 @@
 //! obvhs clamping `1/dᵢ` to `±2²³` for `|dᵢ| ≤ 2⁻²³` (its `safe_inverse`): the clamped slab of
 //! a ray inside a padded slab still spans `±pad·2²³ = ±128·D`, far beyond the travel.
 //! The returned hits are exact kernel results in `f64`; only culling uses `f32`.
+//!
+//! # Lane packets
+//! With the `wide` feature, the links (cylinders and cones) of each leaf are moved to the
+//! leaf's front and gathered into packets of up to eight, tested by one call of the lane
+//! kernel (`packet` module); each link's result is bit-identical to [`Prim::intersect`], so
+//! every query returns what the scalar path returns. Spheres and spline sub-segments stay on
+//! the scalar path.
 
 use crate::kernel::csg::Tagged;
 use crate::ray::Ray;
@@ -22,6 +29,23 @@ use crate::V3;
 use glam::Vec3A;
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::Bvh2;
+
+#[cfg(feature = "wide")]
+mod packet;
+
+/// `pack_at` entry of a primitive that starts no packet.
+#[cfg(feature = "wide")]
+const NO_PACK: u32 = u32::MAX;
+
+/// One primitive test of a leaf visit.
+enum Test {
+    /// Test primitive `id` on the scalar path.
+    Prim(usize),
+    /// Link `id` was tested in a lane packet: its interval (a hit), as [`Prim::intersect`]
+    /// gives it.
+    #[cfg_attr(not(feature = "wide"), allow(dead_code))]
+    Link(usize, crate::ray::Interval<f64>),
+}
 
 /// The first surface crossing along a ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,6 +73,12 @@ pub struct Bvh {
     lo: [f64; 3],
     hi: [f64; 3],
     pad: f64,
+    /// Lane packets of links, each over consecutive primitives of one leaf.
+    #[cfg(feature = "wide")]
+    packs: Vec<packet::Packet>,
+    /// Per primitive: the packet starting at it, or [`NO_PACK`].
+    #[cfg(feature = "wide")]
+    pack_at: Vec<u32>,
 }
 
 struct BoxOf(Aabb);
@@ -106,13 +136,104 @@ impl Bvh {
             )
         };
         // Reorder primitives into leaf order so leaves index them directly.
-        let prims: Vec<Prim> = bvh.primitive_indices.iter().map(|&i| prims[i as usize]).collect();
+        #[allow(unused_mut)]
+        let mut prims: Vec<Prim> = bvh.primitive_indices.iter().map(|&i| prims[i as usize]).collect();
         for (k, i) in bvh.primitive_indices.iter_mut().enumerate() {
             *i = k as u32;
         }
+        #[cfg(feature = "wide")]
+        let (packs, pack_at) = Self::pack(&bvh, &mut prims);
         let lo = std::array::from_fn(|i| lo[i] - 2.0 * pad);
         let hi = std::array::from_fn(|i| hi[i] + 2.0 * pad);
-        Self { bvh, prims, centre, lo, hi, pad }
+        Self {
+            bvh,
+            prims,
+            centre,
+            lo,
+            hi,
+            pad,
+            #[cfg(feature = "wide")]
+            packs,
+            #[cfg(feature = "wide")]
+            pack_at,
+        }
+    }
+
+    /// Move each leaf's links to its front (a stable partition, within the leaf's range) and
+    /// gather them into lane packets of up to [`packet::LANES`]; a lone link stays scalar.
+    #[cfg(feature = "wide")]
+    fn pack(bvh: &Bvh2, prims: &mut [Prim]) -> (Vec<packet::Packet>, Vec<u32>) {
+        use crate::scene::PrimKind;
+        let is_link = |p: &Prim| matches!(p.kind, PrimKind::Cylinder | PrimKind::Cone);
+        let mut packs = Vec::new();
+        let mut pack_at = vec![NO_PACK; prims.len()];
+        for node in bvh.nodes.iter().filter(|n| n.is_leaf() && n.prim_count > 0) {
+            let (s, e) = (node.first_index as usize, (node.first_index + node.prim_count) as usize);
+            let leaf = &mut prims[s..e];
+            let (mut links, others): (Vec<Prim>, Vec<Prim>) = leaf.iter().partition(|p| is_link(p));
+            let k = links.len();
+            links.extend(others);
+            leaf.copy_from_slice(&links);
+            let mut j = 0;
+            while k - j >= 2 {
+                let n = (k - j).min(packet::LANES);
+                pack_at[s + j] = packs.len() as u32;
+                packs.push(packet::Packet::new(&leaf[j..j + n]));
+                j += n;
+            }
+        }
+        (packs, pack_at)
+    }
+
+    /// Test the primitives of the leaf `first..first + count` against `ray` (whose unit
+    /// direction and length are `dn`, `len`): links in packets by one lane call each, the
+    /// rest one by one, handing each test to `f`; stops and returns false as soon as `f`
+    /// returns false.
+    #[inline(always)]
+    fn visit(
+        &self,
+        first: usize,
+        count: usize,
+        ray: &Ray<f64>,
+        dn: V3<f64>,
+        len: f64,
+        mut f: impl FnMut(Test) -> bool,
+    ) -> bool {
+        let _ = (ray, dn, len);
+        let end = first + count;
+        let mut j = first;
+        while j < end {
+            #[cfg(feature = "wide")]
+            {
+                let k = self.pack_at[j];
+                if k != NO_PACK {
+                    let pk = &self.packs[k as usize];
+                    let mut go = true;
+                    pk.intersect(&self.prims[j..j + pk.n], ray, dn, len, |i, iv| {
+                        if go {
+                            go = f(Test::Link(j + i, iv));
+                        }
+                    });
+                    if !go {
+                        return false;
+                    }
+                    j += pk.n;
+                    continue;
+                }
+            }
+            if !f(Test::Prim(j)) {
+                return false;
+            }
+            j += 1;
+        }
+        true
+    }
+
+    /// Unit direction and length of a ray's direction, computed as [`Prim::intersect`] does.
+    #[inline(always)]
+    fn unit(ray: &Ray<f64>) -> (V3<f64>, f64) {
+        let len = ray.d.length();
+        (ray.d * (1.0 / len), len)
     }
 
     /// Bytes held by the BVH nodes and the primitives.
@@ -120,6 +241,17 @@ impl Bvh {
         self.bvh.nodes.len() * std::mem::size_of::<obvhs::bvh2::node::Bvh2Node>()
             + self.bvh.primitive_indices.len() * 4
             + self.prims.len() * std::mem::size_of::<Prim>()
+            + self.packet_bytes()
+    }
+
+    #[cfg(feature = "wide")]
+    fn packet_bytes(&self) -> usize {
+        self.packs.len() * packet::Packet::BYTES + self.pack_at.len() * 4
+    }
+
+    #[cfg(not(feature = "wide"))]
+    fn packet_bytes(&self) -> usize {
+        0
     }
 
     /// Number of BVH nodes.
@@ -179,17 +311,35 @@ impl Bvh {
         let mut best: Option<Hit> = None;
         let mut hit = obvhs::ray::RayHit::none();
         let margin = 8.0 * self.pad;
-        self.bvh.ray_traverse(c.ray, &mut hit, |_, id| {
-            let p = &self.prims[id];
-            let Some((t, n, u, entering)) = p.first_hit(ray) else {
-                return f32::INFINITY;
-            };
-            if best.map_or(true, |h| t < h.t) {
-                best = Some(Hit { t, n, u, prim: id as u32, link: p.link, entering });
-            }
-            // Cull by the best hit so far, loosened by the box margin (see the module docs).
-            let tb = best.map_or(t, |h| h.t);
-            ((tb * c.len - c.s0) + margin) as f32
+        let (dn, len) = Self::unit(ray);
+        obvhs::fast_stack!(u32, (96, 192), self.bvh.max_depth, stack, {
+            self.bvh.ray_traverse_dynamic(&mut stack, c.ray, &mut hit, |node, r, _| {
+                let first = node.first_index as usize;
+                self.visit(first, node.prim_count as usize, ray, dn, len, |test| {
+                    let (id, got) = match test {
+                        Test::Prim(id) => (id, self.prims[id].first_hit(ray)),
+                        Test::Link(id, iv) => (
+                            id,
+                            iv.first_hit(ray.t_min, ray.t_max).map(|(t, n, u)| (t, n, u, t == iv.t_in)),
+                        ),
+                    };
+                    if let Some((t, n, u, entering)) = got {
+                        if best.map_or(true, |h| t < h.t) {
+                            let link = self.prims[id].link;
+                            best = Some(Hit { t, n, u, prim: id as u32, link, entering });
+                        }
+                    }
+                    true
+                });
+                // Cull by the best hit so far, loosened by the box margin (see the module docs).
+                if let Some(h) = best {
+                    let tb = ((h.t * c.len - c.s0) + margin) as f32;
+                    if tb < r.tmax {
+                        r.tmax = tb;
+                    }
+                }
+                true
+            })
         });
         best
     }
@@ -201,13 +351,20 @@ impl Bvh {
         let Some(c) = self.clip(ray, a, b) else {
             return false;
         };
-        !self.bvh.ray_traverse_miss(c.ray, |_, id| {
-            if self.prims[id].meets(ray) {
-                0.0
-            } else {
-                f32::INFINITY
-            }
-        })
+        let (dn, len) = Self::unit(ray);
+        let mut found = false;
+        let mut hit = obvhs::ray::RayHit::none();
+        obvhs::fast_stack!(u32, (96, 192), self.bvh.max_depth, stack, {
+            self.bvh.ray_traverse_dynamic(&mut stack, c.ray, &mut hit, |node, _, _| {
+                let first = node.first_index as usize;
+                found = !self.visit(first, node.prim_count as usize, ray, dn, len, |test| match test {
+                    Test::Prim(id) => !self.prims[id].meets(ray),
+                    Test::Link(..) => false,
+                });
+                !found
+            })
+        });
+        found
     }
 
     /// Every primitive's interval with the ray's whole **line** (not only `[t_min, t_max]`),
@@ -219,8 +376,21 @@ impl Bvh {
             return;
         };
         let line = Ray::with_range(ray.o, ray.d, f64::NEG_INFINITY, f64::INFINITY);
-        self.bvh.ray_traverse_anyhit(c.ray, |_, id| {
-            self.prims[id].pieces(&line, |iv| out.push(Tagged { iv, id: id as u32 }));
+        let (dn, len) = Self::unit(&line);
+        let mut hit = obvhs::ray::RayHit::none();
+        obvhs::fast_stack!(u32, (96, 192), self.bvh.max_depth, stack, {
+            self.bvh.ray_traverse_dynamic(&mut stack, c.ray, &mut hit, |node, _, _| {
+                let first = node.first_index as usize;
+                self.visit(first, node.prim_count as usize, &line, dn, len, |test| {
+                    match test {
+                        Test::Prim(id) => {
+                            self.prims[id].pieces(&line, |iv| out.push(Tagged { iv, id: id as u32 }))
+                        }
+                        Test::Link(id, iv) => out.push(Tagged { iv, id: id as u32 }),
+                    }
+                    true
+                })
+            })
         });
     }
 }

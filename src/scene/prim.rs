@@ -247,16 +247,24 @@ impl Prim {
     fn local_ray(&self, ray: &Ray<f64>) -> (Ray<f32>, f64, f64) {
         let len = ray.d.length();
         let dn = ray.d * (1.0 / len);
-        let org = V3::from(self.origin);
-        let tc = (org - ray.o).dot(dn); // distance along dn to the nearest point
-        let o = (ray.o + dn * tc - org).cast::<f32>();
+        let (o, tc) = self.local_origin(ray.o, dn);
         (Ray::with_range(o, dn.cast::<f32>(), f32::NEG_INFINITY, f32::INFINITY), tc, len)
+    }
+
+    /// The local ray's origin in `f32` and its distance `tc` along the unit direction `dn`
+    /// (`dn = d/|d|` in `f64`) from the world origin `o`: the part of [`Self::local_ray`] that
+    /// depends on the primitive, shared with the lane-packet path so both see the same bits.
+    #[inline(always)]
+    pub(crate) fn local_origin(&self, o: V3<f64>, dn: V3<f64>) -> (V3<f32>, f64) {
+        let org = V3::from(self.origin);
+        let tc = (org - o).dot(dn); // distance along dn to the nearest point
+        ((o + dn * tc - org).cast::<f32>(), tc)
     }
 
     /// A local `f32` line interval mapped back to the world ray, with the hit mask clipped
     /// to the ray's range.
     #[inline]
-    fn to_world(iv: &Interval<f32>, tc: f64, len: f64, ray: &Ray<f64>) -> Interval<f64> {
+    pub(crate) fn to_world(iv: &Interval<f32>, tc: f64, len: f64, ray: &Ray<f64>) -> Interval<f64> {
         if !iv.hit {
             return Interval::miss();
         }
