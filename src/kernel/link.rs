@@ -212,14 +212,8 @@ impl<T: Real> RoundCone<T> {
         if spheres {
             let (a0, a1, oka) = sphere(ca, self.ra);
             let (b0, b1, okb) = sphere(cb, self.rb);
-            t_in = T::select(oka, a0, inf);
-            t_out = T::select(oka, a1, -inf);
-            in_a = oka;
-            out_a = oka;
-            let bi = okb & b0.lt(t_in);
-            let bo = okb & b1.gt(t_out);
-            t_in = T::select(bi, b0, t_in);
-            t_out = T::select(bo, b1, t_out);
+            (in_a, out_a) = widen(&mut t_in, &mut t_out, a0, a1, oka);
+            let (bi, bo) = widen(&mut t_in, &mut t_out, b0, b1, okb);
             in_a = in_a & !bi;
             out_a = out_a & !bo;
             in_b = bi;
@@ -280,10 +274,7 @@ impl<T: Real> RoundCone<T> {
             let (k1, real1, q1) = polish(k1, q1 & ok);
             let ok = ok & real0 & real1;
             let ok = ok & has_cone & k0.le(k1);
-            let ci = ok & k0.lt(t_in);
-            let co = ok & k1.gt(t_out);
-            t_in = T::select(ci, k0, t_in);
-            t_out = T::select(co, k1, t_out);
+            let (ci, co) = widen(&mut t_in, &mut t_out, k0, k1, ok);
             in_a = in_a & !ci;
             in_b = in_b & !ci;
             out_a = out_a & !co;
@@ -333,6 +324,17 @@ impl<T: Real> RoundCone<T> {
     pub fn intersect_han_on_the_fly(&self, ray: &Ray<T>) -> Interval<T> {
         HanLink::new(self).intersect(ray)
     }
+}
+
+/// Widen the running hull `[t_in, t_out]` by a piece `[k0, k1]` (lanes where `ok`); returns which
+/// lanes took the piece's entry and exit.
+#[inline(always)]
+fn widen<T: Real>(t_in: &mut T, t_out: &mut T, k0: T, k1: T, ok: T::Mask) -> (T::Mask, T::Mask) {
+    let took_in = ok & k0.lt(*t_in);
+    let took_out = ok & k1.gt(*t_out);
+    *t_in = T::select(took_in, k0, *t_in);
+    *t_out = T::select(took_out, k1, *t_out);
+    (took_in, took_out)
 }
 
 /// A link with Han's tangent cone and unit-cone transform precomputed (Han Table 1 option d).
