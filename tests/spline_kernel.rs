@@ -593,3 +593,36 @@ fn tiny_tube_sdf_does_not_underflow() {
         assert_eq!(quadratic_tube(x * f, &tf), quadratic_tube(x, &t) * f, "{x:?}");
     }
 }
+
+/// Fuzz finding (fuzz/corpus/spline/regression-tip-on-ray): b = [(0,0,−30.336), 0,
+/// (−30.336,0,0)], r = 30.464(1 − t)², so r(1) = 0 and the tip p(1) = (−30.336, 0, 0) lies
+/// on the ray o = (−10.496, 0, 0), d = (0.512, 0, 0), at
+/// t = (−30.336 − (−10.496))/0.512 = −19.84/0.512 = −38.75.
+/// It is the first crossing: the sphere at u has |z| = 30.336(1 − u)² ≤ r(u), so it meets the
+/// x-axis in x ∈ −30.336u² ± c(1 − u)², c = √(30.464² − 30.336²) = √7.7824 ≈ 2.790; the least
+/// x, −30.336u² − c(1 − u)², has derivative −60.672u + 2c(1 − u) < 0 near u = 1 and its
+/// only critical point is a maximum (u = c/(30.336 + c) ≈ 0.084), so min x is at u = 1: −30.336 (t = −38.75);
+/// the greatest, −30.336u² + c(1 − u)², decreases on [0, 1]: max x = c at u = 0, t = (c + 10.496)/0.512 ≈ 25.95.
+/// After 4ab0964 (P about the vertex tv = ½) the end u = 1 (g = 0 exactly there) was dropped
+/// and the entry came out at t = 11.15, u = 0.344, 0.047 inside the tube.
+#[test]
+fn zero_radius_tip_on_the_ray_far_side() {
+    let b = [[0.0, 0.0, -30.336], [0.0, 0.0, 0.0], [-30.336, 0.0, 0.0]];
+    let r = [30.464, 0.0, 0.0];
+    let (o, d) = ([-10.496, 0.0, 0.0], [0.512, 0.0, 0.0]);
+    let t = tube(&b, &r);
+    let ray = Ray::new(V3::from(o), V3::from(d));
+    let c = (30.464f64 * 30.464 - 30.336 * 30.336).sqrt();
+    let want_out = (c + 10.496) / 0.512;
+    let s = 4.0 * 30.464 * (3f64.sqrt() + 1.0);
+    let tol = bound(f64::EPSILON, s) / 0.512;
+    for solver in [Solver::Polynomial] {
+        let iv = t.intersect_with(&ray, solver);
+        assert!(iv.hit, "{solver:?}: {iv:?}");
+        assert!((iv.t_in - -38.75).abs() <= tol, "{solver:?}: entry {} vs -38.75 (tol {tol}): {iv:?}", iv.t_in);
+        assert!((iv.t_out - want_out).abs() <= tol, "{solver:?}: exit {} vs {want_out}: {iv:?}", iv.t_out);
+        for tt in [iv.t_in, iv.t_out] {
+            assert!(quadratic_tube(ray.at(tt), &t).abs() <= bound(f64::EPSILON, s), "{solver:?} {tt}: {iv:?}");
+        }
+    }
+}

@@ -29,8 +29,10 @@
 //!   these solvers report a point inside the tube instead of the entry.
 //! * [`Solver::Polynomial`]: the critical points of `f` **and** `e` are exactly the roots of
 //!   `P = 4h'²g − g'² = (2h'√g − g')(2h'√g + g')` where `g > 0`; all roots of `P` in `[0, 1]`
-//!   by the derivative cascade (`P` formed in powers of `t − t_v`, `t_v` the vertex of the
-//!   centre line, where a slow curve makes `P` tiny), then `f` and `e` at every root with `g ≥ 0` and at `t = 0, 1`.
+//!   by the derivative cascade (the union of the roots of `P` formed in powers of `t` and in
+//!   powers of `t − t_v`, `t_v` the vertex of the centre line, where a slow curve makes `P`
+//!   tiny), then `f` and `e` at every root with `g ≥ 0` (to rounding; `g(1)` formed from the
+//!   end itself, exactly 0 for a zero-radius end on the line) and at `t = 0, 1`.
 //!   Needs no real intervals and no claim.
 //!
 //! The kernel returns the hull `[first entry, last exit]` ([`QuadTube::intersect`]). A strongly
@@ -155,6 +157,9 @@ struct RaySpace<T: Real> {
     gv: [T; 5],
     /// Expansion point of `hv`, `gv`: the vertex of the centre line (least `|p'|`), in `[0, 1]`.
     tv: T,
+    /// `g(1) = r₂² − |c₂ × d̂|²` formed directly from the end (not as `Σ gᵢ`, which carries
+    /// the rounding of every coefficient): exactly 0 for a zero-radius end on the line.
+    g_end: T,
 }
 
 /// `h` and `g` (ascending powers of the parameter) from the power-basis position
@@ -169,6 +174,22 @@ fn ray_polys<T: Real>(qa: V3<T>, qb: V3<T>, qc: V3<T>, ra: T, rb: T, rc: T, dhat
     let r2 = [rc * rc, two * rc * rb, rb * rb + two * rc * ra, two * rb * ra, ra * ra];
     let g = [r2[0] - w2[0], r2[1] - w2[1], r2[2] - w2[2], r2[3] - w2[3], r2[4] - w2[4]];
     (h, g)
+}
+
+/// `P = 4h'²g − g'²` from `h`, `g` in powers of one variable.
+#[inline(always)]
+fn p_of<T: Real>(h: &[T; 3], g: &[T; 5]) -> [T; 7] {
+    let two = T::cst(2.0);
+    let h1 = [h[1], two * h[2]];
+    let g1 = [g[1], two * g[2], T::cst(3.0) * g[3], T::cst(4.0) * g[4]];
+    let h1s: [T; 3] = poly_mul(&h1, &h1);
+    let a: [T; 7] = poly_mul(&h1s, g);
+    let b: [T; 7] = poly_mul(&g1, &g1);
+    let mut p = [T::zero(); 7];
+    for i in 0..7 {
+        p[i] = T::cst(4.0) * a[i] - b[i];
+    }
+    p
 }
 
 impl<T: Real> RaySpace<T> {
@@ -217,8 +238,15 @@ impl<T: Real> RaySpace<T> {
         let rcv = r0 * wv0 + r1 * wv1 + r2 * wv2;
         let rbv = ((r1 - r0) * sv + (r2 - r1) * tv) * two;
         let (hv, gv) = ray_polys(qa, qbv, qcv, ra, rbv, rcv, dhat);
+        // g at t = 1 from the end itself (fuzz finding regression-tip-on-ray: r(1) = 0 with
+        // p(1) on the ray, g = c(1 − t)⁴; Σ gᵢ came out −2.2e-16, below the tolerance 16ε·Σ|gᵢ|,
+        // which bounds the evaluation of g's coefficients but not their own rounding, and the
+        // tip — the true entry — was dropped). At t = 0 Horner gives g₀ = rc² − |wc|², the
+        // same formula.
+        let w_end = c2.cross(dhat);
+        let g_end = r2 * r2 - w_end.dot(w_end);
         // Ray-space distances are in units of `big`: t = tc + s·big/|d|.
-        Self { h, g, qa, qb, qc, dhat, tc, inv_dlen: inv_dlen * big_s, near, hv, gv, tv }
+        Self { h, g, qa, qb, qc, dhat, tc, inv_dlen: inv_dlen * big_s, near, hv, gv, tv, g_end }
     }
 
     #[inline(always)]
@@ -302,35 +330,50 @@ impl<T: Real> RaySpace<T> {
         (T::select(better, vx, v), T::select(better, x, t))
     }
 
-    /// All roots of `P` in `[0, 1]` as sorted breakpoints (`buf[0] = 0`, `buf[n−1] = 1`),
-    /// found in the expansion about `tv` and shifted back.
+    /// All roots of `P` in `[0, 1]` as sorted breakpoints (`buf[0] = 0`, `buf[n−1] = 1`):
+    /// the union of those found in powers of `t` and in powers of `t − tv` (shifted back),
+    /// merged by a fixed compare-exchange network (`select` on `<`: every lane bit-equal to
+    /// the scalar). Each expansion can be the noisy one: about `tv` for a slow end
+    /// (regression-pinched-slow-end), in powers of `t` elsewhere; a spare candidate costs
+    /// nothing (every candidate is a point of the sweep), a lost one can lose the entry.
     #[inline(always)]
-    fn p_breakpoints(&self) -> ([T; 8], usize) {
+    fn p_breakpoints(&self) -> ([T; 16], usize) {
         let (lo, hi) = (-self.tv, T::one() - self.tv);
-        let (bp, n) = poly_breakpoints(&self.p_poly(), lo, hi, Bracket::Newton);
-        let mut out = [T::one(); 8];
+        let (bv, nv) = poly_breakpoints(&self.p_poly(), lo, hi, Bracket::Newton);
+        let (bt, nt) = poly_breakpoints(&self.p_poly_t(), T::zero(), T::one(), Bracket::Newton);
+        debug_assert!(nv == 8 && nt == 8);
+        let mut out = [T::one(); 16];
+        // out = bt ascending, then the shifted bv descending: a bitonic sequence.
+        out[..8].copy_from_slice(&bt);
         for i in 0..8 {
-            let t = (self.tv + bp[i]).clamp(T::zero(), T::one());
-            out[i] = T::select(bp[i].le(lo), T::zero(), T::select(bp[i].ge(hi), T::one(), t));
+            let t = (self.tv + bv[i]).clamp(T::zero(), T::one());
+            out[15 - i] = T::select(bv[i].le(lo), T::zero(), T::select(bv[i].ge(hi), T::one(), t));
         }
-        (out, n)
+        let mut stride = 8;
+        while stride > 0 {
+            for i in 0..16 {
+                if i & stride == 0 {
+                    let (a, b) = (out[i], out[i + stride]);
+                    let sw = b.lt(a);
+                    out[i] = T::select(sw, b, a);
+                    out[i + stride] = T::select(sw, a, b);
+                }
+            }
+            stride /= 2;
+        }
+        (out, 16)
+    }
+
+    /// `P = 4h'²g − g'²` (degree 6) in powers of `t`.
+    #[inline(always)]
+    fn p_poly_t(&self) -> [T; 7] {
+        p_of(&self.h, &self.g)
     }
 
     /// `P = 4h'²g − g'²` (degree 6) in powers of `t − tv`.
     #[inline(always)]
     fn p_poly(&self) -> [T; 7] {
-        let two = T::cst(2.0);
-        let g = self.gv;
-        let h1 = [self.hv[1], two * self.hv[2]];
-        let g1 = [g[1], two * g[2], T::cst(3.0) * g[3], T::cst(4.0) * g[4]];
-        let h1s: [T; 3] = poly_mul(&h1, &h1);
-        let a: [T; 7] = poly_mul(&h1s, &g);
-        let b: [T; 7] = poly_mul(&g1, &g1);
-        let mut p = [T::zero(); 7];
-        for i in 0..7 {
-            p[i] = T::cst(4.0) * a[i] - b[i];
-        }
-        p
+        p_of(&self.hv, &self.gv)
     }
 
     /// Entry/exit from candidate parameters (clamped to `[lo, hi]`), keeping only those with
@@ -351,7 +394,7 @@ impl<T: Real> RaySpace<T> {
             let t = t.clamp(lo, hi);
             let left = c[k.saturating_sub(1)].clamp(lo, hi);
             let right = c[(k + 1).min(n - 1)].clamp(lo, hi);
-            let gv = horner(&self.g, t);
+            let gv = T::select(t.ge(T::one()), self.g_end, horner(&self.g, t));
             let ok = if all_real { T::Mask::splat(true) } else { gv.ge(-gtol) };
             let hv = horner(&self.h, t);
             let sq = gv.max(T::zero()).sqrt();
