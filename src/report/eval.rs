@@ -220,19 +220,38 @@ fn idx<T: Real>(i: usize, j: usize, len: usize) -> usize {
     (i * T::LANES + j).min(len - 1)
 }
 
+/// The rays of `len` cases in packs of `T::LANES` (the last pack repeats the last case).
+fn pack_rays<T: Real>(n: usize, len: usize, ray: impl Fn(usize) -> Ray<f64>) -> Vec<Ray<T>> {
+    (0..n)
+        .map(|i| {
+            Ray::from_fn(|j| {
+                let r = ray(idx::<T>(i, j, len));
+                Ray::new(r.o.cast(), r.d.cast())
+            })
+        })
+        .collect()
+}
+
+/// One outcome per case from the packed results of `f` (padding lanes dropped).
+fn unpack_outcomes<T: Real>(n: usize, len: usize, f: &impl Fn(usize) -> Interval<T>) -> Vec<Outcome> {
+    let mut outcomes = Vec::with_capacity(len);
+    for i in 0..n {
+        let iv = f(i);
+        for j in 0..T::LANES {
+            if i * T::LANES + j < len {
+                outcomes.push(outcome(&iv.lane(j)));
+            }
+        }
+    }
+    outcomes
+}
+
 fn run_link_t<T: Real>(kernel: LinkKernel, cases: &[LinkCase], budget: Duration) -> MethodRun {
     let len = cases.len();
     let n = packs::<T>(len);
     let links: Vec<RoundCone<T>> =
         (0..n).map(|i| RoundCone::from_lanes(|j| cases[idx::<T>(i, j, len)].link.cast())).collect();
-    let rays: Vec<Ray<T>> = (0..n)
-        .map(|i| {
-            Ray::from_fn(|j| {
-                let r = cases[idx::<T>(i, j, len)].ray;
-                Ray::new(r.o.cast(), r.d.cast())
-            })
-        })
-        .collect();
+    let rays = pack_rays::<T>(n, len, |k| cases[k].ray);
     let han: Vec<HanLink<T>> = links.iter().map(HanLink::new).collect();
     let tubes: Vec<QuadTube<T>> = if matches!(kernel, LinkKernel::AsSpline(_)) {
         (0..n)
@@ -257,15 +276,7 @@ fn run_link_t<T: Real>(kernel: LinkKernel, cases: &[LinkCase], budget: Duration)
             LinkKernel::AsSpline(s) => tubes[i].intersect_with(&rays[i], s),
         }
     };
-    let mut outcomes = Vec::with_capacity(len);
-    for i in 0..n {
-        let iv = f(i);
-        for j in 0..T::LANES {
-            if i * T::LANES + j < len {
-                outcomes.push(outcome(&iv.lane(j)));
-            }
-        }
-    }
+    let outcomes = unpack_outcomes::<T>(n, len, &f);
     let ns = if budget.is_zero() { f64::NAN } else { time_packs(n, budget, f) };
     MethodRun { outcomes, ns }
 }
@@ -275,24 +286,9 @@ fn run_spline_t<T: Real>(solver: Solver, cases: &[SplineCase], budget: Duration)
     let n = packs::<T>(len);
     let tubes: Vec<QuadTube<T>> =
         (0..n).map(|i| QuadTube::from_lanes(|j| cases[idx::<T>(i, j, len)].tube.cast())).collect();
-    let rays: Vec<Ray<T>> = (0..n)
-        .map(|i| {
-            Ray::from_fn(|j| {
-                let r = cases[idx::<T>(i, j, len)].ray;
-                Ray::new(r.o.cast(), r.d.cast())
-            })
-        })
-        .collect();
+    let rays = pack_rays::<T>(n, len, |k| cases[k].ray);
     let f = |i: usize| tubes[i].intersect_with(&rays[i], solver);
-    let mut outcomes = Vec::with_capacity(len);
-    for i in 0..n {
-        let iv = f(i);
-        for j in 0..T::LANES {
-            if i * T::LANES + j < len {
-                outcomes.push(outcome(&iv.lane(j)));
-            }
-        }
-    }
+    let outcomes = unpack_outcomes::<T>(n, len, &f);
     let ns = if budget.is_zero() { f64::NAN } else { time_packs(n, budget, f) };
     MethodRun { outcomes, ns }
 }
