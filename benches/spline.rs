@@ -41,37 +41,7 @@ const SOLVERS: [(&str, Solver); 5] = [
     ("polynomial", Solver::Polynomial),
 ];
 
-fn scalar<T: Scalar>(c: &mut Criterion, name: &str) {
-    let cs = cases();
-    let ts: Vec<(QuadTube<T>, RoundCone<T>, Ray<T>)> = cs
-        .iter()
-        .map(|(t, l, r)| (t.cast(), l.cast(), Ray::new(r.o.cast(), r.d.cast())))
-        .collect();
-    let mut g = c.benchmark_group(format!("spline/{name}"));
-    g.throughput(Throughput::Elements(N as u64));
-    g.bench_function("round_cone_link", |b| {
-        b.iter(|| {
-            let mut acc = T::zero();
-            for (_, l, r) in &ts {
-                acc += black_box(l).intersect(black_box(r)).t_in.min(T::cst(1e9));
-            }
-            acc
-        })
-    });
-    for (sn, s) in SOLVERS {
-        g.bench_with_input(BenchmarkId::new("spline", sn), &s, |b, &s| {
-            b.iter(|| {
-                let mut acc = T::zero();
-                for (t, _, r) in &ts {
-                    acc += black_box(t).intersect_with(black_box(r), s).t_in.min(T::cst(1e9));
-                }
-                acc
-            })
-        });
-    }
-    g.finish();
-}
-
+/// One group per precision; scalars are the one-lane case (`T::LANES == 1`).
 fn lanes<T: Real>(c: &mut Criterion, name: &str)
 where
     T::Elem: Scalar,
@@ -112,8 +82,8 @@ where
 }
 
 fn benches(c: &mut Criterion) {
-    scalar::<f32>(c, "f32");
-    scalar::<f64>(c, "f64");
+    lanes::<f32>(c, "f32");
+    lanes::<f64>(c, "f64");
     lanes::<WideF32x8>(c, "f32x8");
     lanes::<WideF64x4>(c, "f64x4");
 }
