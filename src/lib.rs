@@ -24,18 +24,6 @@ pub mod ray;
 pub mod real;
 pub mod vec;
 
-#[cfg(feature = "render")]
-pub mod accel;
-#[cfg(feature = "render")]
-pub mod io;
-#[cfg(feature = "embree")]
-pub mod peer;
-#[cfg(feature = "render")]
-pub mod render;
-#[cfg(feature = "cli")]
-pub mod report;
-#[cfg(feature = "render")]
-pub mod scene;
 
 pub use kernel::{HanLink, LinkShape, RoundCone};
 pub use ray::{Interval, Ray};

@@ -1,0 +1,72 @@
+//! `tubecast info --splines` and `tubecast render --splines` end to end, and their errors.
+
+use std::process::Command;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_tubecast"))
+}
+
+fn tmp(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("tubecast-cli-splines-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d.join(name)
+}
+
+fn png_size(bytes: &[u8]) -> (u32, u32) {
+    assert_eq!(&bytes[1..4], b"PNG");
+    (u32::from_be_bytes(bytes[16..20].try_into().unwrap()), u32::from_be_bytes(bytes[20..24].try_into().unwrap()))
+}
+
+#[test]
+fn info_counts_splines_and_render_draws_them() {
+    let tck = tmp("helix.tck");
+    assert!(bin().args(["generate", "helix", "--segments", "20", "-o"]).arg(&tck).status().unwrap().success());
+    // Link model: no splines.
+    let out = bin().arg("info").arg(&tck).output().unwrap();
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("splines    0\n"), "{text}");
+    // Spline model: 2 strands × 20 curved segments (a helix has no straight run), each split
+    // into two quadratic sub-segments; no link primitive is left.
+    let out = bin().arg("info").arg(&tck).arg("--splines").output().unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    for l in ["links      40", "cylinders  0", "cones      0", "spheres    0", "splines    40 (80 quadratic sub-segments)"] {
+        assert!(text.contains(l), "{l:?} in {text}");
+    }
+
+    let mut pngs = Vec::new();
+    for (name, extra) in [("links.png", vec![]), ("splines.png", vec!["--splines"]), ("glass.png", vec!["--splines", "--opacity", "0.4"])] {
+        let png = tmp(name);
+        let st = bin()
+            .arg("render")
+            .arg(&tck)
+            .args(["--width", "32", "--height", "24", "--quiet"])
+            .args(&extra)
+            .arg("-o")
+            .arg(&png)
+            .status()
+            .unwrap();
+        assert!(st.success(), "{extra:?}");
+        let bytes = std::fs::read(&png).unwrap();
+        assert_eq!(png_size(&bytes), (32, 24));
+        pngs.push(bytes);
+    }
+    // The smooth tube is a different image from the polygonal one, and glass from opaque.
+    assert_ne!(pngs[0], pngs[1]);
+    assert_ne!(pngs[1], pngs[2]);
+}
+
+#[test]
+fn huge_spline_scenes_render_and_bad_options_are_errors() {
+    // Extents of 1e9 (the kernel works in units of the segment's size): renders, no NaN path.
+    let obj = tmp("big.obj");
+    std::fs::write(&obj, "v 0 0 0\nv 1e9 0 0\nv 2e9 1e9 0\nl 1 2 3\n").unwrap();
+    let png = tmp("big.png");
+    let st = bin().arg("render").arg(&obj).args(["--splines", "--width", "8", "--height", "8", "--quiet", "-o"]).arg(&png).status().unwrap();
+    assert!(st.success());
+    assert_eq!(png_size(&std::fs::read(&png).unwrap()), (8, 8));
+    let out = bin().arg("render").arg(&obj).args(["--splines", "--opacity", "0", "-o"]).arg(&png).output().unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let e = String::from_utf8_lossy(&out.stderr);
+    assert!(e.starts_with("tubecast: error: ") && e.contains("opacity"), "{e}");
+}

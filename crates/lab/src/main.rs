@@ -1,0 +1,113 @@
+//! `tubecast-lab`: writes the reports (SVG charts, markdown, CSV) into a folder.
+//!
+//! ```text
+//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|peers|all [--out DIR]
+//!     [--seed N] [--quick] [--big] [--threads N] [--quiet]
+//! ```
+//!
+//! `--big` extends the speed report to 10⁶ segments; `--quick` is the tiny test setting;
+//! `peers` needs `--features embree` (and `libembree-dev`). Defaults: the settings of
+//! `docs/report/`.
+
+use clap::{Parser, ValueEnum};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use tubecast_lab::report::{self, ReportError, ReportFiles, ReportOptions};
+
+#[derive(Parser)]
+#[command(name = "tubecast-lab", version, about = "tubecast's accuracy, stability, speed and peer reports")]
+struct Args {
+    /// Which report.
+    #[arg(value_enum)]
+    which: Which,
+    /// Output folder for the SVG charts and the markdown summary.
+    #[arg(long, default_value = "docs/report")]
+    out: PathBuf,
+    /// Seed of every case generator.
+    #[arg(long)]
+    seed: Option<u64>,
+    /// The tiny test-sized run (seconds).
+    #[arg(long)]
+    quick: bool,
+    /// Speed report up to 10⁶ segments (default 10⁵).
+    #[arg(long)]
+    big: bool,
+    /// Worker threads for the speed report (1 makes frame times comparable).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Hide the progress bars.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// The reports.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Which {
+    /// Error (max, p99) against cost for every kernel × precision × solver.
+    Accuracy,
+    /// False-miss / false-hit rates and errors in each failure region.
+    Stability,
+    /// Frame time and rays/s against segment count, opaque and transparent.
+    Speed,
+    /// Embree 3's round linear curves on the same rays (feature `embree`).
+    Peers,
+    /// Every report this build has (peers only with feature `embree`).
+    All,
+}
+
+type Job = fn(&Path, &ReportOptions) -> Result<ReportFiles, ReportError>;
+
+fn jobs(which: Which) -> Result<Vec<(&'static str, Job)>, String> {
+    let mut jobs: Vec<(&'static str, Job)> = Vec::new();
+    let all = which == Which::All;
+    if all || which == Which::Accuracy {
+        jobs.push(("accuracy", report::run_accuracy));
+    }
+    if all || which == Which::Stability {
+        jobs.push(("stability", report::run_stability));
+    }
+    if all || which == Which::Speed {
+        jobs.push(("speed", report::run_speed));
+    }
+    #[cfg(feature = "embree")]
+    if all || which == Which::Peers {
+        jobs.push(("peers", report::run_peers));
+    }
+    #[cfg(not(feature = "embree"))]
+    if which == Which::Peers {
+        return Err("the peers report needs `--features embree` (and libembree-dev)".into());
+    }
+    Ok(jobs)
+}
+
+fn main() -> ExitCode {
+    let a = Args::parse();
+    let mut opts = if a.quick { ReportOptions::quick() } else { ReportOptions::default() };
+    if let Some(s) = a.seed {
+        opts.seed = s;
+    }
+    if a.big {
+        opts.max_segments = 1_000_000;
+    }
+    if let Some(t) = a.threads {
+        opts.threads = t;
+    }
+    opts.progress = !a.quiet;
+    let jobs = match jobs(a.which) {
+        Ok(j) => j,
+        Err(e) => {
+            eprintln!("tubecast-lab: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    for (name, job) in jobs {
+        match job(&a.out, &opts) {
+            Ok(f) => println!("{name}: wrote {} and {} chart(s)", f.markdown.display(), f.charts.len()),
+            Err(e) => {
+                eprintln!("tubecast-lab {name}: {e}");
+                return ExitCode::FAILURE;
+            }
+        }
+    }
+    ExitCode::SUCCESS
+}

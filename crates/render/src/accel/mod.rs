@@ -1,0 +1,409 @@
+//! Acceleration structures: a BVH (built and traversed by [`obvhs`]) over the scene's
+//! primitives, with closest-hit, any-hit and all-intervals queries in `f64` ray parameters.
+//!
+//! # Conservative boxes
+//! obvhs works in `f32`. Its boxes are stored relative to the scene's centre, and every
+//! query first clips the ray's line to the scene box in `f64` and restarts it at the box
+//! entry, so every `f32` quantity in a traversal is bounded by the scene size `D` (its box
+//! diagonal). The `f32` errors of a traversal are then: the restarted origin, `≤ D·2⁻²⁴` per
+//! component; the rounded direction, `≤ 2⁻²⁴` relative, i.e. `≤ 2D·2⁻²⁴` of displacement over
+//! the `≤ 2D` of travel that matters; and the slab test's own subtract-and-multiply,
+//! `≤ 2·2⁻²⁴` relative on slab distances `≤ 2D`. Each box is therefore padded outward by
+//! `pad = D·2⁻¹⁶` (256 times the largest of these), after rounding its corners outward, so a
+//! ray that grazes a primitive still enters every box on the way. The same margin covers
+//! obvhs clamping `1/dᵢ` to `±2²³` for `|dᵢ| ≤ 2⁻²³` (its `safe_inverse`): the clamped slab of
+//! a ray inside a padded slab still spans `±pad·2²³ = ±128·D`, far beyond the travel.
+//! The returned hits are exact kernel results in `f64`; only culling uses `f32`.
+//!
+//! # Lane packets
+//! With the `wide` feature, the links (cylinders and cones) of each leaf are moved to the
+//! leaf's front and gathered into packets of up to eight, tested by one call of the lane
+//! kernel (`packet` module); each link's result is bit-identical to [`Prim::intersect`], so
+//! every query returns what the scalar path returns. Spheres and spline sub-segments stay on
+//! the scalar path.
+
+use tubecast::kernel::csg::Tagged;
+use tubecast::ray::Ray;
+use crate::scene::Prim;
+use tubecast::V3;
+use glam::Vec3A;
+use obvhs::aabb::Aabb;
+use obvhs::bvh2::Bvh2;
+
+#[cfg(feature = "wide")]
+mod packet;
+
+/// `pack_at` entry of a primitive that starts no packet.
+#[cfg(feature = "wide")]
+const NO_PACK: u32 = u32::MAX;
+
+/// One primitive test of a leaf visit.
+enum Test {
+    /// Test primitive `id` on the scalar path.
+    Prim(usize),
+    /// Link `id` was tested in a lane packet: its interval (a hit), as [`Prim::intersect`]
+    /// gives it.
+    #[cfg_attr(not(feature = "wide"), allow(dead_code))]
+    Link(usize, tubecast::ray::Interval<f64>),
+}
+
+/// The first surface crossing along a ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Ray parameter.
+    pub t: f64,
+    /// Unit outward normal.
+    pub n: V3<f64>,
+    /// Curve parameter on the primitive.
+    pub u: f64,
+    /// Index into [`Bvh::prims`].
+    pub prim: u32,
+    /// Scene link index.
+    pub link: u32,
+    /// True when the crossing is an entry (false: the ray started inside).
+    pub entering: bool,
+}
+
+/// A BVH over primitives.
+pub struct Bvh {
+    bvh: Bvh2,
+    /// The primitives, in BVH leaf order.
+    pub prims: Vec<Prim>,
+    centre: [f64; 3],
+    lo: [f64; 3],
+    hi: [f64; 3],
+    pad: f64,
+    /// Lane packets of links, each over consecutive primitives of one leaf.
+    #[cfg(feature = "wide")]
+    packs: Vec<packet::Packet>,
+    /// Per primitive: the packet starting at it, or [`NO_PACK`].
+    #[cfg(feature = "wide")]
+    pack_at: Vec<u32>,
+}
+
+struct BoxOf(Aabb);
+impl obvhs::Boundable for BoxOf {
+    fn aabb(&self) -> Aabb {
+        self.0
+    }
+}
+
+/// The scene-box-clipped form of a ray, ready for obvhs.
+struct Clipped {
+    ray: obvhs::ray::Ray,
+    /// Distance along the unit direction where the obvhs ray starts.
+    s0: f64,
+    /// Length of the user's direction.
+    len: f64,
+}
+
+impl Bvh {
+    /// Build over `prims` (obvhs PLOC builder, medium quality). An empty list gives a BVH that
+    /// every ray misses.
+    pub fn build(prims: Vec<Prim>) -> Self {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        let boxes: Vec<_> = prims.iter().map(|p| p.aabb()).collect();
+        for (a, b) in &boxes {
+            for i in 0..3 {
+                lo[i] = lo[i].min(a[i]);
+                hi[i] = hi[i].max(b[i]);
+            }
+        }
+        if prims.is_empty() {
+            lo = [0.0; 3];
+            hi = [0.0; 3];
+        }
+        let centre: [f64; 3] = std::array::from_fn(|i| 0.5 * (lo[i] + hi[i]));
+        let diag = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
+        let pad = diag.max(f64::MIN_POSITIVE) * 2f64.powi(-16);
+        let to32 = |v: [f64; 3], s: f64| {
+            Vec3A::new(
+                (v[0] - centre[0] + s) as f32,
+                (v[1] - centre[1] + s) as f32,
+                (v[2] - centre[2] + s) as f32,
+            )
+        };
+        let aabbs: Vec<BoxOf> =
+            boxes.iter().map(|(a, b)| BoxOf(Aabb::new(to32(*a, -pad), to32(*b, pad)))).collect();
+        let mut bvh = if prims.is_empty() {
+            Bvh2::default()
+        } else {
+            obvhs::bvh2::builder::build_bvh2(
+                &aabbs,
+                obvhs::BvhBuildParams::medium_build(),
+                &mut std::time::Duration::default(),
+            )
+        };
+        // Reorder primitives into leaf order so leaves index them directly.
+        #[allow(unused_mut)]
+        let mut prims: Vec<Prim> = bvh.primitive_indices.iter().map(|&i| prims[i as usize]).collect();
+        for (k, i) in bvh.primitive_indices.iter_mut().enumerate() {
+            *i = k as u32;
+        }
+        #[cfg(feature = "wide")]
+        let (packs, pack_at) = Self::pack(&bvh, &mut prims);
+        let lo = std::array::from_fn(|i| lo[i] - 2.0 * pad);
+        let hi = std::array::from_fn(|i| hi[i] + 2.0 * pad);
+        Self {
+            bvh,
+            prims,
+            centre,
+            lo,
+            hi,
+            pad,
+            #[cfg(feature = "wide")]
+            packs,
+            #[cfg(feature = "wide")]
+            pack_at,
+        }
+    }
+
+    /// Move each leaf's links to its front (a stable partition, within the leaf's range) and
+    /// gather them into lane packets of up to [`packet::LANES`]; a lone link stays scalar.
+    #[cfg(feature = "wide")]
+    fn pack(bvh: &Bvh2, prims: &mut [Prim]) -> (Vec<packet::Packet>, Vec<u32>) {
+        use crate::scene::PrimKind;
+        let is_link = |p: &Prim| matches!(p.kind, PrimKind::Cylinder | PrimKind::Cone);
+        let mut packs = Vec::new();
+        let mut pack_at = vec![NO_PACK; prims.len()];
+        for node in bvh.nodes.iter().filter(|n| n.is_leaf() && n.prim_count > 0) {
+            let (s, e) = (node.first_index as usize, (node.first_index + node.prim_count) as usize);
+            let leaf = &mut prims[s..e];
+            let (mut links, others): (Vec<Prim>, Vec<Prim>) = leaf.iter().partition(|p| is_link(p));
+            let k = links.len();
+            links.extend(others);
+            leaf.copy_from_slice(&links);
+            let mut j = 0;
+            while k - j >= 2 {
+                let n = (k - j).min(packet::LANES);
+                pack_at[s + j] = packs.len() as u32;
+                packs.push(packet::Packet::new(&leaf[j..j + n]));
+                j += n;
+            }
+        }
+        (packs, pack_at)
+    }
+
+    /// Test the primitives of the leaf `first..first + count` against `ray` (whose unit
+    /// direction and length are `dn`, `len`): links in packets by one lane call each, the
+    /// rest one by one, handing each test to `f`; stops and returns false as soon as `f`
+    /// returns false.
+    #[inline(always)]
+    fn visit(
+        &self,
+        first: usize,
+        count: usize,
+        ray: &Ray<f64>,
+        dn: V3<f64>,
+        len: f64,
+        mut f: impl FnMut(Test) -> bool,
+    ) -> bool {
+        let _ = (ray, dn, len);
+        let end = first + count;
+        let mut j = first;
+        while j < end {
+            #[cfg(feature = "wide")]
+            {
+                let k = self.pack_at[j];
+                if k != NO_PACK {
+                    let pk = &self.packs[k as usize];
+                    let mut go = true;
+                    pk.intersect(&self.prims[j..j + pk.n], ray, dn, len, |i, iv| {
+                        if go {
+                            go = f(Test::Link(j + i, iv));
+                        }
+                    });
+                    if !go {
+                        return false;
+                    }
+                    j += pk.n;
+                    continue;
+                }
+            }
+            if !f(Test::Prim(j)) {
+                return false;
+            }
+            j += 1;
+        }
+        true
+    }
+
+    /// Unit direction and length of a ray's direction, computed as [`Prim::intersect`] does.
+    #[inline(always)]
+    fn unit(ray: &Ray<f64>) -> (V3<f64>, f64) {
+        let len = ray.d.length();
+        (ray.d * (1.0 / len), len)
+    }
+
+    /// Bytes held by the BVH nodes and the primitives.
+    pub fn memory_bytes(&self) -> usize {
+        self.bvh.nodes.len() * std::mem::size_of::<obvhs::bvh2::node::Bvh2Node>()
+            + self.bvh.primitive_indices.len() * 4
+            + self.prims.len() * std::mem::size_of::<Prim>()
+            + self.packet_bytes()
+    }
+
+    #[cfg(feature = "wide")]
+    fn packet_bytes(&self) -> usize {
+        self.packs.len() * packet::Packet::BYTES + self.pack_at.len() * 4
+    }
+
+    #[cfg(not(feature = "wide"))]
+    fn packet_bytes(&self) -> usize {
+        0
+    }
+
+    /// Number of BVH nodes.
+    pub fn node_count(&self) -> usize {
+        self.bvh.nodes.len()
+    }
+
+    /// Clip the ray's line restricted to distances `[s_lo, s_hi]` along the unit direction to
+    /// the scene box; `None` when it misses.
+    fn clip(&self, ray: &Ray<f64>, s_lo: f64, s_hi: f64) -> Option<Clipped> {
+        if self.prims.is_empty() {
+            return None;
+        }
+        let len = ray.d.length();
+        let dn = ray.d * (1.0 / len);
+        let (o, d) = (ray.o.to_array(), dn.to_array());
+        let (mut a, mut b) = (s_lo, s_hi);
+        for i in 0..3 {
+            if d[i] == 0.0 {
+                if o[i] < self.lo[i] || o[i] > self.hi[i] {
+                    return None;
+                }
+            } else {
+                let t1 = (self.lo[i] - o[i]) / d[i];
+                let t2 = (self.hi[i] - o[i]) / d[i];
+                a = a.max(t1.min(t2));
+                b = b.min(t1.max(t2));
+            }
+        }
+        if !(a <= b) {
+            return None;
+        }
+        // Start a little before the box so the entry is at t ≥ 0 despite rounding.
+        let s0 = a - 4.0 * self.pad;
+        let p = ray.o + dn * s0;
+        let org = Vec3A::new(
+            (p.x - self.centre[0]) as f32,
+            (p.y - self.centre[1]) as f32,
+            (p.z - self.centre[2]) as f32,
+        );
+        let dir = Vec3A::new(d[0] as f32, d[1] as f32, d[2] as f32);
+        let tmax = ((b - s0) + 8.0 * self.pad) as f32;
+        Some(Clipped { ray: obvhs::ray::Ray::new(org, dir, 0.0, tmax), s0, len })
+    }
+
+    /// Distances along the unit direction for a ray's `[t_min, t_max]`.
+    fn range(ray: &Ray<f64>) -> (f64, f64) {
+        let len = ray.d.length();
+        (ray.t_min * len, ray.t_max * len)
+    }
+
+    /// The closest surface crossing in `[t_min, t_max]` (entry, or exit when the ray starts
+    /// inside a primitive). The ray must be valid ([`Ray::validate`]).
+    pub fn closest_hit(&self, ray: &Ray<f64>) -> Option<Hit> {
+        let (a, b) = Self::range(ray);
+        let c = self.clip(ray, a, b)?;
+        let mut best: Option<Hit> = None;
+        let mut hit = obvhs::ray::RayHit::none();
+        let margin = 8.0 * self.pad;
+        let (dn, len) = Self::unit(ray);
+        obvhs::fast_stack!(u32, (96, 192), self.bvh.max_depth, stack, {
+            self.bvh.ray_traverse_dynamic(&mut stack, c.ray, &mut hit, |node, r, _| {
+                let first = node.first_index as usize;
+                self.visit(first, node.prim_count as usize, ray, dn, len, |test| {
+                    let (id, got) = match test {
+                        Test::Prim(id) => (id, self.prims[id].first_hit(ray)),
+                        Test::Link(id, iv) => (
+                            id,
+                            iv.first_hit(ray.t_min, ray.t_max).map(|(t, n, u)| (t, n, u, t == iv.t_in)),
+                        ),
+                    };
+                    if let Some((t, n, u, entering)) = got {
+                        if best.map_or(true, |h| t < h.t) {
+                            let link = self.prims[id].link;
+                            best = Some(Hit { t, n, u, prim: id as u32, link, entering });
+                        }
+                    }
+                    true
+                });
+                // Cull by the best hit so far, loosened by the box margin (see the module docs).
+                if let Some(h) = best {
+                    let tb = ((h.t * c.len - c.s0) + margin) as f32;
+                    if tb < r.tmax {
+                        r.tmax = tb;
+                    }
+                }
+                true
+            })
+        });
+        best
+    }
+
+    /// True when any primitive's surface or interior meets the ray within `[t_min, t_max]`
+    /// (shadow and ambient-occlusion rays).
+    pub fn any_hit(&self, ray: &Ray<f64>) -> bool {
+        let (a, b) = Self::range(ray);
+        let Some(c) = self.clip(ray, a, b) else {
+            return false;
+        };
+        let (dn, len) = Self::unit(ray);
+        let mut found = false;
+        let mut hit = obvhs::ray::RayHit::none();
+        obvhs::fast_stack!(u32, (96, 192), self.bvh.max_depth, stack, {
+            self.bvh.ray_traverse_dynamic(&mut stack, c.ray, &mut hit, |node, _, _| {
+                let first = node.first_index as usize;
+                found = !self.visit(first, node.prim_count as usize, ray, dn, len, |test| match test {
+                    Test::Prim(id) => !self.prims[id].meets(ray),
+                    Test::Link(..) => false,
+                });
+                !found
+            })
+        });
+        found
+    }
+
+    /// Every primitive's interval with the ray's whole **line** (not only `[t_min, t_max]`),
+    /// appended to `out` tagged with the primitive index — the input of
+    /// [`tubecast::kernel::csg::union`]. A spline sub-segment contributes one interval per
+    /// connected piece ([`Prim::pieces`]), so the union is exact for bent segments too.
+    pub fn line_intervals(&self, ray: &Ray<f64>, out: &mut Vec<Tagged<f64>>) {
+        let Some(c) = self.clip(ray, f64::NEG_INFINITY, f64::INFINITY) else {
+            return;
+        };
+        let line = Ray::with_range(ray.o, ray.d, f64::NEG_INFINITY, f64::INFINITY);
+        let (dn, len) = Self::unit(&line);
+        let mut hit = obvhs::ray::RayHit::none();
+        obvhs::fast_stack!(u32, (96, 192), self.bvh.max_depth, stack, {
+            self.bvh.ray_traverse_dynamic(&mut stack, c.ray, &mut hit, |node, _, _| {
+                let first = node.first_index as usize;
+                self.visit(first, node.prim_count as usize, &line, dn, len, |test| {
+                    match test {
+                        Test::Prim(id) => {
+                            self.prims[id].pieces(&line, |iv| out.push(Tagged { iv, id: id as u32 }))
+                        }
+                        Test::Link(id, iv) => out.push(Tagged { iv, id: id as u32 }),
+                    }
+                    true
+                })
+            })
+        });
+    }
+}
+
+/// The part of the scene's surface union that a ray meets first: the entry and exit
+/// boundaries of the first component of the union (over the whole line) that overlaps
+/// `[t_min, t_max]`. The entry lies before `t_min` when the ray starts inside.
+pub fn first_component(bvh: &Bvh, ray: &Ray<f64>) -> Option<(tubecast::kernel::csg::Boundary<f64>, tubecast::kernel::csg::Boundary<f64>)> {
+    let mut ivs = Vec::new();
+    bvh.line_intervals(ray, &mut ivs);
+    let mut b = Vec::new();
+    tubecast::kernel::csg::union(&mut ivs, f64::NEG_INFINITY, f64::INFINITY, |x| b.push(x));
+    b.chunks_exact(2)
+        .find(|p| p[1].t >= ray.t_min && p[0].t <= ray.t_max)
+        .map(|p| (p[0], p[1]))
+}

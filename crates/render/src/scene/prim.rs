@@ -1,0 +1,287 @@
+//! Renderer primitives: `f32` geometry relative to an `f64` local origin.
+
+use tubecast::kernel::link::RoundCone;
+use tubecast::kernel::obb::Obb;
+use tubecast::kernel::roots::Solver;
+use tubecast::kernel::sphere::intersect_sphere;
+use tubecast::kernel::spline::QuadTube;
+use tubecast::ray::{Interval, Ray};
+use tubecast::{GeometryError, LinkShape, V3};
+
+/// Which exact shape a primitive is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PrimKind {
+    /// A sphere (centre `a`, radius `ra`).
+    Sphere,
+    /// A cylinder link (equal radii).
+    Cylinder,
+    /// A tangent-cone link (different radii).
+    Cone,
+    /// A quadratic sphere-swept spline sub-segment (control points `a`, `m`, `b`, control
+    /// radii `ra`, `rm`, `rb`): one half of a cubic Hermite segment
+    /// ([`tubecast::kernel::HermiteSegment::split`]).
+    Spline,
+}
+
+/// A link stored for rendering: centres in `f32` relative to the `f64` local origin
+/// (the link's midpoint), radii in `f32`.
+///
+/// Why: a coordinate near `1e6` has an `f32` spacing of `0.0625`, so storing world
+/// coordinates in `f32` moves a thin tube by a good fraction of its radius. Relative to the
+/// midpoint, the stored offsets are at most half the link length, so their rounding error is
+/// `2⁻²⁴` of the link's own size wherever the link is. Rays are moved the same way in `f64`
+/// (to the point of the line nearest the origin) before the `f32` kernel runs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Prim {
+    /// Local origin (world coordinates).
+    pub origin: [f64; 3],
+    /// First centre relative to `origin`.
+    pub a: V3<f32>,
+    /// First radius.
+    pub ra: f32,
+    /// Second centre relative to `origin` (equal to `a` for a sphere).
+    pub b: V3<f32>,
+    /// Second radius.
+    pub rb: f32,
+    /// Middle control point of a spline sub-segment relative to `origin` (links: the
+    /// midpoint of `a` and `b`, unused).
+    pub m: V3<f32>,
+    /// Middle control radius of a spline sub-segment (links: the mean radius, unused). May
+    /// be negative as long as the radius curve is not ([`QuadTube`]).
+    pub rm: f32,
+    /// The shape.
+    pub kind: PrimKind,
+    /// Index of the scene link this primitive models (a spline sub-segment: the link whose
+    /// Hermite segment it is half of).
+    pub link: u32,
+    /// Which half of its link's Hermite segment a spline sub-segment is (0: from the link's
+    /// first node, 1: to its second); 0 for links.
+    pub half: u8,
+}
+
+impl Prim {
+    /// The cheapest exact primitive for a validated link.
+    pub fn from_link(l: &RoundCone<f64>, link: u32) -> Self {
+        let kind = match l.shape() {
+            LinkShape::Sphere => PrimKind::Sphere,
+            LinkShape::Cylinder => PrimKind::Cylinder,
+            LinkShape::Cone => PrimKind::Cone,
+        };
+        if kind == PrimKind::Sphere {
+            // The larger sphere contains the link.
+            let (c, r) = if l.ra >= l.rb { (l.a, l.ra) } else { (l.b, l.rb) };
+            return Self {
+                origin: c.to_array(),
+                a: V3::zero(),
+                ra: r as f32,
+                b: V3::zero(),
+                rb: r as f32,
+                m: V3::zero(),
+                rm: r as f32,
+                kind,
+                link,
+                half: 0,
+            };
+        }
+        let mid = (l.a + l.b) * 0.5;
+        let (a, b): (V3<f32>, V3<f32>) = ((l.a - mid).cast(), (l.b - mid).cast());
+        let (ra, rb) = (l.ra as f32, l.rb as f32);
+        Self {
+            origin: mid.to_array(),
+            a,
+            ra,
+            b,
+            rb,
+            m: (a + b) * 0.5,
+            rm: 0.5 * (ra + rb),
+            kind,
+            link,
+            half: 0,
+        }
+    }
+
+    /// A spline sub-segment primitive from a validated `f64` quadratic segment: control
+    /// points stored in `f32` relative to the curve's midpoint `p(½)` (in `f64`), radii in
+    /// `f32`. Errors when the rounded segment is not a valid `f32` [`QuadTube`] (an extent
+    /// whose square overflows `f32` in the kernel, beyond ≈ 2·10¹⁸; the segments of scenes
+    /// within [`super::MAX_COORD`] stay below it, so this is a guard, not an expected outcome).
+    pub fn from_quad(q: &QuadTube<f64>, link: u32, half: u8) -> Result<Self, GeometryError> {
+        let mid = q.point(0.5);
+        let [b0, b1, b2] = q.b;
+        let c: [V3<f32>; 3] = [(b0 - mid).cast(), (b1 - mid).cast(), (b2 - mid).cast()];
+        let r = q.r.map(|x| x as f32);
+        QuadTube::new(c, r)?;
+        Ok(Self {
+            origin: mid.to_array(),
+            a: c[0],
+            ra: r[0],
+            b: c[2],
+            rb: r[2],
+            m: c[1],
+            rm: r[1],
+            kind: PrimKind::Spline,
+            link,
+            half,
+        })
+    }
+
+    /// The stored spline sub-segment (relative to `origin`); meaningful for
+    /// [`PrimKind::Spline`] (for a link it is the straight segment with the same sweep).
+    #[inline]
+    pub fn quad(&self) -> QuadTube<f32> {
+        QuadTube { b: [self.a, self.m, self.b], r: [self.ra, self.rm, self.rb] }
+    }
+
+    /// Largest control radius (the size of the primitive's cross-section).
+    pub fn max_radius(&self) -> f32 {
+        self.ra.max(self.rb).max(self.rm)
+    }
+
+    /// World-space bounding box `(min, max)` of the stored (rounded) primitive, in `f64`.
+    ///
+    /// For a spline sub-segment this is [`Obb::aabb`] of the stored control data evaluated
+    /// in `f64` (exact extents up to a few `f64` roundings, far below the BVH's padding).
+    pub fn aabb(&self) -> ([f64; 3], [f64; 3]) {
+        let (lo, hi) = if self.kind == PrimKind::Spline {
+            let q = self.quad().cast::<f64>();
+            let b = Obb::aabb(&q);
+            ((b.origin + b.lo).to_array(), (b.origin + b.hi).to_array())
+        } else {
+            let rc = RoundCone { a: self.a, ra: self.ra, b: self.b, rb: self.rb };
+            let (lo, hi) = rc.aabb();
+            (lo.cast::<f64>().to_array(), hi.cast::<f64>().to_array())
+        };
+        (
+            std::array::from_fn(|i| self.origin[i] + lo[i]),
+            std::array::from_fn(|i| self.origin[i] + hi[i]),
+        )
+    }
+
+    /// The interval of the ray's **line** with this primitive, in the ray's own parameter,
+    /// with the hit mask set when it is non-empty and overlaps `[t_min, t_max]`.
+    ///
+    /// The ray is moved in `f64` to the point of its line nearest the local origin and its
+    /// direction normalised, then the `f32` kernel runs ([`RoundCone::intersect`], stable, or
+    /// [`intersect_sphere`]) and `t` is mapped back in `f64`.
+    ///
+    /// A spline sub-segment returns the **hull** `[first entry, last exit]` of its line
+    /// pieces ([`QuadTube::intersect`], [`Solver::Polynomial`]): its entry is the exact first
+    /// entry, but a strongly bent segment may be crossed more than once, so the hull can
+    /// cover gaps; [`Self::pieces`] gives the exact pieces.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray<f64>) -> Interval<f64> {
+        let (rl, tc, len) = self.local_ray(ray);
+        let iv = match self.kind {
+            PrimKind::Sphere => intersect_sphere(&rl, self.a, self.ra, 0.0),
+            PrimKind::Spline => self.quad().intersect_with(&rl, Solver::Polynomial),
+            _ => RoundCone { a: self.a, ra: self.ra, b: self.b, rb: self.rb }.intersect(&rl),
+        };
+        Self::to_world(&iv, tc, len, ray)
+    }
+
+    /// The exact intervals of the ray's **line** with the primitive, one per connected piece
+    /// (a link has one; a bent spline sub-segment up to three), each with the hit mask set
+    /// when it is non-empty and overlaps `[t_min, t_max]`; passed to `emit` in no particular
+    /// order. Spline pieces come from [`QuadTube::intersect_pieces`] ([`Solver::Polynomial`]).
+    #[inline]
+    pub fn pieces(&self, ray: &Ray<f64>, mut emit: impl FnMut(Interval<f64>)) {
+        if self.kind != PrimKind::Spline {
+            let iv = self.intersect(ray);
+            if iv.hit {
+                emit(iv);
+            }
+            return;
+        }
+        let (rl, tc, len) = self.local_ray(ray);
+        for iv in self.quad().intersect_pieces(&rl, Solver::Polynomial) {
+            let iv = Self::to_world(&iv, tc, len, ray);
+            if iv.hit {
+                emit(iv);
+            }
+        }
+    }
+
+    /// The first surface crossing in `[t_min, t_max]`: `(t, normal, u, entering)`. Exact
+    /// for every kind: a spline's hull entry is used when it lies in the range (it is the
+    /// first entry of the pieces), otherwise the pieces are searched (a ray starting inside
+    /// the hull, e.g. a shadow ray leaving a bent segment, may be in a gap between pieces).
+    #[inline]
+    pub fn first_hit(&self, ray: &Ray<f64>) -> Option<(f64, V3<f64>, f64, bool)> {
+        let iv = self.intersect(ray);
+        if !iv.hit {
+            return None;
+        }
+        if self.kind != PrimKind::Spline || (iv.t_in >= ray.t_min && iv.t_in <= ray.t_max) {
+            let (t, n, u) = iv.first_hit(ray.t_min, ray.t_max)?;
+            return Some((t, n, u, t == iv.t_in));
+        }
+        let mut best: Option<(f64, V3<f64>, f64, bool)> = None;
+        self.pieces(ray, |p| {
+            if let Some((t, n, u)) = p.first_hit(ray.t_min, ray.t_max) {
+                if best.map_or(true, |b| t < b.0) {
+                    best = Some((t, n, u, t == p.t_in));
+                }
+            }
+        });
+        best
+    }
+
+    /// True when the primitive's surface or interior meets `[t_min, t_max]` of the ray.
+    #[inline]
+    pub fn meets(&self, ray: &Ray<f64>) -> bool {
+        let iv = self.intersect(ray);
+        if !iv.hit {
+            return false;
+        }
+        if self.kind != PrimKind::Spline || iv.t_in >= ray.t_min {
+            return true;
+        }
+        let mut any = false;
+        self.pieces(ray, |_| any = true);
+        any
+    }
+
+    /// The ray moved in `f64` to the point of its line nearest the local origin, with a unit
+    /// direction, in `f32`; and `(tc, |d|)` to map distances back.
+    #[inline]
+    fn local_ray(&self, ray: &Ray<f64>) -> (Ray<f32>, f64, f64) {
+        let len = ray.d.length();
+        let dn = ray.d * (1.0 / len);
+        let (o, tc) = self.local_origin(ray.o, dn);
+        (Ray::with_range(o, dn.cast::<f32>(), f32::NEG_INFINITY, f32::INFINITY), tc, len)
+    }
+
+    /// The local ray's origin in `f32` and its distance `tc` along the unit direction `dn`
+    /// (`dn = d/|d|` in `f64`) from the world origin `o`: the part of [`Self::local_ray`] that
+    /// depends on the primitive, shared with the lane-packet path so both see the same bits.
+    #[inline(always)]
+    pub(crate) fn local_origin(&self, o: V3<f64>, dn: V3<f64>) -> (V3<f32>, f64) {
+        let org = V3::from(self.origin);
+        let tc = (org - o).dot(dn); // distance along dn to the nearest point
+        ((o + dn * tc - org).cast::<f32>(), tc)
+    }
+
+    /// A local `f32` line interval mapped back to the world ray, with the hit mask clipped
+    /// to the ray's range.
+    #[inline]
+    pub(crate) fn to_world(iv: &Interval<f32>, tc: f64, len: f64, ray: &Ray<f64>) -> Interval<f64> {
+        if !iv.hit {
+            return Interval::miss();
+        }
+        let t_in = (tc + iv.t_in as f64) / len;
+        let t_out = (tc + iv.t_out as f64) / len;
+        let hit = t_in <= t_out && t_out >= ray.t_min && t_in <= ray.t_max;
+        if !hit {
+            return Interval::miss();
+        }
+        Interval {
+            t_in,
+            t_out,
+            n_in: iv.n_in.cast(),
+            n_out: iv.n_out.cast(),
+            u_in: iv.u_in as f64,
+            u_out: iv.u_out as f64,
+            hit,
+        }
+    }
+}

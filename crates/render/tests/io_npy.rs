@@ -1,0 +1,68 @@
+//! .npy reader/writer: round trip, byte order, Fortran order, header versions, malformed.
+
+use tubecast_render::io::npy::{read, write, Array2};
+
+fn arr() -> Array2 {
+    Array2 { rows: 2, cols: 3, data: vec![1.0, -2.5, f64::INFINITY, 1e-300, 0.0, 7.0] }
+}
+
+/// A hand-built .npy (version `ver`) with the given header dict and body.
+fn build(ver: u8, dict: &str, body: &[u8]) -> Vec<u8> {
+    let mut d = b"\x93NUMPY".to_vec();
+    d.push(ver);
+    d.push(0);
+    let h = format!("{dict}\n");
+    if ver == 1 {
+        d.extend_from_slice(&(h.len() as u16).to_le_bytes());
+    } else {
+        d.extend_from_slice(&(h.len() as u32).to_le_bytes());
+    }
+    d.extend_from_slice(h.as_bytes());
+    d.extend_from_slice(body);
+    d
+}
+
+#[test]
+fn round_trip_and_alignment() {
+    let d = write(&arr());
+    assert_eq!((d.len() - 6 * 8) % 64, 0, "data starts 64-byte aligned");
+    assert_eq!(read(&d, "a.npy", Some(3)).unwrap(), arr());
+}
+
+#[test]
+fn big_endian_fortran_and_version_2() {
+    // Fortran order stores columns: (1, 1e-300), (-2.5, 0), (inf, 7).
+    let vals = [1.0, 1e-300, -2.5, 0.0, f64::INFINITY, 7.0];
+    let body: Vec<u8> = vals.iter().flat_map(|v: &f64| v.to_be_bytes()).collect();
+    let d = build(2, "{'descr': '>f8', 'fortran_order': True, 'shape': (2, 3), }", &body);
+    assert_eq!(read(&d, "f.npy", None).unwrap(), arr());
+}
+
+#[test]
+fn malformed_files_are_errors() {
+    let body = vec![0u8; 48];
+    let ok = "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }";
+    let cases: Vec<(Vec<u8>, &str)> = vec![
+        (vec![], "empty file"),
+        (b"PK\x03\x04 not npy".to_vec(), "magic"),
+        (build(9, ok, &body), "version 9"),
+        (build(1, &ok.replace("<f8", "<f4"), &body), "not float64"),
+        (build(1, &ok.replace("False", "Maybe"), &body), "fortran_order"),
+        (build(1, &ok.replace("(2, 3)", "(6,)"), &body), "1-D"),
+        (build(1, &ok.replace("(2, 3)", "(2, x)"), &body), "non-integer"),
+        (build(1, "{'descr': '<f8'}", &body), "no 'fortran_order'"),
+        (build(1, ok, &body[..40]), "data is 40 bytes"),
+        (build(1, ok, &[body.clone(), vec![0; 8]].concat()), "data is 56 bytes"),
+        (build(1, &ok.replace("(2, 3)", "(99999999999, 99999999999)"), &body), "overflows"),
+    ];
+    for (d, what) in cases {
+        let e = read(&d, "bad.npy", None).expect_err(what);
+        assert!(e.to_string().starts_with("bad.npy: "), "{e}");
+        assert!(e.to_string().contains(what), "expected {what:?} in {e}");
+    }
+    let mut short = build(1, ok, &body);
+    short.truncate(20);
+    assert!(read(&short, "bad.npy", None).unwrap_err().to_string().contains("truncated header"));
+    let e = read(&build(1, ok, &body), "bad.npy", Some(6)).unwrap_err();
+    assert!(e.to_string().contains("3 columns, expected 6"), "{e}");
+}
