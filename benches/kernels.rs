@@ -6,8 +6,8 @@
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use tubecast::kernel::sphere::intersect_sphere;
 use tubecast::kernel::cone::{intersect_stump_precomputed, TangentCone, UnitConeTransform};
+use tubecast::kernel::sphere::intersect_sphere;
 use tubecast::real::{WideF32x8, WideF64x4};
 use tubecast::{HanLink, Ray, Real, RoundCone, V3};
 

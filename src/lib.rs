@@ -24,7 +24,6 @@ pub mod ray;
 pub mod real;
 pub mod vec;
 
-
 pub use kernel::{HanLink, LinkShape, RoundCone};
 pub use ray::{Interval, Ray};
 pub use real::{Mask, Real, Scalar};

@@ -35,12 +35,7 @@ impl<T: Real> Ray<T> {
     /// The same rays in every lane: broadcast a scalar ray.
     #[inline(always)]
     pub fn splat(r: Ray<T::Elem>) -> Self {
-        Self {
-            o: V3::splat(r.o),
-            d: V3::splat(r.d),
-            t_min: T::splat(r.t_min),
-            t_max: T::splat(r.t_max),
-        }
+        Self { o: V3::splat(r.o), d: V3::splat(r.d), t_min: T::splat(r.t_min), t_max: T::splat(r.t_max) }
     }
     /// Lanes from a function of the lane index.
     #[inline]
@@ -61,12 +56,7 @@ impl<T: Real> Ray<T> {
     /// Lane `i` as a scalar ray.
     #[inline]
     pub fn lane(&self, i: usize) -> Ray<T::Elem> {
-        Ray {
-            o: self.o.lane(i),
-            d: self.d.lane(i),
-            t_min: self.t_min.lane(i),
-            t_max: self.t_max.lane(i),
-        }
+        Ray { o: self.o.lane(i), d: self.d.lane(i), t_min: self.t_min.lane(i), t_max: self.t_max.lane(i) }
     }
 }
 

@@ -16,9 +16,7 @@ use core::ops::{Add, AddAssign, BitAnd, BitOr, Div, Mul, MulAssign, Neg, Not, Su
 /// A lane mask: the result of comparing two [`Real`] values lane by lane.
 ///
 /// For scalars this is `bool`.
-pub trait Mask:
-    Copy + Debug + BitAnd<Output = Self> + BitOr<Output = Self> + Not<Output = Self> + Send + Sync
-{
+pub trait Mask: Copy + Debug + BitAnd<Output = Self> + BitOr<Output = Self> + Not<Output = Self> + Send + Sync {
     /// A mask with every lane set to `b`.
     fn splat(b: bool) -> Self;
     /// True if any lane is set.
@@ -260,8 +258,8 @@ pub use self::lanes::*;
 #[cfg(feature = "wide")]
 mod lanes {
     use super::{Mask, Real};
-    pub use simba::simd::{WideBoolF32x8, WideBoolF64x4, WideF32x8, WideF64x4};
     use simba::simd::{SimdBool, SimdPartialOrd, SimdValue};
+    pub use simba::simd::{WideBoolF32x8, WideBoolF64x4, WideF32x8, WideF64x4};
 
     macro_rules! impl_wide {
         ($w:ident, $b:ident, $inner:ty, $e:ty, $n:expr) => {

@@ -53,11 +53,7 @@ impl<T: Real> V3<T> {
     /// Cross product.
     #[inline(always)]
     pub fn cross(self, o: Self) -> Self {
-        Self::new(
-            self.y * o.z - self.z * o.y,
-            self.z * o.x - self.x * o.z,
-            self.x * o.y - self.y * o.x,
-        )
+        Self::new(self.y * o.z - self.z * o.y, self.z * o.x - self.x * o.z, self.x * o.y - self.y * o.x)
     }
     /// Squared length.
     #[inline(always)]
@@ -107,11 +103,7 @@ impl<T: Scalar> V3<T> {
     /// Convert the precision (`f32` ↔ `f64`), rounding to nearest.
     #[inline]
     pub fn cast<U: Scalar>(self) -> V3<U> {
-        V3::new(
-            U::from_f64(self.x.to_f64()),
-            U::from_f64(self.y.to_f64()),
-            U::from_f64(self.z.to_f64()),
-        )
+        V3::new(U::from_f64(self.x.to_f64()), U::from_f64(self.y.to_f64()), U::from_f64(self.z.to_f64()))
     }
     /// As an array.
     #[inline]

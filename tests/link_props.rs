@@ -74,7 +74,10 @@ fn cone_term(l: &RoundCone<f64>, eps: f64) -> f64 {
 
 fn no_nan<T: Scalar>(iv: &Interval<T>) -> bool {
     let f = |x: T| !x.to_f64().is_nan();
-    f(iv.t_in) && f(iv.t_out) && f(iv.u_in) && f(iv.u_out)
+    f(iv.t_in)
+        && f(iv.t_out)
+        && f(iv.u_in)
+        && f(iv.u_out)
         && [iv.n_in, iv.n_out].iter().all(|n| f(n.x) && f(n.y) && f(n.z))
 }
 
@@ -106,7 +109,11 @@ fn check_against_oracle(c: &Case, iv: Interval<f64>, eps: f64, what: &str) -> Re
     ] {
         let x = c.ray.at(t);
         let (sd, us) = sweep_dist(&c.link, x);
-        prop_assert!(sd.abs() <= e + e64, "{what}: hit point off the surface by {sd:e} > {:e} (entering {entering})", e + e64);
+        prop_assert!(
+            sd.abs() <= e + e64,
+            "{what}: hit point off the surface by {sd:e} > {:e} (entering {entering})",
+            e + e64
+        );
         // Normal: unit, and equal to the oracle gradient at the same point.
         prop_assert!((n.length() - 1.0).abs() <= 16.0 * eps, "{what}: |n| = {}", n.length());
         // Around the axis the cone's normal turns with the radius of its circle, r(u)·c.
@@ -380,7 +387,8 @@ fn kernels_never_nan_on_valid_extremes() {
         RoundCone::new(V3::new(0.0, 0.0, 0.0), 1e10, V3::new(1e12, 0.0, 0.0), 1e11).unwrap(),
     ];
     let dirs = [V3::new(1.0, 0.0, 0.0), V3::new(-1.0, 0.0, 0.0), V3::new(0.0, 1.0, 0.0), V3::new(1.0, 1e-20, 0.0)];
-    let origins = [V3::new(-5.0, 0.0, 0.0), V3::new(0.0, 0.0, 0.0), V3::new(0.5, 0.0, 0.0), V3::new(1e15 - 5.0, 1e15, 1e15)];
+    let origins =
+        [V3::new(-5.0, 0.0, 0.0), V3::new(0.0, 0.0, 0.0), V3::new(0.5, 0.0, 0.0), V3::new(1e15 - 5.0, 1e15, 1e15)];
     for l in &links {
         for d in dirs {
             for o in origins {

@@ -33,7 +33,8 @@
 mod common_reference;
 use common_reference::*;
 
-const LINK_SCENES: [&str; 6] = ["link_cone", "link_cylinder", "link_steep", "polyline", "bifurcation", "bifurcation_n64"];
+const LINK_SCENES: [&str; 6] =
+    ["link_cone", "link_cylinder", "link_steep", "polyline", "bifurcation", "bifurcation_n64"];
 
 #[test]
 fn stable_links_match_mesh() {
@@ -59,7 +60,15 @@ fn bifurcation_has_three_branches_with_different_radii() {
         for p in [l.a, l.b] {
             let mut radii: Vec<f64> = links
                 .iter()
-                .filter_map(|m| if m.a == p { Some(m.rb) } else if m.b == p { Some(m.ra) } else { None })
+                .filter_map(|m| {
+                    if m.a == p {
+                        Some(m.rb)
+                    } else if m.b == p {
+                        Some(m.ra)
+                    } else {
+                        None
+                    }
+                })
                 .collect();
             radii.sort_by(f64::total_cmp);
             radii.dedup();
@@ -86,7 +95,13 @@ fn sdf_samples_within_mesh_bound() {
             // libigl evaluates point–triangle distances in double on values ≤ |x| + S:
             // ~16 roundings, 32·EPS·(|x| + S).
             let round = 32.0 * EPS * (s.x.length() + fx.radius);
-            assert!(err >= -mu - round && err <= h + round, "{name}: libigl sdf {:e} vs exact {:e} at {:?}", s.mesh, s.exact, s.x);
+            assert!(
+                err >= -mu - round && err <= h + round,
+                "{name}: libigl sdf {:e} vs exact {:e} at {:?}",
+                s.mesh,
+                s.exact,
+                s.x
+            );
             max_err = max_err.max(err);
             let ours = links.iter().map(|l| tubecast::kernel::sdf::round_cone(s.x, l)).fold(f64::INFINITY, f64::min);
             // sdf.rs error: ≈ 20 roundings on values ≤ |x − a| + S (as in link_props).
@@ -129,7 +144,11 @@ fn mesh_error_shrinks_like_inverse_n_squared() {
     assert!(n >= 150, "only {n} hit points");
     let ratio = sc / sf;
     let expect = (coarse.mesh.n as f64 / fine.mesh.n as f64).powi(-2);
-    eprintln!("mean mesh sdf at hits: n=64 {:e}, n=256 {:e}, ratio {ratio} (expect {expect})", sc / n as f64, sf / n as f64);
+    eprintln!(
+        "mean mesh sdf at hits: n=64 {:e}, n=256 {:e}, ratio {ratio} (expect {expect})",
+        sc / n as f64,
+        sf / n as f64
+    );
     assert!(ratio >= expect * 0.72 && ratio <= expect * 1.28, "ratio {ratio}, expected ≈ {expect}");
     // and h itself: same constant C in h = C·r_max/n² at both resolutions (C ≈ 13.3 for
     // manifold's octahedral spheres; the maximum over faces converges to its limit like 1/n²)

@@ -137,7 +137,6 @@ proptest! {
     }
 }
 
-
 /// A counterexample, found by the fuzzer (fuzz/corpus/spline/regression-russig-claim): a
 /// segment whose radius shrinks from 30.464 to 0.049 while its centre moves 30 units, hit by a
 /// ray through the thin end. The whole of [0, 1] is one real interval (bounded by the segment
@@ -167,7 +166,10 @@ fn counterexample_at_segment_ends() {
     assert!((good.u_in - iv[1].0).abs() < 1e-4, "entry at the f minimum: {good:?}");
     for s in [Solver::Itp, Solver::Newton, Solver::Bisection { iters: 40 }] {
         let bad = t.intersect_with(&ray, s);
-        eprintln!("Russig cascade {s:?}: entry u = {} (t = {}), polynomial u = {} (t = {})", bad.u_in, bad.t_in, good.u_in, good.t_in);
+        eprintln!(
+            "Russig cascade {s:?}: entry u = {} (t = {}), polynomial u = {} (t = {})",
+            bad.u_in, bad.t_in, good.u_in, good.t_in
+        );
         // Whatever they return is a point of the closed tube: never before the true entry.
         assert!(bad.hit && bad.t_in >= good.t_in - 1e-12);
     }

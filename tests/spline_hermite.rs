@@ -89,7 +89,13 @@ fn model_error_report() {
         let s = strat.new_tree(&mut runner).unwrap().current();
         let [a, b] = s.split().unwrap();
         let cubic = |t: f64| (s.point(t), s.radius(t));
-        let pair = |t: f64| if t < 0.5 { (a.point(2.0 * t), a.radius(2.0 * t)) } else { (b.point(2.0 * t - 1.0), b.radius(2.0 * t - 1.0)) };
+        let pair = |t: f64| {
+            if t < 0.5 {
+                (a.point(2.0 * t), a.radius(2.0 * t))
+            } else {
+                (b.point(2.0 * t - 1.0), b.radius(2.0 * t - 1.0))
+            }
+        };
         let n = 400;
         let mut h: f64 = 0.0;
         for k in 0..=n {
@@ -108,13 +114,31 @@ fn model_error_report() {
         rel.push(h / (s.p1 - s.p0).length().max(1e-9));
     }
     rel.sort_by(f64::total_cmp);
-    eprintln!("Hermite vs quadratic pair, distance/chord: median {:.4}, p90 {:.4}, max {:.4}", rel[150], rel[270], rel[299]);
+    eprintln!(
+        "Hermite vs quadratic pair, distance/chord: median {:.4}, p90 {:.4}, max {:.4}",
+        rel[150], rel[270], rel[299]
+    );
     // Straight segment: zero model error (same sweep).
-    let s = HermiteSegment::new(v([0.0; 3]), v([1.0, 2.0, 0.0]), 0.3, 0.1, v([1.0, 2.0, 0.0]), v([1.0, 2.0, 0.0]), 0.4, 0.1);
+    let s = HermiteSegment::new(
+        v([0.0; 3]),
+        v([1.0, 2.0, 0.0]),
+        0.3,
+        0.1,
+        v([1.0, 2.0, 0.0]),
+        v([1.0, 2.0, 0.0]),
+        0.4,
+        0.1,
+    );
     let [a, b] = s.split().unwrap();
     for k in 0..=100 {
         let t = k as f64 / 100.0;
-        let pair = |u: f64| if u < 0.5 { (a.point(2.0 * u), a.radius(2.0 * u)) } else { (b.point(2.0 * u - 1.0), b.radius(2.0 * u - 1.0)) };
+        let pair = |u: f64| {
+            if u < 0.5 {
+                (a.point(2.0 * u), a.radius(2.0 * u))
+            } else {
+                (b.point(2.0 * u - 1.0), b.radius(2.0 * u - 1.0))
+            }
+        };
         assert!(curve_dist((s.point(t), s.radius(t)), &pair, 2000) < 2e-3); // sampling step of the straight pair ≤ 2.3/2000 + 0.1/2000
     }
 }
@@ -122,8 +146,26 @@ fn model_error_report() {
 /// Bad input: a Hermite segment whose split has a negative radius is rejected.
 #[test]
 fn negative_sub_radius_rejected() {
-    let s = HermiteSegment::new(v([0.0; 3]), v([1.0, 0.0, 0.0]), 0.1, -3.0, v([1.0, 0.0, 0.0]), v([1.0, 0.0, 0.0]), 0.1, 3.0);
+    let s = HermiteSegment::new(
+        v([0.0; 3]),
+        v([1.0, 0.0, 0.0]),
+        0.1,
+        -3.0,
+        v([1.0, 0.0, 0.0]),
+        v([1.0, 0.0, 0.0]),
+        0.1,
+        3.0,
+    );
     assert_eq!(s.split(), Err(tubecast::GeometryError::NegativeRadius));
-    let s = HermiteSegment::new(v([0.0; 3]), v([f64::NAN, 0.0, 0.0]), 0.1, 0.0, v([1.0, 0.0, 0.0]), v([1.0, 0.0, 0.0]), 0.1, 0.0);
+    let s = HermiteSegment::new(
+        v([0.0; 3]),
+        v([f64::NAN, 0.0, 0.0]),
+        0.1,
+        0.0,
+        v([1.0, 0.0, 0.0]),
+        v([1.0, 0.0, 0.0]),
+        0.1,
+        0.0,
+    );
     assert!(matches!(s.split(), Err(tubecast::GeometryError::NonFinite { .. })));
 }

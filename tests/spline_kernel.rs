@@ -7,8 +7,8 @@
 mod common_spline;
 use common_spline::*;
 use proptest::prelude::*;
-use tubecast::kernel::spline::{quadratic_tube, QuadTube};
 use tubecast::kernel::roots::Solver;
+use tubecast::kernel::spline::{quadratic_tube, QuadTube};
 use tubecast::{GeometryError, Ray, RoundCone, V3};
 
 const SOLVERS: [Solver; 5] =
@@ -273,7 +273,8 @@ proptest! {
 /// Grazing: a ray perpendicular to a straight cylinder of radius 1 at distance 1 ∓ δ.
 #[test]
 fn grazing() {
-    let t = QuadTube::new([V3::new(-1.0, 0.0, 0.0), V3::new(0.0, 0.0, 0.0), V3::new(1.0, 0.0, 0.0)], [1.0, 1.0, 1.0]).unwrap();
+    let t = QuadTube::new([V3::new(-1.0, 0.0, 0.0), V3::new(0.0, 0.0, 0.0), V3::new(1.0, 0.0, 0.0)], [1.0, 1.0, 1.0])
+        .unwrap();
     for delta in [1e-3, 1e-6] {
         for solver in SOLVERS {
             let inside = t.intersect_with(&Ray::new(V3::new(0.3, -5.0, 1.0 - delta), V3::new(0.0, 1.0, 0.0)), solver);
@@ -292,7 +293,9 @@ fn grazing() {
 /// A minimum exactly at the joint t = 0 (entry through the end sphere) is found.
 #[test]
 fn minimum_at_segment_end() {
-    let t = QuadTube::<f64>::new([V3::new(0.0, 0.0, 0.0), V3::new(1.0, 0.5, 0.0), V3::new(2.0, 0.0, 0.0)], [0.5, 0.3, 0.2]).unwrap();
+    let t =
+        QuadTube::<f64>::new([V3::new(0.0, 0.0, 0.0), V3::new(1.0, 0.5, 0.0), V3::new(2.0, 0.0, 0.0)], [0.5, 0.3, 0.2])
+            .unwrap();
     // Along −x towards the start sphere's centre: enters the sphere at x = −0.5.
     for solver in SOLVERS {
         let iv = t.intersect_with(&Ray::new(V3::new(-3.0, 0.0, 0.0), V3::new(1.0, 0.0, 0.0)), solver);
@@ -391,7 +394,14 @@ fn solver_error_report() {
             }
         }
     }
-    let all = [Solver::Bisection { iters: 10 }, Solver::Bisection { iters: 20 }, Solver::Bisection { iters: 40 }, Solver::Itp, Solver::Newton, Solver::Polynomial];
+    let all = [
+        Solver::Bisection { iters: 10 },
+        Solver::Bisection { iters: 20 },
+        Solver::Bisection { iters: 40 },
+        Solver::Itp,
+        Solver::Newton,
+        Solver::Polynomial,
+    ];
     for solver in all {
         let (mut e64, mut e32) = (Vec::new(), Vec::new());
         for (b, r, o, d, ti) in &cases {
@@ -405,7 +415,13 @@ fn solver_error_report() {
         e64.sort_by(f64::total_cmp);
         e32.sort_by(f64::total_cmp);
         let n = e64.len();
-        eprintln!("ERR {solver:?}: f64 max {:.2e} p99 {:.2e} | f32 max {:.2e} p99 {:.2e}", e64[n - 1], e64[n * 99 / 100], e32[n - 1], e32[n * 99 / 100]);
+        eprintln!(
+            "ERR {solver:?}: f64 max {:.2e} p99 {:.2e} | f32 max {:.2e} p99 {:.2e}",
+            e64[n - 1],
+            e64[n * 99 / 100],
+            e32[n - 1],
+            e32[n * 99 / 100]
+        );
         if !matches!(solver, Solver::Bisection { iters: 10 } | Solver::Bisection { iters: 20 }) {
             // S ≤ scale + 2 ≤ 2√3 + 0.6 + 2 for these strategies.
             assert!(e64[n - 1] <= bound(f64::EPSILON, 2.0 * 3f64.sqrt() + 2.6), "{solver:?}");
@@ -421,7 +437,8 @@ fn solver_error_report() {
 #[test]
 fn hull_keeps_pieces_behind_the_origin() {
     let a: f64 = -14.393;
-    let t = QuadTube::new([V3::new(-1.0, 0.0, -14.552), V3::new(a, a, a), V3::new(a, a, a)], [14.393, -14.393, 14.393]).unwrap();
+    let t = QuadTube::new([V3::new(-1.0, 0.0, -14.552), V3::new(a, a, a), V3::new(a, a, a)], [14.393, -14.393, 14.393])
+        .unwrap();
     let ray = Ray::new(V3::new(a, a, a), V3::new(a, a, a));
     let want = t.intersect_with(&ray, Solver::Polynomial);
     assert!(want.hit && want.t_in < -0.9, "{want:?}");
@@ -452,7 +469,10 @@ fn zero_radius_end_on_the_ray() {
     for solver in SOLVERS {
         let iv = t.intersect_with(&Ray::new(V3::from(o), V3::from(d)), solver);
         let tol = if solver == (Solver::Bisection { iters: 10 }) { 1e-3 } else { bound(f64::EPSILON, 6.0) };
-        assert!(iv.hit && (iv.t_in - ti).abs() <= tol && (iv.t_out - to).abs() <= tol, "{solver:?}: {iv:?} vs {ti} {to}");
+        assert!(
+            iv.hit && (iv.t_in - ti).abs() <= tol && (iv.t_out - to).abs() <= tol,
+            "{solver:?}: {iv:?} vs {ti} {to}"
+        );
     }
 }
 
@@ -465,7 +485,11 @@ fn zero_radius_end_on_the_ray() {
 /// agreement between the solvers to 1e-8 in t (each within 4 ulps·|f'|-scale of the root).
 #[test]
 fn thin_long_tube_far_end() {
-    let t = QuadTube::<f64>::new([V3::new(20.046, 20.046, 20.046), V3::new(-0.178, -0.001, -0.001), V3::new(-0.001, -0.001, -0.001)], [0.001, -0.001, 0.001]).unwrap();
+    let t = QuadTube::<f64>::new(
+        [V3::new(20.046, 20.046, 20.046), V3::new(-0.178, -0.001, -0.001), V3::new(-0.001, -0.001, -0.001)],
+        [0.001, -0.001, 0.001],
+    )
+    .unwrap();
     let ray = Ray::new(V3::new(-0.001, -3.073, -0.001), V3::new(-0.001, 2.815, 0.0));
     let want = t.intersect_with(&ray, Solver::Itp);
     for solver in [Solver::Polynomial, Solver::Newton, Solver::Bisection { iters: 40 }] {
@@ -515,7 +539,11 @@ proptest! {
 /// 3e-5 for S ≈ 270) and agrees with ITP's to 1e-6 in t (t·|d| ≈ 2.4e-3·t: 2e-9 in distance).
 #[test]
 fn thin_long_tube_exit() {
-    let t = QuadTube::<f64>::new([V3::new(24.32, -12.544, -12.337), V3::new(-0.049, -0.001, -0.001), V3::new(-0.001, -0.001, -0.001)], [0.001, -0.001, 0.001]).unwrap();
+    let t = QuadTube::<f64>::new(
+        [V3::new(24.32, -12.544, -12.337), V3::new(-0.049, -0.001, -0.001), V3::new(-0.001, -0.001, -0.001)],
+        [0.001, -0.001, 0.001],
+    )
+    .unwrap();
     let ray = Ray::new(V3::new(-0.001, -0.001, -0.001), V3::new(-0.001, -0.002, -0.001));
     let iv = t.intersect(&ray);
     let want = t.intersect_with(&ray, Solver::Itp);
@@ -530,7 +558,11 @@ fn thin_long_tube_exit() {
 /// (16ε·Σ|gᵢ|), so the entry is the tip, t = 0, to rounding (t·|d| ≤ bound(ε, S ≈ 30)).
 #[test]
 fn zero_radius_tip_on_the_ray() {
-    let t = QuadTube::<f64>::new([V3::new(0.042, 0.0, 0.002), V3::new(0.0, -0.001, 7.423), V3::new(0.0, 0.0, 0.0)], [0.0, 0.137, 0.0]).unwrap();
+    let t = QuadTube::<f64>::new(
+        [V3::new(0.042, 0.0, 0.002), V3::new(0.0, -0.001, 7.423), V3::new(0.0, 0.0, 0.0)],
+        [0.0, 0.137, 0.0],
+    )
+    .unwrap();
     let ray = Ray::new(V3::new(0.0, 0.0, 0.0), V3::new(0.0, -0.001, 0.255));
     let iv = t.intersect(&ray);
     assert!(iv.hit && iv.t_in.abs() * 0.255 <= bound(f64::EPSILON, 30.0), "{iv:?}");
@@ -577,7 +609,8 @@ fn pinched_tube_slow_end() {
 #[test]
 fn tiny_tube_sdf_does_not_underflow() {
     let e = 5.468341514667298e-304;
-    let t = QuadTube::<f64>::new([V3::new(e, 1.61856e-319, 0.0), V3::zero(), V3::zero()], [0.0, e, 1.61856e-319]).unwrap();
+    let t =
+        QuadTube::<f64>::new([V3::new(e, 1.61856e-319, 0.0), V3::zero(), V3::zero()], [0.0, e, 1.61856e-319]).unwrap();
     let ray = Ray::new(V3::zero(), V3::new(0.0, 0.0, 9.230442488933376e-151));
     let iv = t.intersect(&ray);
     assert!(iv.hit, "{iv:?}");

@@ -55,7 +55,11 @@ fn check_tight(b: &[[f64; 3]; 3], r: &[f64; 3], bx: &Obb<f64>) -> Result<(), Tes
             let (mut lo, mut hi) = (((kb as f64 - 1.0) / n as f64).max(0.0), ((kb as f64 + 1.0) / n as f64).min(1.0));
             while hi - lo > 1e-12 {
                 let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
-                if sup(m1) < sup(m2) { lo = m1 } else { hi = m2 }
+                if sup(m1) < sup(m2) {
+                    lo = m1
+                } else {
+                    hi = m2
+                }
             }
             let best = sup(lo).max(sup(hi)).max(sup(kb as f64 / n as f64));
             let face = if sign > 0.0 { [bx.hi.x, bx.hi.y, bx.hi.z][k] } else { -[bx.lo.x, bx.lo.y, bx.lo.z][k] };
@@ -68,7 +72,10 @@ fn check_tight(b: &[[f64; 3]; 3], r: &[f64; 3], bx: &Obb<f64>) -> Result<(), Tes
 fn orthonormal(bx: &Obb<f64>) -> bool {
     let a = bx.axes;
     let ok = |x: f64, y: f64| (x - y).abs() < 1e-12;
-    (0..3).all(|i| ok(a[i].length(), 1.0)) && ok(a[0].dot(a[1]), 0.0) && ok(a[0].dot(a[2]), 0.0) && ok(a[1].dot(a[2]), 0.0)
+    (0..3).all(|i| ok(a[i].length(), 1.0))
+        && ok(a[0].dot(a[1]), 0.0)
+        && ok(a[0].dot(a[2]), 0.0)
+        && ok(a[1].dot(a[2]), 0.0)
         && ok(a[0].cross(a[1]).dot(a[2]), 1.0)
 }
 
@@ -112,6 +119,9 @@ fn volume_ratio_report() {
     ratios.sort_by(f64::total_cmp);
     let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
     let med = ratios[ratios.len() / 2];
-    eprintln!("OBB/AABB volume: mean {mean:.3}, median {med:.3}, p10 {:.3}, p90 {:.3}, max {:.3}", ratios[200], ratios[1800], ratios[1999]);
+    eprintln!(
+        "OBB/AABB volume: mean {mean:.3}, median {med:.3}, p10 {:.3}, p90 {:.3}, max {:.3}",
+        ratios[200], ratios[1800], ratios[1999]
+    );
     assert!(ratios.iter().all(|x| x.is_finite()));
 }

@@ -147,13 +147,7 @@ impl<T: Real> UnitConeTransform<T> {
 /// Returns `(t0, t1, q0, q1, nonempty)`: `q0`/`q1` say whether each end is a root of `F` (a
 /// crossing of the curved surface) rather than an end of `[lo, hi]` (a cap plane).
 #[inline(always)]
-pub(crate) fn quadric_in_slab<T: Real>(
-    a: T,
-    b: T,
-    c: T,
-    lo: T,
-    hi: T,
-) -> (T, T, T::Mask, T::Mask, T::Mask) {
+pub(crate) fn quadric_in_slab<T: Real>(a: T, b: T, c: T, lo: T, hi: T) -> (T, T, T::Mask, T::Mask, T::Mask) {
     quadric_in_slab_disc(a, b, c, b * b - a * c, lo, hi)
 }
 
@@ -260,11 +254,7 @@ pub fn intersect_stump_precomputed<T: Real>(
 
 /// The stump's line interval, no range test (see [`crate::kernel::sphere`]).
 #[inline(always)]
-pub(crate) fn stump_line<T: Real>(
-    ray: &Ray<T>,
-    cone: &TangentCone<T>,
-    m: &UnitConeTransform<T>,
-) -> Interval<T> {
+pub(crate) fn stump_line<T: Real>(ray: &Ray<T>, cone: &TangentCone<T>, m: &UnitConeTransform<T>) -> Interval<T> {
     let o = m.point(ray.o);
     let d = m.dir(ray.d);
     let a = d.x * d.x + d.y * d.y - d.z * d.z;
@@ -298,13 +288,7 @@ pub(crate) fn stump_line<T: Real>(
 /// Ray–cone-stump interval computing the tangent cone and its transform per call
 /// (Han Table 1 option c).
 #[inline(always)]
-pub fn intersect_stump_on_the_fly<T: Real>(
-    ray: &Ray<T>,
-    c1: V3<T>,
-    r1: T,
-    c2: V3<T>,
-    r2: T,
-) -> Interval<T> {
+pub fn intersect_stump_on_the_fly<T: Real>(ray: &Ray<T>, c1: V3<T>, r1: T, c2: V3<T>, r2: T) -> Interval<T> {
     let cone = TangentCone::new(c1, r1, c2, r2);
     let m = UnitConeTransform::new(&cone);
     intersect_stump_precomputed(ray, &cone, &m)
@@ -313,12 +297,7 @@ pub fn intersect_stump_on_the_fly<T: Real>(
 /// Textbook ray–cylinder interval (radius `r`, axis `c1 → c2`, flat caps), as renderers use for
 /// equal-radius links: formed directly from `o − c1` without re-centring.
 #[inline(always)]
-pub fn intersect_cylinder_naive<T: Real>(
-    ray: &Ray<T>,
-    c1: V3<T>,
-    c2: V3<T>,
-    r: T,
-) -> Interval<T> {
+pub fn intersect_cylinder_naive<T: Real>(ray: &Ray<T>, c1: V3<T>, c2: V3<T>, r: T) -> Interval<T> {
     let iv = cylinder_line(ray, c1, c2, r);
     iv.masked(in_range(ray, iv.t_in, iv.t_out))
 }

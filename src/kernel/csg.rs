@@ -40,12 +40,7 @@ pub struct Boundary<T: Scalar> {
 ///
 /// Sorts `intervals` in place by entry (no allocation). Intervals that touch (`entry ==
 /// previous exit`) merge: a surface shared exactly by two primitives is interior.
-pub fn union<T: Scalar>(
-    intervals: &mut [Tagged<T>],
-    t_min: T,
-    t_max: T,
-    mut emit: impl FnMut(Boundary<T>),
-) -> usize {
+pub fn union<T: Scalar>(intervals: &mut [Tagged<T>], t_min: T, t_max: T, mut emit: impl FnMut(Boundary<T>)) -> usize {
     intervals.sort_unstable_by(|a, b| {
         // Misses (t_in = +∞) sort last; NaN cannot occur for kernel output.
         let ka = if a.iv.hit { a.iv.t_in } else { T::infinity() };

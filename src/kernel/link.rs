@@ -161,11 +161,11 @@ impl<T: Real> RoundCone<T> {
         let len_s = T::select(len.gt(zero), len, one);
         let s = (dr / len_s).clamp(-one, one); // sin θ
         let c2 = (one - s) * (one + s); // cos² θ, without 1 − s² cancellation
-        // s carries a relative rounding error ≈ 2ε, so c² = (1 − s)(1 + s) is known to ≈ 4ε
-        // absolutely. Below 64ε it is mostly noise, and so is the stump (its radius is e/c with
-        // e = r·c² buried under e's rounding error ε·r). There the stump is dropped: with one
-        // sphere almost inside the other, the hull exceeds the union of the two spheres by at
-        // most L − |ra − rb| = L·(1 − |s|) ≤ L·c² < 64ε·L, within the kernel's error bound.
+                                        // s carries a relative rounding error ≈ 2ε, so c² = (1 − s)(1 + s) is known to ≈ 4ε
+                                        // absolutely. Below 64ε it is mostly noise, and so is the stump (its radius is e/c with
+                                        // e = r·c² buried under e's rounding error ε·r). There the stump is dropped: with one
+                                        // sphere almost inside the other, the hull exceeds the union of the two spheres by at
+                                        // most L − |ra − rb| = L·(1 − |s|) ≤ L·c² < 64ε·L, within the kernel's error bound.
         let has_cone = dr.abs().lt(len) & c2.ge(T::epsilon() * T::cst(64.0));
         let axis = v * (one / len_s);
         let s = T::select(has_cone, s, zero);
@@ -392,4 +392,3 @@ pub fn link_parameter<T: Scalar>(link: &RoundCone<T>, x: V3<T>, n: V3<T>) -> T {
     }
     (num / den).clamp(T::zero(), T::one())
 }
-

@@ -97,10 +97,7 @@ pub fn derivative<T: Real, const N: usize, const M: usize>(c: &[T; N]) -> [T; M]
 
 /// Product of two polynomials (`K = N + M − 1`).
 #[inline(always)]
-pub fn poly_mul<T: Real, const N: usize, const M: usize, const K: usize>(
-    a: &[T; N],
-    b: &[T; M],
-) -> [T; K] {
+pub fn poly_mul<T: Real, const N: usize, const M: usize, const K: usize>(a: &[T; N], b: &[T; M]) -> [T; K] {
     debug_assert!(K + 1 == N + M);
     let mut c = [T::zero(); K];
     for i in 0..N {
@@ -230,16 +227,7 @@ pub fn itp<T: Real>(f: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask
 /// `tol` or the bracket is at most `tol` wide.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub fn newton<T: Real>(
-    f: impl Fn(T) -> T,
-    df: impl Fn(T) -> T,
-    a: T,
-    b: T,
-    fa: T,
-    fb: T,
-    valid: T::Mask,
-    tol: T,
-) -> T {
+pub fn newton<T: Real>(f: impl Fn(T) -> T, df: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask, tol: T) -> T {
     let zero = T::zero();
     let half = T::cst(0.5);
     let one = T::one();

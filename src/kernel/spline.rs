@@ -453,7 +453,10 @@ impl<T: Real> QuadTube<T> {
     }
     /// Lane `i` as a scalar segment.
     pub fn lane(&self, i: usize) -> QuadTube<T::Elem> {
-        QuadTube { b: [self.b[0].lane(i), self.b[1].lane(i), self.b[2].lane(i)], r: [self.r[0].lane(i), self.r[1].lane(i), self.r[2].lane(i)] }
+        QuadTube {
+            b: [self.b[0].lane(i), self.b[1].lane(i), self.b[2].lane(i)],
+            r: [self.r[0].lane(i), self.r[1].lane(i), self.r[2].lane(i)],
+        }
     }
     /// Centre-line point `p(t)`.
     #[inline(always)]
@@ -548,11 +551,7 @@ impl<T: Real> QuadTube<T> {
             let rj = real[j - 1] & real[j];
             cut[j] = !rj | horner(&rs.g, z[j]).le(T::zero());
         }
-        let ppoly = if solver == Solver::Polynomial {
-            Some(rs.p_breakpoints())
-        } else {
-            None
-        };
+        let ppoly = if solver == Solver::Polynomial { Some(rs.p_breakpoints()) } else { None };
         let mut out = [Interval::miss(); 5];
         for k in 0..5 {
             // Process piece k only where it starts a merged real interval.

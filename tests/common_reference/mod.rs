@@ -10,7 +10,6 @@ use tubecast::kernel::roots::Solver;
 use tubecast::kernel::spline::QuadTube;
 use tubecast::{HanLink, Ray, RoundCone, V3};
 
-
 pub type V = V3<f64>;
 
 /// What libigl and the numpy generator say about one ray.
@@ -186,15 +185,7 @@ pub fn load(name: &str) -> Fixture {
         .map(|s| SdfRec { x: v3(&s["x"]), exact: f(s, "exact"), mesh: f(s, "mesh") })
         .collect();
     let bs = &j["bounding_sphere"];
-    Fixture {
-        name: name.to_string(),
-        scene,
-        mesh,
-        centre: v3(&bs["centre"]),
-        radius: f(bs, "radius"),
-        rays,
-        sdf,
-    }
+    Fixture { name: name.to_string(), scene, mesh, centre: v3(&bs["centre"]), radius: f(bs, "radius"), rays, sdf }
 }
 
 /// Which of our kernels to run on a scene.
@@ -372,7 +363,10 @@ pub fn check_scene(name: &str, k: Kernel) -> Stats {
                             // (3) libigl's SDF at the exact point must be in the mesh band; at our
                             // point it then lies within perr of it (1-Lipschitz).
                             if !(-mu..=h_in).contains(&e.mesh_sdf) {
-                                fails.push(format!("{tag}: libigl sdf at exact hit {:e} outside [-{mu:e}, {h_in:e}]", e.mesh_sdf));
+                                fails.push(format!(
+                                    "{tag}: libigl sdf at exact hit {:e} outside [-{mu:e}, {h_in:e}]",
+                                    e.mesh_sdf
+                                ));
                             }
                             if perr <= h_in / 16.0 {
                                 st.sdf_at_hit_checked += 1;
@@ -406,10 +400,8 @@ pub fn check_scene(name: &str, k: Kernel) -> Stats {
         if b.entering {
             let reach = depth_reach(rad, cos_a, h_in + e_k);
             match (r.mesh_t, reach) {
-                (None, Some(s)) => fails.push(format!(
-                    "{tag}: mesh misses a non-grazing ray (cos α {cos_a:e}, reach {s:e}, t_K {})",
-                    b.t
-                )),
+                (None, Some(s)) => fails
+                    .push(format!("{tag}: mesh misses a non-grazing ray (cos α {cos_a:e}, reach {s:e}, t_K {})", b.t)),
                 (None, None) => st.mesh_band_misses += 1,
                 (Some(tm), reach) => {
                     let dt = (tm - b.t) * dl;
@@ -472,8 +464,12 @@ pub fn check_scene(name: &str, k: Kernel) -> Stats {
     // Not vacuous: most rays were compared, and both outcomes occur.
     assert!(st.compared_exact >= fx.rays.len() / 3, "{name}: only {} rays compared", st.compared_exact);
     assert!(st.mesh_compared >= fx.rays.len() / 3, "{name}: only {} mesh comparisons", st.mesh_compared);
-    assert!(st.inside_shallow * 10 <= st.inside_rays, "{name}: {} of {} inside rays skim the wall", st.inside_shallow, st.inside_rays);
+    assert!(
+        st.inside_shallow * 10 <= st.inside_rays,
+        "{name}: {} of {} inside rays skim the wall",
+        st.inside_shallow,
+        st.inside_rays
+    );
     assert!(st.sdf_at_hit_checked * 10 >= st.compared_exact * 9, "{name}: SDF-at-hit check skipped too often");
     st
 }
-

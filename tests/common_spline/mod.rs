@@ -35,7 +35,13 @@ pub fn sphere_hit(o: [f64; 3], d: [f64; 3], c: [f64; 3], r: f64) -> Option<(f64,
 /// `n` uniform samples and golden-section refinement (to 1e-13 in t) around the best
 /// sample. Returns `(t_in, u_in, t_out, u_out, depth)` where `depth` is the largest
 /// `√(disc)/|d|` (half chord) seen: how robust the hit is.
-pub fn oracle(b: &[[f64; 3]; 3], r: &[f64; 3], o: [f64; 3], d: [f64; 3], n: usize) -> Option<(f64, f64, f64, f64, f64)> {
+pub fn oracle(
+    b: &[[f64; 3]; 3],
+    r: &[f64; 3],
+    o: [f64; 3],
+    d: [f64; 3],
+    n: usize,
+) -> Option<(f64, f64, f64, f64, f64)> {
     let ent = |t: f64| {
         let (p, rr) = eval(b, r, t);
         sphere_hit(o, d, p, rr).map(|x| x.0).unwrap_or(f64::INFINITY)
@@ -144,7 +150,12 @@ pub fn scale(b: &[[f64; 3]; 3], r: &[f64; 3]) -> f64 {
 /// defaults are small so that `cargo test` stays fast.
 pub fn config(default: u32) -> ProptestConfig {
     let cases = std::env::var("PROPTEST_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(default);
-    ProptestConfig { cases, max_global_rejects: 20 * cases + 1024, failure_persistence: None, ..ProptestConfig::default() }
+    ProptestConfig {
+        cases,
+        max_global_rejects: 20 * cases + 1024,
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    }
 }
 
 /// Measure (in t) of the set of spheres the ray's line meets, by `n` uniform samples.

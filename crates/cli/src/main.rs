@@ -3,11 +3,11 @@
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use tubecast::{Ray, V3};
 use tubecast_render::accel::{first_component, Bvh};
 use tubecast_render::io::{self, npy::Array2, Polyline};
 use tubecast_render::render::{self, Camera, ColorBy, Options, Shading};
 use tubecast_render::scene::{generate, Scene};
-use tubecast::{Ray, V3};
 
 #[derive(Parser)]
 #[command(name = "tubecast", version, about = "Exact ray–tube intersection and a minimal tube renderer")]
@@ -242,7 +242,12 @@ fn cmd_info(input: &Path, radius: f64, splines: bool) -> Res<()> {
     }
     println!("bounds min {:?}", st.bounds.0);
     println!("bounds max {:?}", st.bounds.1);
-    println!("memory     scene {} B, primitives + BVH {} B ({} BVH nodes)", node_bytes, bvh.memory_bytes(), bvh.node_count());
+    println!(
+        "memory     scene {} B, primitives + BVH {} B ({} BVH nodes)",
+        node_bytes,
+        bvh.memory_bytes(),
+        bvh.node_count()
+    );
     Ok(())
 }
 
@@ -290,7 +295,15 @@ fn write_lines(out: &Path, lines: &[Polyline]) -> Res<()> {
     io::write_bytes(out, &bytes).map_err(|e| e.to_string())
 }
 
-fn cmd_generate(kind: Kind, out: &Path, count: Option<usize>, segments: Option<usize>, n: usize, base: &[PathBuf], seed: u64) -> Res<()> {
+fn cmd_generate(
+    kind: Kind,
+    out: &Path,
+    count: Option<usize>,
+    segments: Option<usize>,
+    n: usize,
+    base: &[PathBuf],
+    seed: u64,
+) -> Res<()> {
     const MAX: usize = 50_000_000;
     let check = |c: usize, s: usize| {
         if c == 0 || s == 0 || c.saturating_mul(s) > MAX {
@@ -341,12 +354,44 @@ fn cmd_generate(kind: Kind, out: &Path, count: Option<usize>, segments: Option<u
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let r = match cli.cmd {
-        Cmd::Render { input, out, width, height, radius, color, opacity, ao, shadows, eye, look_at, up, fov, splines, quiet } => {
-            cmd_render(RenderArgs { input, out, width, height, radius, color, opacity, ao, shadows, eye, look_at, up, fov, splines, quiet })
-        }
+        Cmd::Render {
+            input,
+            out,
+            width,
+            height,
+            radius,
+            color,
+            opacity,
+            ao,
+            shadows,
+            eye,
+            look_at,
+            up,
+            fov,
+            splines,
+            quiet,
+        } => cmd_render(RenderArgs {
+            input,
+            out,
+            width,
+            height,
+            radius,
+            color,
+            opacity,
+            ao,
+            shadows,
+            eye,
+            look_at,
+            up,
+            fov,
+            splines,
+            quiet,
+        }),
         Cmd::Info { input, radius, splines } => cmd_info(&input, radius, splines),
         Cmd::Intersect { input, rays, out, radius } => cmd_intersect(&input, &rays, &out, radius),
-        Cmd::Generate { kind, out, count, segments, n, base, seed } => cmd_generate(kind, &out, count, segments, n, &base, seed),
+        Cmd::Generate { kind, out, count, segments, n, base, seed } => {
+            cmd_generate(kind, &out, count, segments, n, &base, seed)
+        }
     };
     match r {
         Ok(()) => ExitCode::SUCCESS,

@@ -49,7 +49,13 @@ fn generate_info_intersect_render() {
     assert_eq!(h.row(1), &[f64::INFINITY, f64::INFINITY, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0]);
 
     let png = tmp("h.png");
-    let st = bin().arg("render").arg(&swc).args(["--width", "24", "--height", "16", "--quiet", "-o"]).arg(&png).status().unwrap();
+    let st = bin()
+        .arg("render")
+        .arg(&swc)
+        .args(["--width", "24", "--height", "16", "--quiet", "-o"])
+        .arg(&png)
+        .status()
+        .unwrap();
     assert!(st.success());
     let bytes = std::fs::read(&png).unwrap();
     assert_eq!(&bytes[1..4], b"PNG");
@@ -67,7 +73,14 @@ fn errors_exit_nonzero_with_a_message() {
         vec!["info".into(), tmp("missing.swc").display().to_string()],
         vec!["info".into(), tmp("x.xyz").display().to_string()],
         vec!["generate".into(), "neurons".into(), "-o".into(), tmp("n.tck").display().to_string()],
-        vec!["generate".into(), "bundle".into(), "--count".into(), "0".into(), "-o".into(), tmp("b.tck").display().to_string()],
+        vec![
+            "generate".into(),
+            "bundle".into(),
+            "--count".into(),
+            "0".into(),
+            "-o".into(),
+            tmp("b.tck").display().to_string(),
+        ],
     ];
     for args in cases {
         let out = bin().args(&args).output().unwrap();

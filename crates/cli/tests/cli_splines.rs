@@ -30,12 +30,18 @@ fn info_counts_splines_and_render_draws_them() {
     let out = bin().arg("info").arg(&tck).arg("--splines").output().unwrap();
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
-    for l in ["links      40", "cylinders  0", "cones      0", "spheres    0", "splines    40 (80 quadratic sub-segments)"] {
+    for l in
+        ["links      40", "cylinders  0", "cones      0", "spheres    0", "splines    40 (80 quadratic sub-segments)"]
+    {
         assert!(text.contains(l), "{l:?} in {text}");
     }
 
     let mut pngs = Vec::new();
-    for (name, extra) in [("links.png", vec![]), ("splines.png", vec!["--splines"]), ("glass.png", vec!["--splines", "--opacity", "0.4"])] {
+    for (name, extra) in [
+        ("links.png", vec![]),
+        ("splines.png", vec!["--splines"]),
+        ("glass.png", vec!["--splines", "--opacity", "0.4"]),
+    ] {
         let png = tmp(name);
         let st = bin()
             .arg("render")
@@ -62,7 +68,13 @@ fn huge_spline_scenes_render_and_bad_options_are_errors() {
     let obj = tmp("big.obj");
     std::fs::write(&obj, "v 0 0 0\nv 1e9 0 0\nv 2e9 1e9 0\nl 1 2 3\n").unwrap();
     let png = tmp("big.png");
-    let st = bin().arg("render").arg(&obj).args(["--splines", "--width", "8", "--height", "8", "--quiet", "-o"]).arg(&png).status().unwrap();
+    let st = bin()
+        .arg("render")
+        .arg(&obj)
+        .args(["--splines", "--width", "8", "--height", "8", "--quiet", "-o"])
+        .arg(&png)
+        .status()
+        .unwrap();
     assert!(st.success());
     assert_eq!(png_size(&std::fs::read(&png).unwrap()), (8, 8));
     let out = bin().arg("render").arg(&obj).args(["--splines", "--opacity", "0", "-o"]).arg(&png).output().unwrap();

@@ -9,11 +9,11 @@
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::hint::black_box;
-use tubecast_render::accel::Bvh;
+use tubecast::{Ray, RoundCone, V3};
 use tubecast_lab::peer::embree::{Device, Scene as EScene};
+use tubecast_render::accel::Bvh;
 use tubecast_render::render::Camera;
 use tubecast_render::scene::{generate, Scene};
-use tubecast::{Ray, RoundCone, V3};
 
 fn peers(c: &mut Criterion) {
     let lines = generate::furball(128, 78, 1);
@@ -27,7 +27,8 @@ fn peers(c: &mut Criterion) {
             (r.o.cast::<f32>().to_array(), r.d.cast::<f32>().to_array())
         })
         .collect();
-    let rays64: Vec<Ray<f64>> = rays32.iter().map(|(o, d)| Ray::new(V3::from(*o).cast(), V3::from(*d).cast())).collect();
+    let rays64: Vec<Ray<f64>> =
+        rays32.iter().map(|(o, d)| Ray::new(V3::from(*o).cast(), V3::from(*d).cast())).collect();
     let links32: Vec<RoundCone<f32>> = (0..scene.links.len()).map(|k| scene.link(k).cast()).collect();
     let dev = Device::new().expect("embree device");
     let emb = EScene::round_linear(&dev, &links32).expect("embree scene");
@@ -68,7 +69,9 @@ fn peers(c: &mut Criterion) {
     let ours: Vec<Ray<f32>> = rays.iter().map(|(o, d)| Ray::new(V3::from(*o), V3::from(*d))).collect();
     let mut g = c.benchmark_group("peers_one_link");
     g.throughput(Throughput::Elements(rays.len() as u64));
-    g.bench_function("tubecast_stable_f32", |b| b.iter(|| ours.iter().filter(|r| l.intersect(black_box(r)).hit).count()));
+    g.bench_function("tubecast_stable_f32", |b| {
+        b.iter(|| ours.iter().filter(|r| l.intersect(black_box(r)).hit).count())
+    });
     g.bench_function("embree_round_linear_one_segment", |b| b.iter(|| one.count_hits(black_box(&rays))));
     g.finish();
 }

@@ -72,7 +72,12 @@ fn accuracy_report_writes_files_and_sane_numbers() {
     // Lanes compute the same IEEE operations as scalars: identical accuracy columns.
     let cells = accuracy_cells(&md);
     let find = |m: &str| cells.iter().find(|r| r[0] == m).unwrap()[1..].to_vec();
-    for (a, b) in [("stable/f32", "stable/f32x8"), ("faithful-precomputed/f64", "faithful-precomputed/f64x4"), ("polynomial/f32", "polynomial/f32x8"), ("bisection10/f64", "bisection10/f64x4")] {
+    for (a, b) in [
+        ("stable/f32", "stable/f32x8"),
+        ("faithful-precomputed/f64", "faithful-precomputed/f64x4"),
+        ("polynomial/f32", "polynomial/f32x8"),
+        ("bisection10/f64", "bisection10/f64x4"),
+    ] {
         assert_eq!(find(a), find(b), "{a} vs {b}");
     }
     // More bisection steps never make the f64 spline less accurate by more than rounding:

@@ -22,9 +22,12 @@ fn stability_report_shows_where_methods_break() {
     }
     let md = std::fs::read_to_string(&files.markdown).unwrap();
     let rows = table_rows(&md, "region");
-    let c = |n: &str| col(&md, "region", n) ;
-    let (c_fm, c_fh, c_bound, c_max, c_hit) = (c("false miss"), c("false hit"), c("max err/bound"), c("max err (r)"), c("must-hit"));
-    let get = |region: &str, m: &str| rows.iter().find(|r| r[0] == region && r[1] == m).unwrap_or_else(|| panic!("{region} {m}")).clone();
+    let c = |n: &str| col(&md, "region", n);
+    let (c_fm, c_fh, c_bound, c_max, c_hit) =
+        (c("false miss"), c("false hit"), c("max err/bound"), c("max err (r)"), c("must-hit"));
+    let get = |region: &str, m: &str| {
+        rows.iter().find(|r| r[0] == region && r[1] == m).unwrap_or_else(|| panic!("{region} {m}")).clone()
+    };
     let regions: Vec<String> = rows.iter().map(|r| r[0].clone()).fold(Vec::new(), |mut v, r| {
         if !v.contains(&r) {
             v.push(r)

@@ -18,7 +18,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     std::fs::create_dir_all(&dir)?;
     let spline_prims = scene.spline_primitives()?;
     let st = scene.stats_of(&spline_prims);
-    println!("{} links → {} spline segments, {} links kept", st.links, st.splines, st.cylinders + st.cones + st.spheres);
+    println!(
+        "{} links → {} spline segments, {} links kept",
+        st.links,
+        st.splines,
+        st.cylinders + st.cones + st.spheres
+    );
     // One camera for both models (fitted to the spline model's bounds, which contain the
     // curves' bulges).
     let cam = Camera::fit(st.bounds.0, st.bounds.1, 40.0, 480, 360)?;

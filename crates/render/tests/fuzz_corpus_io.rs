@@ -52,4 +52,3 @@ fn obj_corpus() {
 fn npy_corpus() {
     replay("npy", npy::check);
 }
-

@@ -20,7 +20,8 @@ fn round_trip_is_exact() {
 
 #[test]
 fn unsorted_rows_several_roots_comments() {
-    let text = "# header\n\n3 3 2 0 0 0.5 2  # child before parent\n2 3 1 0 0 0.5 1\n1 1 0 0 0 1 -1\n10 2 5 5 5 0.2 -1\n";
+    let text =
+        "# header\n\n3 3 2 0 0 0.5 2  # child before parent\n2 3 1 0 0 0.5 1\n1 1 0 0 0 1 -1\n10 2 5 5 5 0.2 -1\n";
     let n = read(text.as_bytes(), "t.swc").unwrap();
     assert_eq!(n.len(), 4);
     assert_eq!(n[0], SwcNode { id: 3, kind: 3, pos: [2.0, 0.0, 0.0], radius: 0.5, parent: 2 });

@@ -2,11 +2,11 @@
 //! kernels, BVH queries against brute force (including grazing rays), and transparent
 //! compositing of two crossing tubes against an analytic expectation (no interior surfaces).
 
+use tubecast::{Ray, V3};
 use tubecast_render::accel::Bvh;
 use tubecast_render::io::Polyline;
 use tubecast_render::render::{render, Camera, ColorBy, Options, Shading};
 use tubecast_render::scene::{generate, Scene};
-use tubecast::{Ray, V3};
 
 fn flat(color: ColorBy, opacity: f64) -> Options {
     Options { color, shading: Shading::Flat, opacity, ..Options::default() }

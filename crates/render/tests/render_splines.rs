@@ -2,13 +2,13 @@
 //! spline-kernel calls on independently built Hermite segments, a straight polyline against
 //! its link rendering, and transparent compositing without interior surfaces at joints.
 
-use tubecast_render::accel::{first_component, Bvh};
-use tubecast_render::io::Polyline;
 use tubecast::kernel::csg::{union, Tagged};
 use tubecast::kernel::HermiteSegment;
+use tubecast::{Ray, V3};
+use tubecast_render::accel::{first_component, Bvh};
+use tubecast_render::io::Polyline;
 use tubecast_render::render::{render, Camera, ColorBy, Image, Options, Shading};
 use tubecast_render::scene::{generate, PrimKind, Scene};
-use tubecast::{Ray, V3};
 
 fn flat(color: ColorBy, opacity: f64) -> Options {
     Options { color, shading: Shading::Flat, opacity, ..Options::default() }
@@ -299,7 +299,10 @@ fn far_from_origin_spline_render_keeps_its_depth() {
     let render_at = |off: V3<f64>| {
         let lines: Vec<Polyline> = generate::helix(24)
             .into_iter()
-            .map(|l| Polyline { points: l.points.iter().map(|p| (V3::from(*p) + off).to_array()).collect(), radii: l.radii })
+            .map(|l| Polyline {
+                points: l.points.iter().map(|p| (V3::from(*p) + off).to_array()).collect(),
+                radii: l.radii,
+            })
             .collect();
         let scene = Scene::from_polylines(&lines, 1.0, "helix").unwrap();
         let bvh = Bvh::build(scene.spline_primitives().unwrap());

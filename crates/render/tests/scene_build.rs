@@ -1,16 +1,19 @@
 //! Scene building: primitive selection, and far-from-origin precision of the local-origin
 //! f32 primitives versus a naive absolute-f32 path.
 
+use tubecast::{Ray, RoundCone, V3};
 use tubecast_render::accel::Bvh;
 use tubecast_render::io::Polyline;
 use tubecast_render::scene::{PrimKind, Scene};
-use tubecast::{Ray, RoundCone, V3};
 
 #[test]
 fn primitive_selection_models_no_more_than_needed() {
     let lines = vec![
         // equal radii → cylinder; varying → cone; second sphere inside the first → sphere.
-        Polyline { points: vec![[0.0; 3], [2.0, 0.0, 0.0], [4.0, 0.0, 0.0], [4.1, 0.0, 0.0]], radii: vec![0.5, 0.5, 0.3, 0.1] },
+        Polyline {
+            points: vec![[0.0; 3], [2.0, 0.0, 0.0], [4.0, 0.0, 0.0], [4.1, 0.0, 0.0]],
+            radii: vec![0.5, 0.5, 0.3, 0.1],
+        },
         // a single point → an isolated sphere.
         Polyline { points: vec![[9.0, 9.0, 9.0]], radii: vec![] },
     ];
@@ -60,7 +63,12 @@ fn far_from_origin_keeps_precision_and_naive_f32_does_not() {
         let c = V3::new(c[0], c[1], c[2]);
         let a = c - V3::new(0.5, 0.0, 0.0);
         let b = c + V3::new(0.5, 0.0, 0.0);
-        let s = Scene::from_polylines(&[Polyline { points: vec![a.to_array(), b.to_array()], radii: vec![r, r] }], 1.0, "t").unwrap();
+        let s = Scene::from_polylines(
+            &[Polyline { points: vec![a.to_array(), b.to_array()], radii: vec![r, r] }],
+            1.0,
+            "t",
+        )
+        .unwrap();
         let bvh = Bvh::build(s.primitives());
         for &z in &zs {
             let o = c + V3::new(0.1, -5.0, z);

@@ -1,12 +1,12 @@
 //! The spline model of a scene: chains, finite-difference derivatives (checked against hand
 //! computations), the radius-derivative limit, the straight-run rule, counts and errors.
 
-use tubecast_render::io::swc::SwcNode;
-use tubecast_render::io::Polyline;
 use tubecast::kernel::HermiteSegment;
 use tubecast::kernel::QuadTube;
-use tubecast_render::scene::{Chain, Node, Prim, PrimKind, Scene};
 use tubecast::{GeometryError, V3};
+use tubecast_render::io::swc::SwcNode;
+use tubecast_render::io::Polyline;
+use tubecast_render::scene::{Chain, Node, Prim, PrimKind, Scene};
 
 fn line(points: &[[f64; 3]], radii: &[f64]) -> Polyline {
     Polyline { points: points.to_vec(), radii: radii.to_vec() }
@@ -17,7 +17,13 @@ fn chains_split_at_bifurcations_and_loops_are_closed() {
     // Trunk 1–2–3–4, branches 4–5–6–7 and 4–8–9–10, and an isolated node 11.
     let parents = [-1, 1, 2, 3, 4, 5, 6, 4, 8, 9, -1];
     let rows: Vec<SwcNode> = (0..11)
-        .map(|i| SwcNode { id: i + 1, kind: 3, pos: [i as f64, (i * i) as f64 * 0.1, 0.0], radius: 0.3, parent: parents[i as usize] })
+        .map(|i| SwcNode {
+            id: i + 1,
+            kind: 3,
+            pos: [i as f64, (i * i) as f64 * 0.1, 0.0],
+            radius: 0.3,
+            parent: parents[i as usize],
+        })
         .collect();
     let s = Scene::from_swc(&rows, "y").unwrap();
     let c = s.chains();
@@ -26,7 +32,11 @@ fn chains_split_at_bifurcations_and_loops_are_closed() {
     // 8:[8,9], then the isolated node's zero-length link 9:[10,10] (in no chain).
     assert_eq!(
         c,
-        vec![open(vec![0, 1, 2, 3], vec![0, 1, 2]), open(vec![3, 4, 5, 6], vec![3, 4, 5]), open(vec![3, 7, 8, 9], vec![6, 7, 8])]
+        vec![
+            open(vec![0, 1, 2, 3], vec![0, 1, 2]),
+            open(vec![3, 4, 5, 6], vec![3, 4, 5]),
+            open(vec![3, 7, 8, 9], vec![6, 7, 8])
+        ]
     );
     // The isolated node stays a sphere primitive; the 9 chain links are curved splines.
     let st = s.stats_of(&s.spline_primitives().unwrap());
@@ -34,7 +44,10 @@ fn chains_split_at_bifurcations_and_loops_are_closed() {
 
     // A closed loop (a square): one periodic chain.
     let node = |x: f64, y: f64| Node { pos: [x, y, 0.0], radius: 0.2, kind: 0 };
-    let sq = Scene { nodes: vec![node(0.0, 0.0), node(1.0, 0.0), node(1.0, 1.0), node(0.0, 1.0)], links: vec![[0, 1], [1, 2], [2, 3], [3, 0]] };
+    let sq = Scene {
+        nodes: vec![node(0.0, 0.0), node(1.0, 0.0), node(1.0, 1.0), node(0.0, 1.0)],
+        links: vec![[0, 1], [1, 2], [2, 3], [3, 0]],
+    };
     assert_eq!(sq.chains(), vec![Chain { nodes: vec![0, 1, 2, 3, 0], links: vec![0, 1, 2, 3], closed: true }]);
     // Central differences wrap around: at node 0, (p₁ − p₃)/2 = (½, −½, 0), on both sides.
     let segs = sq.spline_segments();
@@ -130,10 +143,14 @@ fn link_model_counts_match_and_f32_storage_is_guarded() {
     assert!(s.primitives().iter().all(|p| p.kind != PrimKind::Spline));
 
     // Far and huge (extents 1e9, radius 1): a valid f32 spline model, every box finite.
-    let big = Scene::from_polylines(&[line(&[[0.0; 3], [1e9, 0.0, 0.0], [2e9, 1e9, 0.0]], &[1.0; 3])], 1.0, "big").unwrap();
+    let big =
+        Scene::from_polylines(&[line(&[[0.0; 3], [1e9, 0.0, 0.0], [2e9, 1e9, 0.0]], &[1.0; 3])], 1.0, "big").unwrap();
     let prims = big.spline_primitives().unwrap();
     assert_eq!(prims.len(), 4);
-    assert!(prims.iter().all(|p| { let (a, b) = p.aabb(); a.iter().chain(&b).all(|v| v.is_finite()) }));
+    assert!(prims.iter().all(|p| {
+        let (a, b) = p.aabb();
+        a.iter().chain(&b).all(|v| v.is_finite())
+    }));
     // The f32 guard: a segment whose extent squared overflows f32 (1e20) is an error, not a
     // primitive that would make the kernel return NaN.
     let q = QuadTube::new([V3::zero(), V3::new(1e20, 1e20, 0.0), V3::new(2e20, 0.0, 0.0)], [1.0; 3]).unwrap();

@@ -245,7 +245,13 @@ impl Scene {
     /// # Safety
     /// `geom` must be a valid geometry handle; `T` must be a plain-old-data type of exactly
     /// `stride` bytes matching `format`.
-    unsafe fn buffer<T: Copy>(geom: RtcGeometry, kind: u32, slot: u32, format: u32, data: &[T]) -> Result<(), EmbreeError> {
+    unsafe fn buffer<T: Copy>(
+        geom: RtcGeometry,
+        kind: u32,
+        slot: u32,
+        format: u32,
+        data: &[T],
+    ) -> Result<(), EmbreeError> {
         let stride = std::mem::size_of::<T>();
         // SAFETY: guaranteed by the caller (valid handle, matching format and stride).
         let p = unsafe { rtcSetNewGeometryBuffer(geom, kind, slot, format, stride, data.len()) } as *mut T;

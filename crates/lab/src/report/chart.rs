@@ -188,15 +188,21 @@ pub fn write_svg(path: &Path, chart: &Chart, size: (u32, u32)) -> Result<(), Rep
     };
     for s in &chart.series {
         let c = color(s.color);
-        let pts: Vec<(f64, f64, &Pt)> =
-            s.points.iter().filter(|p| p.x.is_finite() && !p.y.is_nan()).map(|p| (xmap(p.x), lg(p.y, floor), p)).collect();
+        let pts: Vec<(f64, f64, &Pt)> = s
+            .points
+            .iter()
+            .filter(|p| p.x.is_finite() && !p.y.is_nan())
+            .map(|p| (xmap(p.x), lg(p.y, floor), p))
+            .collect();
         if s.line && pts.len() > 1 {
             cc.draw_series(LineSeries::new(pts.iter().map(|&(x, y, _)| (x, y)), c.stroke_width(2))).map_err(&e)?;
         }
         for &(x, y, p) in &pts {
             match p.marker {
                 Marker::Dot => cc.draw_series(std::iter::once(Circle::new((x, y), 4, c.filled()))).map_err(&e)?,
-                Marker::Cross => cc.draw_series(std::iter::once(Cross::new((x, y), 4, c.stroke_width(2)))).map_err(&e)?,
+                Marker::Cross => {
+                    cc.draw_series(std::iter::once(Cross::new((x, y), 4, c.stroke_width(2)))).map_err(&e)?
+                }
                 Marker::Triangle => {
                     cc.draw_series(std::iter::once(TriangleMarker::new((x, y), 5, c.filled()))).map_err(&e)?
                 }

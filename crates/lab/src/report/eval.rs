@@ -2,11 +2,11 @@
 //! how their results are scored against the oracle.
 
 use super::oracle::{link_bound, LinkCase, LinkTruth, SplineCase, SplineTruth};
+use std::hint::black_box;
+use std::time::{Duration, Instant};
 use tubecast::kernel::roots::Solver;
 use tubecast::kernel::spline::QuadTube;
 use tubecast::{HanLink, Interval, Ray, Real, RoundCone, Scalar};
-use std::hint::black_box;
-use std::time::{Duration, Instant};
 
 /// Lane type of a method.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -211,8 +211,16 @@ pub fn table_rows(markdown: &str, first_header: &str) -> Vec<Vec<String>> {
 pub(crate) fn machine() -> String {
     let cpu = std::fs::read_to_string("/proc/cpuinfo")
         .ok()
-        .and_then(|s| s.lines().find(|l| l.starts_with("model name")).map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string()))
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string())
+        })
         .unwrap_or_else(|| "unknown CPU".into());
-    let simd = if cfg!(target_feature = "avx2") { "AVX2 enabled at compile time" } else { "no AVX2 at compile time (wide lanes use SSE halves)" };
+    let simd = if cfg!(target_feature = "avx2") {
+        "AVX2 enabled at compile time"
+    } else {
+        "no AVX2 at compile time (wide lanes use SSE halves)"
+    };
     format!("{cpu}; {simd}; {} logical CPUs", std::thread::available_parallelism().map_or(1, |n| n.get()))
 }

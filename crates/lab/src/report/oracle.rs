@@ -10,8 +10,8 @@
 //! (after `tests/common_spline`) samples the quadratic sweep densely and refines by golden section.
 
 use tubecast::kernel::spline::QuadTube;
-use tubecast_render::scene::generate::Rng;
 use tubecast::{Ray, RoundCone, V3};
+use tubecast_render::scene::generate::Rng;
 
 type V = V3<f64>;
 

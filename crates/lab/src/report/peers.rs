@@ -6,10 +6,10 @@ use super::oracle::{self, LinkCase, LinkRegion};
 use super::runs::link_cases;
 use super::{ensure_dir, fmt_num, machine, progress, write_text, ReportError, ReportFiles, ReportOptions};
 use crate::peer::embree::{Device, Scene as EScene};
-use tubecast::{Ray, RoundCone, V3};
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
+use tubecast::{Ray, RoundCone, V3};
 
 /// First crossing in `[0, ∞)` of a line interval.
 fn first(t_in: f64, t_out: f64) -> Option<f64> {
@@ -109,7 +109,8 @@ pub fn run_peers(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
     let scene = Scene::from_polylines(&lines, 0.05, "furball").map_err(|e| ReportError::Render(e.to_string()))?;
     let st = scene.stats();
     let side = opts.image.max(16);
-    let cam = Camera::fit(st.bounds.0, st.bounds.1, 35.0, side, side).map_err(|e| ReportError::Render(e.to_string()))?;
+    let cam =
+        Camera::fit(st.bounds.0, st.bounds.1, 35.0, side, side).map_err(|e| ReportError::Render(e.to_string()))?;
     let rays32: Vec<([f32; 3], [f32; 3])> = (0..side * side)
         .map(|i| {
             let r = cam.ray(i % side, i / side);
@@ -239,7 +240,12 @@ pub fn run_peers(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
         points: rows
             .iter()
             .enumerate()
-            .map(|(i, (_, a))| Pt { x: i as f64 + off, y: percentile(&a.err[k], 0.99), marker: Marker::Dot, text: None })
+            .map(|(i, (_, a))| Pt {
+                x: i as f64 + off,
+                y: percentile(&a.err[k], 0.99),
+                marker: Marker::Dot,
+                text: None,
+            })
             .collect(),
         line: false,
     };

@@ -107,14 +107,20 @@ pub fn run_accuracy(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Rep
     let lm = eval::link_methods();
     let sm = eval::spline_methods();
     let bar = progress(opts, (lcases.len() + scases.len() + lm.len() + sm.len()) as u64, "accuracy");
-    let ltruth: Vec<LinkTruth> = lcases.iter().map(|c| {
-        bar.inc(1);
-        oracle::link_truth(c)
-    }).collect();
-    let struth: Vec<SplineTruth> = scases.iter().map(|c| {
-        bar.inc(1);
-        oracle::spline_truth(c)
-    }).collect();
+    let ltruth: Vec<LinkTruth> = lcases
+        .iter()
+        .map(|c| {
+            bar.inc(1);
+            oracle::link_truth(c)
+        })
+        .collect();
+    let struth: Vec<SplineTruth> = scases
+        .iter()
+        .map(|c| {
+            bar.inc(1);
+            oracle::spline_truth(c)
+        })
+        .collect();
     let mut lrows = Vec::new();
     for m in &lm {
         let run = eval::run_link(*m, &lcases, budget(opts));
@@ -196,7 +202,13 @@ fn error_only_chart(title: &str, rows: &[(String, usize, f64, &Score)]) -> Chart
     }
 }
 
-fn stability_chart(title: &str, y_desc: &str, regions: &[&str], rows: &[(String, usize, usize, f64)], floor: f64) -> Chart {
+fn stability_chart(
+    title: &str,
+    y_desc: &str,
+    regions: &[&str],
+    rows: &[(String, usize, usize, f64)],
+    floor: f64,
+) -> Chart {
     // rows: (method, colour, region index, value); methods offset within a region's slot.
     let mut methods: Vec<(String, usize)> = Vec::new();
     for (m, c, _, _) in rows {
@@ -306,10 +318,46 @@ pub fn run_stability(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Re
             .collect()
     };
     let files = [
-        ("stability_links.svg", stability_chart("Links: wrong hit/miss answers per region", "false misses + false hits, fraction (log)", &lregions, &lrows(&fail), 1e-4)),
-        ("stability_links_error.svg", stability_chart("Links: p99 t error per region", "p99 t error in radii (log)", &lregions, &lrows(&|s: &Score| s.p99_r()), 1e-18)),
-        ("stability_splines.svg", stability_chart("Splines: wrong hit/miss answers per region", "false misses + false hits, fraction (log)", &sregions, &srows(&fail), 1e-4)),
-        ("stability_splines_error.svg", stability_chart("Splines: p99 t error per region", "p99 t error in radii (log)", &sregions, &srows(&|s: &Score| s.p99_r()), 1e-18)),
+        (
+            "stability_links.svg",
+            stability_chart(
+                "Links: wrong hit/miss answers per region",
+                "false misses + false hits, fraction (log)",
+                &lregions,
+                &lrows(&fail),
+                1e-4,
+            ),
+        ),
+        (
+            "stability_links_error.svg",
+            stability_chart(
+                "Links: p99 t error per region",
+                "p99 t error in radii (log)",
+                &lregions,
+                &lrows(&|s: &Score| s.p99_r()),
+                1e-18,
+            ),
+        ),
+        (
+            "stability_splines.svg",
+            stability_chart(
+                "Splines: wrong hit/miss answers per region",
+                "false misses + false hits, fraction (log)",
+                &sregions,
+                &srows(&fail),
+                1e-4,
+            ),
+        ),
+        (
+            "stability_splines_error.svg",
+            stability_chart(
+                "Splines: p99 t error per region",
+                "p99 t error in radii (log)",
+                &sregions,
+                &srows(&|s: &Score| s.p99_r()),
+                1e-18,
+            ),
+        ),
     ];
     let mut charts = Vec::new();
     for (name, c) in files {
@@ -420,7 +468,10 @@ pub fn run_speed(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
     let line = |label: &str, c: usize, f: &dyn Fn(&SpeedRow) -> f64| Series {
         label: label.into(),
         color: c,
-        points: rows.iter().map(|r| Pt { x: r.segments as f64, y: f(r) * 1e3, marker: Marker::Dot, text: None }).collect(),
+        points: rows
+            .iter()
+            .map(|r| Pt { x: r.segments as f64, y: f(r) * 1e3, marker: Marker::Dot, text: None })
+            .collect(),
         line: true,
     };
     let c = Chart {

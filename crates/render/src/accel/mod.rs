@@ -22,13 +22,13 @@
 //! every query returns what the scalar path returns. Spheres and spline sub-segments stay on
 //! the scalar path.
 
-use tubecast::kernel::csg::Tagged;
-use tubecast::ray::Ray;
 use crate::scene::Prim;
-use tubecast::V3;
 use glam::Vec3A;
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::Bvh2;
+use tubecast::kernel::csg::Tagged;
+use tubecast::ray::Ray;
+use tubecast::V3;
 
 #[cfg(feature = "wide")]
 mod packet;
@@ -118,14 +118,9 @@ impl Bvh {
         let diag = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
         let pad = diag.max(f64::MIN_POSITIVE) * 2f64.powi(-16);
         let to32 = |v: [f64; 3], s: f64| {
-            Vec3A::new(
-                (v[0] - centre[0] + s) as f32,
-                (v[1] - centre[1] + s) as f32,
-                (v[2] - centre[2] + s) as f32,
-            )
+            Vec3A::new((v[0] - centre[0] + s) as f32, (v[1] - centre[1] + s) as f32, (v[2] - centre[2] + s) as f32)
         };
-        let aabbs: Vec<BoxOf> =
-            boxes.iter().map(|(a, b)| BoxOf(Aabb::new(to32(*a, -pad), to32(*b, pad)))).collect();
+        let aabbs: Vec<BoxOf> = boxes.iter().map(|(a, b)| BoxOf(Aabb::new(to32(*a, -pad), to32(*b, pad)))).collect();
         let mut bvh = if prims.is_empty() {
             Bvh2::default()
         } else {
@@ -287,11 +282,8 @@ impl Bvh {
         // Start a little before the box so the entry is at t ≥ 0 despite rounding.
         let s0 = a - 4.0 * self.pad;
         let p = ray.o + dn * s0;
-        let org = Vec3A::new(
-            (p.x - self.centre[0]) as f32,
-            (p.y - self.centre[1]) as f32,
-            (p.z - self.centre[2]) as f32,
-        );
+        let org =
+            Vec3A::new((p.x - self.centre[0]) as f32, (p.y - self.centre[1]) as f32, (p.z - self.centre[2]) as f32);
         let dir = Vec3A::new(d[0] as f32, d[1] as f32, d[2] as f32);
         let tmax = ((b - s0) + 8.0 * self.pad) as f32;
         Some(Clipped { ray: obvhs::ray::Ray::new(org, dir, 0.0, tmax), s0, len })
@@ -318,10 +310,9 @@ impl Bvh {
                 self.visit(first, node.prim_count as usize, ray, dn, len, |test| {
                     let (id, got) = match test {
                         Test::Prim(id) => (id, self.prims[id].first_hit(ray)),
-                        Test::Link(id, iv) => (
-                            id,
-                            iv.first_hit(ray.t_min, ray.t_max).map(|(t, n, u)| (t, n, u, t == iv.t_in)),
-                        ),
+                        Test::Link(id, iv) => {
+                            (id, iv.first_hit(ray.t_min, ray.t_max).map(|(t, n, u)| (t, n, u, t == iv.t_in)))
+                        }
                     };
                     if let Some((t, n, u, entering)) = got {
                         if best.map_or(true, |h| t < h.t) {
@@ -383,9 +374,7 @@ impl Bvh {
                 let first = node.first_index as usize;
                 self.visit(first, node.prim_count as usize, &line, dn, len, |test| {
                     match test {
-                        Test::Prim(id) => {
-                            self.prims[id].pieces(&line, |iv| out.push(Tagged { iv, id: id as u32 }))
-                        }
+                        Test::Prim(id) => self.prims[id].pieces(&line, |iv| out.push(Tagged { iv, id: id as u32 })),
                         Test::Link(id, iv) => out.push(Tagged { iv, id: id as u32 }),
                     }
                     true
@@ -398,12 +387,13 @@ impl Bvh {
 /// The part of the scene's surface union that a ray meets first: the entry and exit
 /// boundaries of the first component of the union (over the whole line) that overlaps
 /// `[t_min, t_max]`. The entry lies before `t_min` when the ray starts inside.
-pub fn first_component(bvh: &Bvh, ray: &Ray<f64>) -> Option<(tubecast::kernel::csg::Boundary<f64>, tubecast::kernel::csg::Boundary<f64>)> {
+pub fn first_component(
+    bvh: &Bvh,
+    ray: &Ray<f64>,
+) -> Option<(tubecast::kernel::csg::Boundary<f64>, tubecast::kernel::csg::Boundary<f64>)> {
     let mut ivs = Vec::new();
     bvh.line_intervals(ray, &mut ivs);
     let mut b = Vec::new();
     tubecast::kernel::csg::union(&mut ivs, f64::NEG_INFINITY, f64::INFINITY, |x| b.push(x));
-    b.chunks_exact(2)
-        .find(|p| p[1].t >= ray.t_min && p[0].t <= ray.t_max)
-        .map(|p| (p[0], p[1]))
+    b.chunks_exact(2).find(|p| p[1].t >= ray.t_min && p[0].t <= ray.t_max).map(|p| (p[0], p[1]))
 }

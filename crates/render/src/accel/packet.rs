@@ -12,9 +12,9 @@
 //! bit-identical to [`Prim::intersect`]. Unused lanes repeat the packet's first link (a valid
 //! link, so no lane computes on garbage) and their results are never read.
 
+use crate::scene::Prim;
 use tubecast::ray::{Interval, Ray};
 use tubecast::real::{Mask, Real, WideF32x8};
-use crate::scene::Prim;
 use tubecast::{RoundCone, V3};
 
 /// Links per packet.

@@ -74,8 +74,7 @@ pub fn read_bytes(path: &Path) -> Result<Vec<u8>, IoError> {
 
 /// Write a whole file, mapping OS errors to [`IoError`].
 pub fn write_bytes(path: &Path, data: &[u8]) -> Result<(), IoError> {
-    std::fs::write(path, data)
-        .map_err(|e| IoError::file(&path.display().to_string(), format!("cannot write: {e}")))
+    std::fs::write(path, data).map_err(|e| IoError::file(&path.display().to_string(), format!("cannot write: {e}")))
 }
 
 /// A streamline / polyline: points in order, with an optional radius per point.

@@ -51,7 +51,11 @@ pub fn read(data: &[u8], name: &str, cols: Option<usize>) -> Result<Array2, IoEr
         v => return Err(IoError::offset(name, 6, format!("unsupported format version {v}"))),
     };
     if data.len() - start < hlen {
-        return Err(IoError::offset(name, start as u64, format!("truncated header: {hlen} bytes announced, {} left", data.len() - start)));
+        return Err(IoError::offset(
+            name,
+            start as u64,
+            format!("truncated header: {hlen} bytes announced, {} left", data.len() - start),
+        ));
     }
     let h = std::str::from_utf8(&data[start..start + hlen])
         .map_err(|_| IoError::offset(name, start as u64, "header is not text"))?;

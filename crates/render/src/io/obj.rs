@@ -27,7 +27,11 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<Polyline>, IoError> {
             Some("v") => {
                 let toks: Vec<&str> = it.collect();
                 if !(3..=4).contains(&toks.len()) {
-                    return Err(IoError::line(name, ln, format!("v needs 3 coordinates and an optional radius, found {} values", toks.len())));
+                    return Err(IoError::line(
+                        name,
+                        ln,
+                        format!("v needs 3 coordinates and an optional radius, found {} values", toks.len()),
+                    ));
                 }
                 let mut v = [0.0; 4];
                 for (k, t) in toks.iter().enumerate() {
@@ -48,11 +52,16 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<Polyline>, IoError> {
                 let mut idx = Vec::new();
                 for t in it {
                     let s = t.split('/').next().unwrap_or("");
-                    let k: i64 = s
-                        .parse()
-                        .map_err(|_| IoError::line(name, ln, format!("index {t:?} is not an integer")))?;
+                    let k: i64 =
+                        s.parse().map_err(|_| IoError::line(name, ln, format!("index {t:?} is not an integer")))?;
                     let n = verts.len() as i64;
-                    let j = if k > 0 { k - 1 } else if k < 0 { n + k } else { -1 };
+                    let j = if k > 0 {
+                        k - 1
+                    } else if k < 0 {
+                        n + k
+                    } else {
+                        -1
+                    };
                     if k == 0 || j < 0 || j >= n {
                         return Err(IoError::line(
                             name,

@@ -38,9 +38,8 @@ fn parse_int(tok: &str) -> Option<i64> {
 /// non-finite value, a duplicate id, a parent that does not exist, a node that is its own
 /// ancestor (cycle), or a file without nodes.
 pub fn read(data: &[u8], name: &str) -> Result<Vec<SwcNode>, IoError> {
-    let text = std::str::from_utf8(data).map_err(|e| {
-        IoError::offset(name, e.valid_up_to() as u64, "not UTF-8 text (is this an SWC file?)")
-    })?;
+    let text = std::str::from_utf8(data)
+        .map_err(|e| IoError::offset(name, e.valid_up_to() as u64, "not UTF-8 text (is this an SWC file?)"))?;
     let mut nodes = Vec::new();
     let mut lines = Vec::new(); // line number of each node
     let mut index: HashMap<i64, usize> = HashMap::new();
@@ -58,8 +57,8 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<SwcNode>, IoError> {
                 format!("expected 7 columns (id type x y z radius parent), found {}", cols.len()),
             ));
         }
-        let id = parse_int(cols[0])
-            .ok_or_else(|| IoError::line(name, ln, format!("id {:?} is not an integer", cols[0])))?;
+        let id =
+            parse_int(cols[0]).ok_or_else(|| IoError::line(name, ln, format!("id {:?} is not an integer", cols[0])))?;
         if id < 0 {
             return Err(IoError::line(name, ln, format!("id {id} is negative")));
         }
@@ -69,16 +68,14 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<SwcNode>, IoError> {
             as i32;
         let mut v = [0.0; 4];
         for (k, what) in ["x", "y", "z", "radius"].iter().enumerate() {
-            v[k] = parse_finite(cols[2 + k]).ok_or_else(|| {
-                IoError::line(name, ln, format!("{what} {:?} is not a finite number", cols[2 + k]))
-            })?;
+            v[k] = parse_finite(cols[2 + k])
+                .ok_or_else(|| IoError::line(name, ln, format!("{what} {:?} is not a finite number", cols[2 + k])))?;
         }
         if v[3] < 0.0 {
             return Err(IoError::line(name, ln, format!("radius {} is negative", v[3])));
         }
-        let parent = parse_int(cols[6]).ok_or_else(|| {
-            IoError::line(name, ln, format!("parent {:?} is not an integer", cols[6]))
-        })?;
+        let parent = parse_int(cols[6])
+            .ok_or_else(|| IoError::line(name, ln, format!("parent {:?} is not an integer", cols[6])))?;
         if parent < -1 {
             return Err(IoError::line(name, ln, format!("parent {parent} (roots use -1)")));
         }
@@ -86,11 +83,7 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<SwcNode>, IoError> {
             return Err(IoError::line(name, ln, format!("node {id} is its own parent")));
         }
         if let Some(&prev) = index.get(&id) {
-            return Err(IoError::line(
-                name,
-                ln,
-                format!("duplicate id {id} (first on line {})", lines[prev]),
-            ));
+            return Err(IoError::line(name, ln, format!("duplicate id {id} (first on line {})", lines[prev])));
         }
         index.insert(id, nodes.len());
         lines.push(ln);

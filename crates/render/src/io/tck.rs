@@ -32,9 +32,8 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<Polyline>, IoError> {
         };
         let raw = &data[pos..pos + nl];
         pos += nl + 1;
-        let line = std::str::from_utf8(raw)
-            .map_err(|_| IoError::line(name, line_no, "header line is not UTF-8 text"))?
-            .trim();
+        let line =
+            std::str::from_utf8(raw).map_err(|_| IoError::line(name, line_no, "header line is not UTF-8 text"))?.trim();
         if line == "END" {
             header_end = pos;
             break;
@@ -70,9 +69,9 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<Polyline>, IoError> {
                         format!("file entry {value:?} is not \". OFFSET\" (separate data files are unsupported)"),
                     ));
                 };
-                let off = off.parse::<usize>().map_err(|_| {
-                    IoError::line(name, line_no, format!("file offset {off:?} is not a byte count"))
-                })?;
+                let off = off
+                    .parse::<usize>()
+                    .map_err(|_| IoError::line(name, line_no, format!("file offset {off:?} is not a byte count")))?;
                 offset = Some(off);
             }
             _ => {} // count, total_count, timestamp, step_size, ...: informational.
@@ -124,11 +123,7 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<Polyline>, IoError> {
             }
             break;
         } else {
-            return Err(IoError::offset(
-                name,
-                at,
-                format!("point ({x}, {y}, {z}) mixes finite and NaN/Inf values"),
-            ));
+            return Err(IoError::offset(name, at, format!("point ({x}, {y}, {z}) mixes finite and NaN/Inf values")));
         }
     }
     Ok(out)
@@ -139,17 +134,11 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<Polyline>, IoError> {
 pub fn write(lines: &[Polyline], big: bool) -> Vec<u8> {
     let dt = if big { "Float32BE" } else { "Float32LE" };
     // Fixed-width offset field so the header length does not depend on the offset itself.
-    let head = |off: usize| {
-        format!(
-            "mrtrix tracks\ndatatype: {dt}\ncount: {:010}\nfile: . {off:08}\nEND\n",
-            lines.len()
-        )
-    };
+    let head =
+        |off: usize| format!("mrtrix tracks\ndatatype: {dt}\ncount: {:010}\nfile: . {off:08}\nEND\n", lines.len());
     let off = head(0).len();
     let mut out = head(off).into_bytes();
-    let put = |v: f32, out: &mut Vec<u8>| {
-        out.extend_from_slice(&if big { v.to_be_bytes() } else { v.to_le_bytes() })
-    };
+    let put = |v: f32, out: &mut Vec<u8>| out.extend_from_slice(&if big { v.to_be_bytes() } else { v.to_le_bytes() });
     for l in lines {
         for p in &l.points {
             for &x in p {

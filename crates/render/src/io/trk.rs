@@ -35,7 +35,14 @@ impl Default for TrkHeader {
         for (i, r) in m.iter_mut().enumerate() {
             r[i] = 1.0;
         }
-        Self { dim: [1, 1, 1], voxel_size: [1.0; 3], vox_to_ras: m, n_scalars: 0, n_properties: 0, voxel_order: *b"RAS" }
+        Self {
+            dim: [1, 1, 1],
+            voxel_size: [1.0; 3],
+            vox_to_ras: m,
+            n_scalars: 0,
+            n_properties: 0,
+            voxel_order: *b"RAS",
+        }
     }
 }
 
@@ -75,7 +82,11 @@ pub fn read(data: &[u8], name: &str) -> Result<(TrkHeader, Vec<Polyline>), IoErr
         return Err(IoError::file(name, "empty file"));
     }
     if data.len() < 1000 {
-        return Err(IoError::offset(name, data.len() as u64, format!("truncated header: {} of 1000 bytes", data.len())));
+        return Err(IoError::offset(
+            name,
+            data.len() as u64,
+            format!("truncated header: {} of 1000 bytes", data.len()),
+        ));
     }
     if &data[0..5] != b"TRACK" {
         return Err(IoError::offset(name, 0, "magic is not \"TRACK\" (not a TrackVis file)"));
@@ -198,7 +209,11 @@ pub fn read(data: &[u8], name: &str) -> Result<(TrkHeader, Vec<Polyline>), IoErr
         ));
     }
     if c.remaining() > 0 {
-        return Err(IoError::offset(name, c.pos as u64, format!("{} bytes after the last of n_count = {n_count} streamlines", c.remaining())));
+        return Err(IoError::offset(
+            name,
+            c.pos as u64,
+            format!("{} bytes after the last of n_count = {n_count} streamlines", c.remaining()),
+        ));
     }
     Ok((h, out))
 }

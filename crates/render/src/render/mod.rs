@@ -14,12 +14,12 @@
 //! Colours are linear RGB in `[0, 1]`; [`Image::to_srgb8`] encodes them for PNG.
 
 use crate::accel::Bvh;
-use tubecast::kernel::csg::{union, Boundary, Tagged};
-use tubecast::ray::Ray;
 use crate::scene::{Prim, PrimKind, Scene};
-use tubecast::V3;
 use rayon::prelude::*;
 use std::path::Path;
+use tubecast::kernel::csg::{union, Boundary, Tagged};
+use tubecast::ray::Ray;
+use tubecast::V3;
 
 /// A perspective pinhole camera.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -450,23 +450,17 @@ pub fn render(scene: &Scene, bvh: &Bvh, cam: &Camera, opts: &Options) -> Result<
     let st = scene.stats();
     let diag = (V3::from(st.bounds.1) - V3::from(st.bounds.0)).length();
     let ctx = Ctx { scene, bvh, cam, opts, pal: Palette::new(scene), light, ao_dist: 0.1 * diag };
-    let bar = if opts.progress {
-        indicatif::ProgressBar::new(h as u64)
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
+    let bar = if opts.progress { indicatif::ProgressBar::new(h as u64) } else { indicatif::ProgressBar::hidden() };
     let mut rgb = vec![[0.0f32; 3]; (w * h) as usize];
     let mut depth = vec![f64::INFINITY; (w * h) as usize];
-    rgb.par_chunks_mut(w as usize).zip(depth.par_chunks_mut(w as usize)).enumerate().for_each(
-        |(y, (row, drow))| {
-            for x in 0..w {
-                let (c, d) = ctx.pixel(x, y as u32);
-                row[x as usize] = c;
-                drow[x as usize] = d;
-            }
-            bar.inc(1);
-        },
-    );
+    rgb.par_chunks_mut(w as usize).zip(depth.par_chunks_mut(w as usize)).enumerate().for_each(|(y, (row, drow))| {
+        for x in 0..w {
+            let (c, d) = ctx.pixel(x, y as u32);
+            row[x as usize] = c;
+            drow[x as usize] = d;
+        }
+        bar.inc(1);
+    });
     bar.finish_and_clear();
     Ok(Image { width: w, height: h, rgb, depth })
 }

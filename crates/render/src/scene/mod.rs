@@ -49,13 +49,13 @@ mod prim;
 pub use prim::{Prim, PrimKind};
 
 use crate::io::{self, IoError, Polyline};
+use std::fmt;
+use std::path::Path;
 use tubecast::kernel::hermite::HermiteSegment;
 use tubecast::kernel::link::RoundCone;
 #[allow(unused_imports)] // documentation links
 use tubecast::kernel::spline::QuadTube;
 use tubecast::{LinkShape, V3};
-use std::fmt;
-use std::path::Path;
 
 /// Largest coordinate or radius magnitude a scene may hold: squares of lengths must stay
 /// finite in `f32` (`(2·1e18)² ≈ 4e36 < 3.4e38`), since primitives are stored in `f32`.
@@ -362,11 +362,8 @@ impl Scene {
             // Central differences in the interior (wrapping around a closed chain, whose node
             // nn is node 0), one-sided at the ends of an open chain.
             let deriv = |i: usize| {
-                let (a, b) = if c.closed {
-                    ((i + nn - 1) % nn, (i + 1) % nn)
-                } else {
-                    (i.saturating_sub(1), (i + 1).min(nn))
-                };
+                let (a, b) =
+                    if c.closed { ((i + nn - 1) % nn, (i + 1) % nn) } else { (i.saturating_sub(1), (i + 1).min(nn)) };
                 let w = if c.closed { 2.0 } else { (b - a) as f64 };
                 let m = (p(b) - p(a)) * (1.0 / w);
                 let lim = 2.0 * r(i);

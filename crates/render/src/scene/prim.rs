@@ -86,18 +86,7 @@ impl Prim {
         let mid = (l.a + l.b) * 0.5;
         let (a, b): (V3<f32>, V3<f32>) = ((l.a - mid).cast(), (l.b - mid).cast());
         let (ra, rb) = (l.ra as f32, l.rb as f32);
-        Self {
-            origin: mid.to_array(),
-            a,
-            ra,
-            b,
-            rb,
-            m: (a + b) * 0.5,
-            rm: 0.5 * (ra + rb),
-            kind,
-            link,
-            half: 0,
-        }
+        Self { origin: mid.to_array(), a, ra, b, rb, m: (a + b) * 0.5, rm: 0.5 * (ra + rb), kind, link, half: 0 }
     }
 
     /// A spline sub-segment primitive from a validated `f64` quadratic segment: control
@@ -151,10 +140,7 @@ impl Prim {
             let (lo, hi) = rc.aabb();
             (lo.cast::<f64>().to_array(), hi.cast::<f64>().to_array())
         };
-        (
-            std::array::from_fn(|i| self.origin[i] + lo[i]),
-            std::array::from_fn(|i| self.origin[i] + hi[i]),
-        )
+        (std::array::from_fn(|i| self.origin[i] + lo[i]), std::array::from_fn(|i| self.origin[i] + hi[i]))
     }
 
     /// The interval of the ray's **line** with this primitive, in the ray's own parameter,
