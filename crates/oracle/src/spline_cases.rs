@@ -1,0 +1,172 @@
+//! Seeded quadratic-tube cases aimed at the spline kernel's failure regions, and what the
+//! dense oracle says about them (the report's generators).
+
+use crate::minimise::golden_min;
+use crate::rng::{splitmix, FloatRng, SplitMix64};
+use crate::spline::{quad_crossing, quad_gap, Quad};
+use crate::vec::{Line, Vec3};
+
+/// Failure regions of the spline kernel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SplineRegion {
+    /// A random bent segment, radii well below the curvature radius.
+    Random,
+    /// Radius larger than the centre line's curvature radius (the sweep folds onto itself).
+    RadiusOverCurvature,
+    /// A cusp: the centre line reverses (`b₂ ≈ b₀`, so `p′(½) ≈ 0`).
+    Cusp,
+    /// Rays tangent to the surface (offset ±(1e-9 … 1e-3)·size along the normal).
+    Grazing,
+    /// Rays starting inside the tube.
+    Inside,
+}
+
+/// Every spline region, in chart order.
+pub const SPLINE_REGIONS: [SplineRegion; 5] = [
+    SplineRegion::Random,
+    SplineRegion::RadiusOverCurvature,
+    SplineRegion::Cusp,
+    SplineRegion::Grazing,
+    SplineRegion::Inside,
+];
+
+impl SplineRegion {
+    /// Short name used in tables and charts.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Random => "random",
+            Self::RadiusOverCurvature => "radius>curvature",
+            Self::Cusp => "cusp",
+            Self::Grazing => "grazing",
+            Self::Inside => "ray-starts-inside",
+        }
+    }
+}
+
+/// One spline test case (inputs `f32`-representable, like [`crate::LinkCase`]).
+#[derive(Clone, Copy, Debug)]
+pub struct SplineCase {
+    /// The segment.
+    pub tube: Quad,
+    /// The ray (range `[0, ∞)`).
+    pub ray: Line,
+    /// Its region.
+    pub region: SplineRegion,
+    /// Largest control radius (the unit of the error).
+    pub radius: f64,
+}
+
+/// What the dense oracle says about a spline case.
+#[derive(Clone, Copy, Debug)]
+pub struct SplineTruth {
+    /// Signed gap of the line to the sweep (sampled minimum of `dist(line, p(t)) − r(t)`).
+    pub gap: f64,
+    /// Hull `(t_in, t_out)` of the line with the sweep.
+    pub iv: Option<(f64, f64)>,
+}
+
+/// Samples of the report's spline oracle.
+pub const SPLINE_SAMPLES: usize = 1024;
+
+/// Dense-sampling oracle of a quadratic sweep ([`quad_gap`], [`quad_crossing`] with
+/// [`SPLINE_SAMPLES`] samples).
+pub fn spline_truth(c: &SplineCase) -> SplineTruth {
+    let gap = quad_gap(&c.tube, &c.ray, SPLINE_SAMPLES);
+    let iv = quad_crossing(&c.tube, &c.ray, SPLINE_SAMPLES).map(|x| (x.t_in, x.t_out));
+    SplineTruth { gap, iv }
+}
+
+fn unit(rng: &mut SplitMix64) -> Vec3 {
+    Vec3::from(rng.unit())
+}
+
+fn perp(v: Vec3, rng: &mut SplitMix64) -> Vec3 {
+    loop {
+        let w = unit(rng);
+        let p = w - v * w.dot(v);
+        if p.length() > 0.1 {
+            return p * (1.0 / p.length());
+        }
+    }
+}
+
+/// A deterministic spline case for `seed`, aimed at `region`. Sizes ~1 around the origin.
+///
+/// Every generated segment is a valid tube for the kernel (finite, radii in `[0.02, 0.5]`, so
+/// positive everywhere): no draw is ever rejected for validity.
+pub fn spline_case(seed: u64, region: SplineRegion) -> SplineCase {
+    let mut rng = splitmix(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ 0xC0FF_EE00);
+    loop {
+        let pt = |rng: &mut SplitMix64| Vec3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
+        let b0 = pt(&mut rng);
+        let mut b1 = pt(&mut rng);
+        let mut b2 = pt(&mut rng);
+        let mut rr = [rng.range(0.02, 0.15), rng.range(0.02, 0.15), rng.range(0.02, 0.15)];
+        match region {
+            SplineRegion::RadiusOverCurvature => {
+                // A tight bend: b₁ far from the chord, b₂ near b₀; curvature radius at the apex
+                // is |p′|²/|p′ × p″| ≪ the radii chosen here.
+                b2 = b0 + unit(&mut rng) * rng.range(0.05, 0.3);
+                b1 = b0 + unit(&mut rng) * rng.range(0.5, 1.0);
+                rr = [rng.range(0.2, 0.5), rng.range(0.2, 0.5), rng.range(0.2, 0.5)];
+            }
+            SplineRegion::Cusp => {
+                b2 = b0 + unit(&mut rng) * 10f64.powf(rng.range(-6.0, -2.0));
+            }
+            _ => {}
+        }
+        let tube = Quad { b: [b0.round_f32(), b1.round_f32(), b2.round_f32()], r: rr.map(|x| x as f32 as f64) };
+        let r = tube.r;
+        let radius = r[0].max(r[1]).max(r[2]);
+        let tt = rng.range(0.0, 1.0);
+        let (pc, rc) = (tube.point(tt), tube.radius(tt));
+        let mut dir = unit(&mut rng);
+        let dist = rng.range(3.0, 6.0);
+        let (o, d) = match region {
+            SplineRegion::Inside => (pc + unit(&mut rng) * (0.5 * rc * rng.uniform()), dir),
+            SplineRegion::Grazing => {
+                // A hit point of a random ray (from the oracle) and the sweep normal there.
+                let probe = Line { o: (pc - dir * dist).round_f32(), d: dir.round_f32() };
+                let c0 = SplineCase { tube, ray: probe, region, radius };
+                let Some((t0, _)) = spline_truth(&c0).iv else { continue };
+                let x = probe.at(t0);
+                let (tb, _) = golden_min(|t| (x - tube.point(t)).length() - tube.radius(t), 0.0, 1.0);
+                let nrm = (x - tube.point(tb)).normalize_or_zero();
+                if nrm.length() == 0.0 {
+                    continue;
+                }
+                let sign = if rng.coin() { 1.0 } else { -1.0 };
+                let off = 10f64.powf(rng.range(-9.0, -3.0)) * radius * sign;
+                dir = perp(nrm, &mut rng);
+                (x + nrm * off - dir * dist, dir)
+            }
+            _ => (pc + unit(&mut rng) * (rc * rng.range(0.0, 1.5)) - dir * dist, dir),
+        };
+        let ray = Line { o: o.round_f32(), d: d.round_f32() };
+        return SplineCase { tube, ray, region, radius };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cases_are_f32_representable_and_inside_rays_start_inside() {
+        let f32ok = |x: f64| x as f32 as f64 == x;
+        for &region in &SPLINE_REGIONS {
+            for seed in 0..20 {
+                let c = spline_case(seed, region);
+                for p in c.tube.b.iter().chain([&c.ray.o, &c.ray.d]) {
+                    assert!(f32ok(p.x) && f32ok(p.y) && f32ok(p.z), "{c:?}");
+                }
+                assert!(c.tube.r.iter().all(|&r| f32ok(r) && r > 0.0), "{c:?}");
+                if region == SplineRegion::Inside {
+                    let one = Line { o: c.ray.o, d: c.ray.d };
+                    let x = quad_crossing(&c.tube, &one, SPLINE_SAMPLES).expect("the line meets it");
+                    assert!(x.t_in < 0.0 && x.t_out > 0.0, "{c:?}: {x:?}");
+                }
+            }
+        }
+    }
+}
