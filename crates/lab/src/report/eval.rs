@@ -1,7 +1,7 @@
 //! The methods the reports compare, how they are run on a case set (results and timing), and
 //! how their results are scored against the oracle.
 
-use super::oracle::{link_bound, LinkCase, LinkTruth, SplineCase, SplineTruth};
+use super::oracle::{self, link_bound, LinkCase, LinkTruth, SplineCase, SplineTruth};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 use tubecast::kernel::roots::Solver;
@@ -249,15 +249,16 @@ fn unpack_outcomes<T: Real>(n: usize, len: usize, f: &impl Fn(usize) -> Interval
 fn run_link_t<T: Real>(kernel: LinkKernel, cases: &[LinkCase], budget: Duration) -> MethodRun {
     let len = cases.len();
     let n = packs::<T>(len);
-    let links: Vec<RoundCone<T>> =
-        (0..n).map(|i| RoundCone::from_lanes(|j| cases[idx::<T>(i, j, len)].link.cast())).collect();
-    let rays = pack_rays::<T>(n, len, |k| cases[k].ray);
+    let links: Vec<RoundCone<T>> = (0..n)
+        .map(|i| RoundCone::from_lanes(|j| oracle::round_cone(&cases[idx::<T>(i, j, len)].link).cast()))
+        .collect();
+    let rays = pack_rays::<T>(n, len, |k| oracle::ray(&cases[k].ray));
     let han: Vec<HanLink<T>> = links.iter().map(HanLink::new).collect();
     let tubes: Vec<QuadTube<T>> = if matches!(kernel, LinkKernel::AsSpline(_)) {
         (0..n)
             .map(|i| {
                 QuadTube::from_lanes(|j| {
-                    let l: RoundCone<T::Elem> = cases[idx::<T>(i, j, len)].link.cast();
+                    let l: RoundCone<T::Elem> = oracle::round_cone(&cases[idx::<T>(i, j, len)].link).cast();
                     QuadTube::from_link(&l).unwrap_or_else(|_| {
                         // Cannot happen for validated links; fall back to the centre sphere.
                         QuadTube { b: [l.a, l.a, l.a], r: [l.ra, l.ra, l.ra] }
@@ -285,8 +286,8 @@ fn run_spline_t<T: Real>(solver: Solver, cases: &[SplineCase], budget: Duration)
     let len = cases.len();
     let n = packs::<T>(len);
     let tubes: Vec<QuadTube<T>> =
-        (0..n).map(|i| QuadTube::from_lanes(|j| cases[idx::<T>(i, j, len)].tube.cast())).collect();
-    let rays = pack_rays::<T>(n, len, |k| cases[k].ray);
+        (0..n).map(|i| QuadTube::from_lanes(|j| oracle::quad_tube(&cases[idx::<T>(i, j, len)].tube).cast())).collect();
+    let rays = pack_rays::<T>(n, len, |k| oracle::ray(&cases[k].ray));
     let f = |i: usize| tubes[i].intersect_with(&rays[i], solver);
     let outcomes = unpack_outcomes::<T>(n, len, &f);
     let ns = if budget.is_zero() { f64::NAN } else { time_packs(n, budget, f) };
@@ -405,8 +406,9 @@ pub fn score_links(prec: Precision, cases: &[LinkCase], truth: &[LinkTruth], out
         let (_, e) = link_bound(c, prec.eps(), 1.0);
         let (_, e64) = link_bound(c, f64::EPSILON, 1.0);
         let t_tol = (e + e64) / c.ray.d.length();
-        let must_hit = tr.gap < -e && tr.iv.is_some_and(|iv| iv.1 > c.ray.t_min + t_tol);
-        let must_miss = tr.gap > e || tr.iv.is_some_and(|iv| iv.1 < c.ray.t_min - t_tol);
+        // The cases' rays start at t = 0.
+        let must_hit = tr.gap < -e && tr.iv.is_some_and(|iv| iv.1 > 0.0 + t_tol);
+        let must_miss = tr.gap > e || tr.iv.is_some_and(|iv| iv.1 < 0.0 - t_tol);
         if must_hit {
             s.must_hit += 1;
             s.false_miss += usize::from(!o.hit);

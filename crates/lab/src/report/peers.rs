@@ -69,8 +69,8 @@ pub fn run_peers(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
         let mut a = Agree { n: cases.len(), ..Agree::default() };
         for c in &cases {
             let tr = oracle::link_truth(c);
-            let l32: RoundCone<f32> = c.link.cast();
-            let (o, d) = (c.ray.o.cast::<f32>(), c.ray.d.cast::<f32>());
+            let l32: RoundCone<f32> = oracle::round_cone(&c.link).cast();
+            let (o, d) = (oracle::v3(c.ray.o).cast::<f32>(), oracle::v3(c.ray.d).cast::<f32>());
             let ours = l32.intersect(&Ray::new(o, d));
             let ours = if ours.hit { first(ours.t_in as f64, ours.t_out as f64) } else { None };
             let scene = EScene::round_linear(&dev, &[l32]).map_err(perr)?;
