@@ -11,6 +11,7 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::hint::black_box;
 use tubecast::{Ray, RoundCone, V3};
 use tubecast_lab::peer::embree::{Device, Scene as EScene};
+use tubecast_lab::peer::{scene_inputs, SceneInputs};
 use tubecast_render::accel::Bvh;
 use tubecast_render::render::Camera;
 use tubecast_render::scene::{generate, Scene};
@@ -21,15 +22,7 @@ fn peers(c: &mut Criterion) {
     let st = scene.stats();
     let side = 64;
     let cam = Camera::fit(st.bounds.0, st.bounds.1, 35.0, side, side).expect("camera");
-    let rays32: Vec<([f32; 3], [f32; 3])> = (0..side * side)
-        .map(|i| {
-            let r = cam.ray(i % side, i / side);
-            (r.o.cast::<f32>().to_array(), r.d.cast::<f32>().to_array())
-        })
-        .collect();
-    let rays64: Vec<Ray<f64>> =
-        rays32.iter().map(|(o, d)| Ray::new(V3::from(*o).cast(), V3::from(*d).cast())).collect();
-    let links32: Vec<RoundCone<f32>> = (0..scene.links.len()).map(|k| scene.link(k).cast()).collect();
+    let SceneInputs { rays32, rays64, links32 } = scene_inputs(&scene, &cam, side);
     let dev = Device::new().expect("embree device");
     let emb = EScene::round_linear(&dev, &links32).expect("embree scene");
     let bvh = Bvh::build(scene.primitives());

@@ -18,8 +18,8 @@ fn report_writes_markdown_and_charts() {
     let out = bin().args(["accuracy", "--quick", "--quiet", "--out"]).arg(&dir).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let md: Vec<_> = std::fs::read_dir(&dir).unwrap().filter_map(|e| e.ok()).map(|e| e.path()).collect();
-    assert!(md.iter().any(|p| p.extension().map_or(false, |x| x == "md")), "{md:?}");
-    assert!(md.iter().any(|p| p.extension().map_or(false, |x| x == "svg")), "{md:?}");
+    assert!(md.iter().any(|p| p.extension().is_some_and(|x| x == "md")), "{md:?}");
+    assert!(md.iter().any(|p| p.extension().is_some_and(|x| x == "svg")), "{md:?}");
     // A bad report name is a usage error.
     let out = bin().args(["everything"]).output().unwrap();
     assert_eq!(out.status.code(), Some(2));

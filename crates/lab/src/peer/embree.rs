@@ -95,6 +95,9 @@ extern "C" {
     fn rtcIntersect1(scene: RtcScene, context: *mut RtcIntersectContext, rayhit: *mut RtcRayHit);
 }
 
+/// One `ROUND_HERMITE_CURVE` segment: `([p0, r0], [m0, dr0], [p1, r1], [m1, dr1])`.
+pub type HermiteSegment = ([f32; 4], [f32; 4], [f32; 4], [f32; 4]);
+
 /// An Embree call failed.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct EmbreeError(pub String);
@@ -297,10 +300,7 @@ impl Scene {
 
     /// A scene of `ROUND_HERMITE_CURVE` segments (a swept **circle**, not our sphere sweep):
     /// `(p0, r0, m0, dr0, p1, r1, m1, dr1)` per segment, tangents per unit parameter.
-    pub fn round_hermite(
-        device: &std::sync::Arc<Device>,
-        segments: &[([f32; 4], [f32; 4], [f32; 4], [f32; 4])],
-    ) -> Result<Self, EmbreeError> {
+    pub fn round_hermite(device: &std::sync::Arc<Device>, segments: &[HermiteSegment]) -> Result<Self, EmbreeError> {
         if segments.is_empty() || segments.len() > (u32::MAX / 2) as usize {
             return Err(EmbreeError("segment count out of range".into()));
         }

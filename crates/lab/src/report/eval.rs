@@ -259,10 +259,8 @@ fn run_link_t<T: Real>(kernel: LinkKernel, cases: &[LinkCase], budget: Duration)
             .map(|i| {
                 QuadTube::from_lanes(|j| {
                     let l: RoundCone<T::Elem> = oracle::round_cone(&cases[idx::<T>(i, j, len)].link).cast();
-                    QuadTube::from_link(&l).unwrap_or_else(|_| {
-                        // Cannot happen for validated links; fall back to the centre sphere.
-                        QuadTube { b: [l.a, l.a, l.a], r: [l.ra, l.ra, l.ra] }
-                    })
+                    // An error cannot happen for validated links; fall back to the centre sphere.
+                    QuadTube::from_link(&l).unwrap_or(QuadTube { b: [l.a, l.a, l.a], r: [l.ra, l.ra, l.ra] })
                 })
             })
             .collect()
@@ -294,38 +292,60 @@ fn run_spline_t<T: Real>(solver: Solver, cases: &[SplineCase], budget: Duration)
     MethodRun { outcomes, ns }
 }
 
-/// Run a link method on `cases`; time it for about `budget` (zero: no timing, `ns` is NaN).
-pub fn run_link(m: LinkMethod, cases: &[LinkCase], budget: Duration) -> MethodRun {
-    if cases.is_empty() {
+/// A run generic over the lane type, dispatched on a [`Precision`] once ([`run_at`]).
+trait LaneRun {
+    /// Cases in the run.
+    fn len(&self) -> usize;
+    /// The run with lanes `T`.
+    fn run<T: Real>(&self) -> MethodRun;
+}
+
+/// `job` in the lane type of `prec` (no run, `ns` NaN, for an empty case set or a precision
+/// this build lacks).
+fn run_at(prec: Precision, job: &impl LaneRun) -> MethodRun {
+    if job.len() == 0 {
         return MethodRun { outcomes: Vec::new(), ns: f64::NAN };
     }
-    match m.prec {
-        Precision::F32 => run_link_t::<f32>(m.kernel, cases, budget),
-        Precision::F64 => run_link_t::<f64>(m.kernel, cases, budget),
+    match prec {
+        Precision::F32 => job.run::<f32>(),
+        Precision::F64 => job.run::<f64>(),
         #[cfg(feature = "wide")]
-        Precision::F32x8 => run_link_t::<tubecast::real::WideF32x8>(m.kernel, cases, budget),
+        Precision::F32x8 => job.run::<tubecast::real::WideF32x8>(),
         #[cfg(feature = "wide")]
-        Precision::F64x4 => run_link_t::<tubecast::real::WideF64x4>(m.kernel, cases, budget),
+        Precision::F64x4 => job.run::<tubecast::real::WideF64x4>(),
         #[cfg(not(feature = "wide"))]
         _ => MethodRun { outcomes: Vec::new(), ns: f64::NAN },
     }
 }
 
+struct LinkRun<'a>(LinkKernel, &'a [LinkCase], Duration);
+impl LaneRun for LinkRun<'_> {
+    fn len(&self) -> usize {
+        self.1.len()
+    }
+    fn run<T: Real>(&self) -> MethodRun {
+        run_link_t::<T>(self.0, self.1, self.2)
+    }
+}
+
+struct SplineRun<'a>(Solver, &'a [SplineCase], Duration);
+impl LaneRun for SplineRun<'_> {
+    fn len(&self) -> usize {
+        self.1.len()
+    }
+    fn run<T: Real>(&self) -> MethodRun {
+        run_spline_t::<T>(self.0, self.1, self.2)
+    }
+}
+
+/// Run a link method on `cases`; time it for about `budget` (zero: no timing, `ns` is NaN).
+pub fn run_link(m: LinkMethod, cases: &[LinkCase], budget: Duration) -> MethodRun {
+    run_at(m.prec, &LinkRun(m.kernel, cases, budget))
+}
+
 /// Run a spline method on `cases` (see [`run_link`]).
 pub fn run_spline(m: SplineMethod, cases: &[SplineCase], budget: Duration) -> MethodRun {
-    if cases.is_empty() {
-        return MethodRun { outcomes: Vec::new(), ns: f64::NAN };
-    }
-    match m.prec {
-        Precision::F32 => run_spline_t::<f32>(m.solver, cases, budget),
-        Precision::F64 => run_spline_t::<f64>(m.solver, cases, budget),
-        #[cfg(feature = "wide")]
-        Precision::F32x8 => run_spline_t::<tubecast::real::WideF32x8>(m.solver, cases, budget),
-        #[cfg(feature = "wide")]
-        Precision::F64x4 => run_spline_t::<tubecast::real::WideF64x4>(m.solver, cases, budget),
-        #[cfg(not(feature = "wide"))]
-        _ => MethodRun { outcomes: Vec::new(), ns: f64::NAN },
-    }
+    run_at(m.prec, &SplineRun(m.solver, cases, budget))
 }
 
 /// Scores of one method on one case set.

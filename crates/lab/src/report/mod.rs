@@ -22,10 +22,12 @@ pub mod oracle;
 #[cfg(feature = "embree")]
 mod peers;
 mod runs;
+mod speed;
 
 #[cfg(feature = "embree")]
 pub use peers::run_peers;
-pub use runs::{run_accuracy, run_speed, run_stability};
+pub use runs::{run_accuracy, run_stability};
+pub use speed::run_speed;
 
 use std::path::{Path, PathBuf};
 

@@ -9,7 +9,7 @@ use crate::peer::embree::{Device, Scene as EScene};
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
-use tubecast::{Ray, RoundCone, V3};
+use tubecast::{Ray, RoundCone};
 
 /// First crossing in `[0, ∞)` of a line interval.
 fn first(t_in: f64, t_out: f64) -> Option<f64> {
@@ -111,15 +111,7 @@ pub fn run_peers(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
     let side = opts.image.max(16);
     let cam =
         Camera::fit(st.bounds.0, st.bounds.1, 35.0, side, side).map_err(|e| ReportError::Render(e.to_string()))?;
-    let rays32: Vec<([f32; 3], [f32; 3])> = (0..side * side)
-        .map(|i| {
-            let r = cam.ray(i % side, i / side);
-            (r.o.cast::<f32>().to_array(), r.d.cast::<f32>().to_array())
-        })
-        .collect();
-    let rays64: Vec<Ray<f64>> =
-        rays32.iter().map(|(o, d)| Ray::new(V3::from(*o).cast(), V3::from(*d).cast())).collect();
-    let links32: Vec<RoundCone<f32>> = (0..scene.links.len()).map(|k| scene.link(k).cast()).collect();
+    let crate::peer::SceneInputs { rays32, rays64, links32 } = crate::peer::scene_inputs(&scene, &cam, side);
     let t0 = Instant::now();
     let emb = EScene::round_linear(&dev, &links32).map_err(perr)?;
     let emb_build = t0.elapsed().as_secs_f64();
