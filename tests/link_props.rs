@@ -36,10 +36,11 @@ fn region() -> impl Strategy<Value = Region> {
     proptest::sample::select(REGIONS.to_vec())
 }
 
-/// Distance error bound E for precision with unit roundoff `eps` (see the module docs).
+/// Distance error bound E for precision with unit roundoff `eps` (see the module docs):
+/// `64·ε·(S + D)` plus the nearly-flat-stump term (derived at `tubecast_oracle::link_error_bound`,
+/// shared with the fuzz check and the reports).
 fn bound(c: &Case, eps: f64) -> f64 {
-    let m = (c.link.a + c.link.b) * 0.5;
-    64.0 * eps * (c.size + (c.ray.o - m).length()) + cone_term(&c.link, eps)
+    tubecast_oracle::link_error_bound(&olink(&c.link), ov(c.ray.o), c.size, eps)
 }
 
 /// Near a pointed end (radius < E) the solid is a spike thinner than the error bound over an
@@ -53,23 +54,6 @@ fn tip_term(l: &RoundCone<f64>, e: f64) -> f64 {
     }
     let s = ((l.ra - l.rb) / len).abs().max(1e-300);
     2.0 * e * (1.0 + 1.0 / s)
-}
-
-/// Extra error of a nearly flat stump (one sphere almost inside the other, c = cos θ → 0).
-/// The quadratic's coefficients `A = c²|d×â|² − s²(d·â)²` and `C = c²|P|² − e²` are differences of
-/// terms whose sum is O(1)·|·|² while the difference is O(c²)·|·|²: they carry a relative error of
-/// ≈ 4ε/c², which moves the crossing by that fraction of the local scale (≤ S): 4ε·S/c², ×2 for
-/// safety. (With c² < 64ε the kernel drops the stump, costing ≤ 64ε·L, already in E; so this
-/// term is at most S/8.)
-fn cone_term(l: &RoundCone<f64>, eps: f64) -> f64 {
-    let len = (l.b - l.a).length();
-    let s = (l.ra - l.rb) / len;
-    let c2 = (1.0 - s) * (1.0 + s);
-    if !(len > 0.0) || !(c2 > 0.0) {
-        return 0.0;
-    }
-    let size = len.max(l.ra).max(l.rb);
-    8.0 * eps * size / c2.max(32.0 * eps)
 }
 
 fn no_nan<T: Scalar>(iv: &Interval<T>) -> bool {
@@ -91,8 +75,8 @@ fn check_against_oracle(c: &Case, iv: Interval<f64>, eps: f64, what: &str) -> Re
     let oracle = line_interval(&c.link, &c.ray);
     // Range overlap of the oracle interval, with the t tolerance of a perpendicular hit.
     let t_tol = (e + e64) / dl;
-    let must_hit = gap < -e && oracle.map_or(false, |o| o.2 > c.ray.t_min + t_tol);
-    let must_miss = gap > e || oracle.map_or(false, |o| o.2 < c.ray.t_min - t_tol);
+    let must_hit = gap < -e && oracle.is_some_and(|o| o.t_out > c.ray.t_min + t_tol);
+    let must_miss = gap > e || oracle.is_some_and(|o| o.t_out < c.ray.t_min - t_tol);
     if must_hit {
         prop_assert!(iv.hit, "{what}: false miss, gap {gap:e} (E {e:e}), oracle {oracle:?}");
     }
@@ -104,8 +88,8 @@ fn check_against_oracle(c: &Case, iv: Interval<f64>, eps: f64, what: &str) -> Re
     }
     prop_assert!(iv.t_in <= iv.t_out);
     for (t, n, u, o_t, entering) in [
-        (iv.t_in, iv.n_in, iv.u_in, oracle.map(|o| o.0), true),
-        (iv.t_out, iv.n_out, iv.u_out, oracle.map(|o| o.2), false),
+        (iv.t_in, iv.n_in, iv.u_in, oracle.map(|o| o.t_in), true),
+        (iv.t_out, iv.n_out, iv.u_out, oracle.map(|o| o.t_out), false),
     ] {
         let x = c.ray.at(t);
         let (sd, us) = sweep_dist(&c.link, x);

@@ -1,25 +1,41 @@
-//! Independent oracles and case generators for the link kernels.
+//! Case generators for the link kernels, and thin adapters to the independent oracle of
+//! `tubecast-oracle` (`crates/oracle`, which shares no code with the kernels).
 //!
-//! Nothing here calls the kernels under test. The oracle works on the *sphere-sweep*
-//! definition of a link, `⋃_{u∈[0,1]} B(p(u), r(u))` with `p`, `r` linear, in f64:
+//! The oracle works on the *sphere-sweep* definition of a link, `⋃_{u∈[0,1]} B(p(u), r(u))`
+//! with `p`, `r` linear, in f64 (see `tubecast_oracle::link` for the method):
 //!
-//! * `sweep_dist(x)`: `min_u |x − p(u)| − r(u)`. The function of `u` is convex (a norm of an
-//!   affine map minus a linear one), so golden-section search finds the global minimum. Outside
-//!   the solid it is the exact Euclidean distance; its zero set is the surface; its gradient is
-//!   `(x − p(u*))/|x − p(u*)|` (envelope theorem), the outward normal.
-//! * `line_gap(ray)`: `min_u dist(line, p(u)) − r(u)`, also convex in `u`: the signed distance
-//!   of the line to the solid (< 0: the line enters it).
-//! * `line_interval(ray)`: the line enters the union when it enters one of its spheres, so
-//!   `t_in = min_u t_in(u)` and `t_out = max_u t_out(u)` over the `u` where the line meets
-//!   `B(p(u), r(u))` — an interval `[u0, u1]` (a sublevel set of the convex `line_gap` integrand),
-//!   found by bisection; the min/max over it by dense sampling plus golden-section refinement.
+//! * `sweep_dist(x)`: `min_u |x − p(u)| − r(u)`, the exact distance outside the solid; its
+//!   gradient is the outward normal (`sweep_normal`).
+//! * `line_gap(ray)`: the signed distance of the line to the solid (< 0: the line enters it).
+//! * `line_interval(ray)`: `t_in = min_u t_in(u)`, `t_out = max_u t_out(u)` over the spheres the
+//!   line meets.
+//!
+//! The generator here draws full-`f64` cases (the report's generator, `tubecast_oracle::link_case`,
+//! draws `f32`-representable ones) and adds a zero-length region, so the tests keep their own.
 #![allow(dead_code)]
 
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use tubecast::{Ray, RoundCone, V3};
+use tubecast_oracle as oracle;
+pub use tubecast_oracle::Crossing;
 
 pub type V = V3<f64>;
+
+/// tubecast's vector as the oracle's, and back.
+pub fn ov(v: V) -> oracle::Vec3 {
+    oracle::Vec3::new(v.x, v.y, v.z)
+}
+pub fn tv(v: oracle::Vec3) -> V {
+    V::new(v.x, v.y, v.z)
+}
+/// The link and the ray's line as the oracle's types.
+pub fn olink(l: &RoundCone<f64>) -> oracle::Link {
+    oracle::Link { a: ov(l.a), ra: l.ra, b: ov(l.b), rb: l.rb }
+}
+pub fn oline(ray: &Ray<f64>) -> oracle::Line {
+    oracle::Line { o: ov(ray.o), d: ov(ray.d) }
+}
 
 pub fn p_at(l: &RoundCone<f64>, u: f64) -> V {
     l.a + (l.b - l.a) * u
@@ -28,166 +44,24 @@ pub fn r_at(l: &RoundCone<f64>, u: f64) -> f64 {
     l.ra + (l.rb - l.ra) * u
 }
 
-/// Golden-section minimisation of a unimodal function on [lo, hi]; returns (argmin, min),
-/// comparing with both end points.
-pub fn golden_min(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> (f64, f64) {
-    let g = (5f64.sqrt() - 1.0) / 2.0;
-    let (mut a, mut b) = (lo, hi);
-    let mut c = b - g * (b - a);
-    let mut d = a + g * (b - a);
-    let (mut fc, mut fd) = (f(c), f(d));
-    for _ in 0..200 {
-        if b - a <= 1e-17 * (1.0 + a.abs().max(b.abs())) {
-            break;
-        }
-        if fc < fd {
-            b = d;
-            d = c;
-            fd = fc;
-            c = b - g * (b - a);
-            fc = f(c);
-        } else {
-            a = c;
-            c = d;
-            fc = fd;
-            d = a + g * (b - a);
-            fd = f(d);
-        }
-    }
-    let mut best = ((a + b) / 2.0, f((a + b) / 2.0));
-    for x in [lo, hi, c, d] {
-        let v = f(x);
-        if v < best.1 {
-            best = (x, v);
-        }
-    }
-    best
-}
-
-/// Minimiser of a convex differentiable function on [0, 1] by bisection on the sign of its
-/// derivative `df` (monotone): resolves the argmin to ~1 ulp, where golden-section search on
-/// values only resolves it to ~√ε (the function is flat to second order there).
-pub fn convex_argmin(df: impl Fn(f64) -> f64) -> f64 {
-    if df(0.0) >= 0.0 {
-        return 0.0;
-    }
-    if df(1.0) <= 0.0 {
-        return 1.0;
-    }
-    let (mut a, mut b) = (0.0f64, 1.0f64);
-    for _ in 0..1100 {
-        let m = 0.5 * (a + b);
-        if m <= a || m >= b {
-            break;
-        }
-        if df(m) < 0.0 {
-            a = m
-        } else {
-            b = m
-        }
-    }
-    0.5 * (a + b)
-}
-
 /// (min_u |x − p(u)| − r(u), argmin u).
 pub fn sweep_dist(l: &RoundCone<f64>, x: V) -> (f64, f64) {
-    // f(u) = |x − p(u)| − r(u); f'(u) = −(x − p(u))·v/|x − p(u)| − (rb − ra).
-    let v = l.b - l.a;
-    let dr = l.rb - l.ra;
-    let u = convex_argmin(|u| {
-        let w = x - p_at(l, u);
-        let n = w.length();
-        if n == 0.0 {
-            return 0.0;
-        }
-        -w.dot(v) / n - dr
-    });
-    ((x - p_at(l, u)).length() - r_at(l, u), u)
+    oracle::sweep_dist(&olink(l), ov(x))
 }
 
 /// Outward unit normal of the sweep at (or near) x.
 pub fn sweep_normal(l: &RoundCone<f64>, x: V) -> V {
-    let (_, u) = sweep_dist(l, x);
-    let g = x - p_at(l, u);
-    g * (1.0 / g.length())
-}
-
-fn line_dist(ray: &Ray<f64>, c: V) -> f64 {
-    let d2 = ray.d.length2();
-    let f = ray.o - c;
-    let tc = -f.dot(ray.d) / d2;
-    (f + ray.d * tc).length()
+    tv(oracle::sweep_normal(&olink(l), ov(x)))
 }
 
 /// The sweep's signed distance from the ray's line, and its argmin u.
 pub fn line_gap(l: &RoundCone<f64>, ray: &Ray<f64>) -> (f64, f64) {
-    let (u, v) = golden_min(|u| line_dist(ray, p_at(l, u)) - r_at(l, u), 0.0, 1.0);
-    (v, u)
+    oracle::line_gap(&olink(l), &oline(ray))
 }
 
-/// Line–sphere (t_in, t_out) for sphere u, if the line meets it.
-fn sphere_ts(l: &RoundCone<f64>, ray: &Ray<f64>, u: f64) -> Option<(f64, f64)> {
-    let c = p_at(l, u);
-    let r = r_at(l, u);
-    let d2 = ray.d.length2();
-    let f = ray.o - c;
-    let tc = -f.dot(ray.d) / d2;
-    let q = f + ray.d * tc;
-    let h2 = (r * r - q.length2()) / d2;
-    if h2 < 0.0 {
-        return None;
-    }
-    let h = h2.sqrt();
-    Some((tc - h, tc + h))
-}
-
-/// Oracle line interval: Some((t_in, u_in, t_out, u_out)) if the line meets the sweep.
-pub fn line_interval(l: &RoundCone<f64>, ray: &Ray<f64>) -> Option<(f64, f64, f64, f64)> {
-    let (gap, us) = line_gap(l, ray);
-    if gap > 0.0 {
-        return None;
-    }
-    // [u0, u1] = {u : line_dist(p(u)) ≤ r(u)} by bisection from the argmin outwards.
-    let inside = |u: f64| line_dist(ray, p_at(l, u)) - r_at(l, u) <= 0.0;
-    let edge = |from: f64, to: f64| {
-        if inside(to) {
-            return to;
-        }
-        let (mut a, mut b) = (from, to);
-        for _ in 0..100 {
-            let m = 0.5 * (a + b);
-            if inside(m) {
-                a = m
-            } else {
-                b = m
-            }
-        }
-        a
-    };
-    let (u0, u1) = (edge(us, 0.0), edge(us, 1.0));
-    let tin = |u: f64| sphere_ts(l, ray, u.clamp(u0, u1)).map(|s| s.0).unwrap_or(f64::INFINITY);
-    let tout = |u: f64| sphere_ts(l, ray, u.clamp(u0, u1)).map(|s| -s.1).unwrap_or(f64::INFINITY);
-    let refine = |f: &dyn Fn(f64) -> f64| {
-        let n = 64;
-        let mut best = (us, f(us));
-        for i in 0..=n {
-            let u = u0 + (u1 - u0) * i as f64 / n as f64;
-            let v = f(u);
-            if v < best.1 {
-                best = (u, v);
-            }
-        }
-        let w = (u1 - u0) / n as f64;
-        let (u, v) = golden_min(f, (best.0 - w).max(u0), (best.0 + w).min(u1));
-        if v < best.1 {
-            (u, v)
-        } else {
-            best
-        }
-    };
-    let (ui, ti) = refine(&tin);
-    let (uo, to) = refine(&tout);
-    Some((ti, ui, -to, uo))
+/// Oracle line interval (entry and exit `t` and `u`), if the line meets the sweep.
+pub fn line_interval(l: &RoundCone<f64>, ray: &Ray<f64>) -> Option<Crossing> {
+    oracle::line_interval(&olink(l), &oline(ray))
 }
 
 /// The hard regions the generators aim at.

@@ -187,6 +187,13 @@ pub fn link_case(seed: u64, region: LinkRegion) -> LinkCase {
 /// and `D = |o − m|` (`m` the link's midpoint), plus the nearly-flat-stump term
 /// `8·ε·S′/max(c², 32ε)` with `c² = 1 − sin²θ`, `sin θ = (ra − rb)/L` and `S′ = max(L, ra, rb)`
 /// (zero for `L = 0` or `c² ≤ 0`).
+///
+/// The stump term: for a nearly flat stump (one sphere almost inside the other, `c = cos θ → 0`)
+/// the quadratic's coefficients `A = c²|d×â|² − s²(d·â)²` and `C = c²|P|² − e²` are differences
+/// of terms whose sum is O(1)·|·|² while the difference is O(c²)·|·|²: they carry a relative
+/// error of ≈ 4ε/c², which moves the crossing by that fraction of the local scale (≤ S):
+/// 4ε·S/c², ×2 for safety. (With c² < 64ε the kernel drops the stump, costing ≤ 64ε·L, already
+/// in E; so this term is at most S/8.)
 pub fn link_error_bound(l: &Link, origin: Vec3, size: f64, eps: f64) -> f64 {
     let m = (l.a + l.b) * 0.5;
     let len = (l.b - l.a).length();
