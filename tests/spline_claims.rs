@@ -66,7 +66,7 @@ fn kernel_still_right(b: &[[f64; 3]; 3], r: &[f64; 3], o: [f64; 3], d: [f64; 3])
     use tubecast::{kernel::roots::Solver, Ray, V3};
     let t = tube(b, r);
     let ray = Ray::new(V3::from(o), V3::from(d));
-    if let Some((ti, _, to, _, depth)) = oracle(b, r, o, d, 4000) {
+    if let Some(QuadCrossing { t_in: ti, t_out: to, depth, .. }) = oracle(b, r, o, d, 4000) {
         if depth > 1e-3 {
             let iv = t.intersect_with(&ray, Solver::Polynomial);
             let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
