@@ -1,15 +1,13 @@
-// Shared by fuzz/fuzz_targets/csg.rs and tests/fuzz_corpus_csg.rs.
+// Shared by fuzz/fuzz_targets/csg.rs and tests/fuzz_corpus_kernels.rs.
 // Bytes -> up to 6 links and a ray; the CSG union of their intervals must be sorted, alternate
 // entry/exit, lie in [t_min, t_max], carry unit normals and no NaN, and never report more
 // boundaries than 2 × intervals.
 use tubecast::kernel::csg::{union, Tagged};
 use tubecast::{Ray, RoundCone, V3};
+include!("decode.rs");
 
 fn f(data: &[u8], i: usize) -> f64 {
-    let mut b = [0u8; 8];
-    for k in 0..8 {
-        b[k] = *data.get(i * 8 + k).unwrap_or(&0);
-    }
+    let b = bytes8(data, i * 8);
     // Keep the fuzzer near useful magnitudes: map raw bits to [-8, 8] half the time.
     let x = f64::from_le_bytes(b);
     if b[7] & 1 == 0 { (b[0] as f64 - 128.0) / 16.0 } else { x }

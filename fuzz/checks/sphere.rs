@@ -1,29 +1,15 @@
-// Shared by fuzz/fuzz_targets/sphere.rs and tests/fuzz_corpus_sphere.rs.
+// Shared by fuzz/fuzz_targets/sphere.rs and tests/fuzz_corpus_kernels.rs.
 // Bytes -> (centre, radius, ray). Valid input (finite, r² normal, ray validated) must give in
 // f64, f32 and f64x4/f32x8 lanes: no NaN, t_in <= t_out, unit normals, and for f64 hit points
 // within E = 16ε(|o − c| + r) of the sphere (re-centred formulation: ≤ 8 roundings on vectors of
 // size ≤ |o − c| + r, plus forming o + t·d).
 use tubecast::kernel::sphere::intersect_sphere;
-use tubecast::{Interval, Ray, Real, Scalar, V3};
+use tubecast::{Ray, Real, V3};
+include!("decode.rs");
+include!("sane.rs");
 
 fn f(data: &[u8], i: usize) -> f64 {
-    let mut b = [0u8; 8];
-    for k in 0..8 {
-        b[k] = *data.get(i * 8 + k).unwrap_or(&0);
-    }
-    f64::from_le_bytes(b)
-}
-
-fn sane<T: Scalar>(iv: &Interval<T>) {
-    let all = [iv.t_in, iv.t_out, iv.u_in, iv.u_out, iv.n_in.x, iv.n_in.y, iv.n_in.z, iv.n_out.x, iv.n_out.y, iv.n_out.z];
-    assert!(all.iter().all(|x| !x.to_f64().is_nan()), "NaN in {iv:?}");
-    if iv.hit {
-        assert!(iv.t_in <= iv.t_out);
-        let tol = if T::EPS.to_f64() < 1e-10 { 1e-12 } else { 1e-5 };
-        for n in [iv.n_in, iv.n_out] {
-            assert!((n.length().to_f64() - 1.0).abs() <= tol, "normal not unit: {iv:?}");
-        }
-    }
+    f64_at(data, i * 8)
 }
 
 pub fn check(data: &[u8]) {

@@ -1,4 +1,4 @@
-// Shared by fuzz/fuzz_targets/spline.rs and tests/fuzz_corpus_spline.rs.
+// Shared by fuzz/fuzz_targets/spline.rs and tests/fuzz_corpus_kernels.rs.
 // Bytes -> (quadratic tube, ray, solver). Byte 0: bits 0..2 the solver, bit 7 "raw" mode
 // (coordinates are arbitrary f64 bit patterns: NaN, ∞, huge — validators must reject without
 // panicking); otherwise coordinates are i16/1000 (|x| ≤ 32.8). Valid input must give, in f64
@@ -7,34 +7,17 @@
 // E = √(64ε)·S + 8εS (tests/spline_kernel.rs) + 8ε(D + |t·d|) (rounding of o + t·d), and for
 // the polynomial solver within E of the surface (exact tube SDF).
 #[allow(unused_imports)]
-use tubecast::{kernel::roots::Solver, kernel::spline::{quadratic_tube, QuadTube}, Interval, Ray, Scalar, V3};
+use tubecast::{kernel::roots::Solver, kernel::spline::{quadratic_tube, QuadTube}, Ray, V3};
+include!("decode.rs");
+include!("sane.rs");
 
 fn val(data: &[u8], i: usize, raw: bool) -> f64 {
     if raw {
-        let mut b = [0u8; 8];
-        for k in 0..8 {
-            b[k] = *data.get(1 + i * 8 + k).unwrap_or(&0);
-        }
-        f64::from_le_bytes(b)
+        f64_at(data, 1 + i * 8)
     } else {
         let lo = *data.get(1 + 2 * i).unwrap_or(&0);
         let hi = *data.get(2 + 2 * i).unwrap_or(&0);
         i16::from_le_bytes([lo, hi]) as f64 / 1000.0
-    }
-}
-
-pub fn sane<T: Scalar>(iv: &Interval<T>) {
-    let all = [iv.t_in, iv.t_out, iv.u_in, iv.u_out, iv.n_in.x, iv.n_in.y, iv.n_in.z, iv.n_out.x, iv.n_out.y, iv.n_out.z];
-    assert!(all.iter().all(|x| !x.to_f64().is_nan()), "NaN in {iv:?}");
-    if iv.hit {
-        assert!(iv.t_in <= iv.t_out, "t_in > t_out: {iv:?}");
-        let tol = if T::EPS.to_f64() < 1e-10 { 1e-12 } else { 1e-5 };
-        for n in [iv.n_in, iv.n_out] {
-            assert!((n.length().to_f64() - 1.0).abs() <= tol, "normal not unit: {iv:?}");
-        }
-        for u in [iv.u_in, iv.u_out] {
-            assert!(u.to_f64() >= 0.0 && u.to_f64() <= 1.0, "u out of range: {iv:?}");
-        }
     }
 }
 

@@ -17,19 +17,11 @@ mod npy {
     include!("../../../fuzz/checks/npy.rs");
 }
 
+include!("../../../fuzz/checks/replay.rs");
+
 fn replay(name: &str, check: fn(&[u8])) {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/corpus").join(name);
-    let mut n = 0;
-    for e in std::fs::read_dir(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())) {
-        let p = e.unwrap().path();
-        if p.is_file() {
-            let data = std::fs::read(&p).unwrap();
-            let r = std::panic::catch_unwind(|| check(&data));
-            assert!(r.is_ok(), "{} violates the {name} invariants", p.display());
-            n += 1;
-        }
-    }
-    assert!(n >= 3, "corpus {name} has {n} files");
+    let corpus = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/corpus");
+    replay_corpus(&corpus, name, check, 3);
 }
 
 #[test]
