@@ -64,35 +64,18 @@ pub fn line_interval(l: &RoundCone<f64>, ray: &Ray<f64>) -> Option<Crossing> {
     oracle::line_interval(&olink(l), &oline(ray))
 }
 
-/// The hard regions the generators aim at.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Region {
-    Random,
-    Grazing,
-    NearEqualRadii,
-    AlmostInside,
-    SphereInside,
-    LongThin,
-    FarOrigin,
-    Inside,
-    AxisParallel,
-    ZeroRadiusEnd,
-    ZeroLength,
-}
+/// The hard regions the generators aim at: the reports' link regions plus a zero-length link.
+pub use tubecast_oracle::LinkRegion as Region;
 
-pub const REGIONS: [Region; 11] = [
-    Region::Random,
-    Region::Grazing,
-    Region::NearEqualRadii,
-    Region::AlmostInside,
-    Region::SphereInside,
-    Region::LongThin,
-    Region::FarOrigin,
-    Region::Inside,
-    Region::AxisParallel,
-    Region::ZeroRadiusEnd,
-    Region::ZeroLength,
-];
+pub const REGIONS: [Region; 11] = {
+    let mut r = [Region::ZeroLength; 11];
+    let mut i = 0;
+    while i < oracle::LINK_REGIONS.len() {
+        r[i] = oracle::LINK_REGIONS[i];
+        i += 1;
+    }
+    r
+};
 
 #[derive(Clone, Copy, Debug)]
 pub struct Case {

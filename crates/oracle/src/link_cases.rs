@@ -29,6 +29,9 @@ pub enum LinkRegion {
     AxisParallel,
     /// One radius exactly zero (a cone tip).
     ZeroRadiusEnd,
+    /// Both centres equal (the link is one sphere). Not in [`LINK_REGIONS`] (the reports'
+    /// regions); the tests draw it.
+    ZeroLength,
 }
 
 /// Every link region, in chart order.
@@ -59,6 +62,7 @@ impl LinkRegion {
             Self::Inside => "ray-starts-inside",
             Self::AxisParallel => "axis-parallel",
             Self::ZeroRadiusEnd => "zero-radius-end",
+            Self::ZeroLength => "zero-length",
         }
     }
 }
@@ -78,11 +82,13 @@ pub struct LinkCase {
     pub size: f64,
 }
 
-fn unit(rng: &mut SplitMix64) -> Vec3 {
+/// A uniformly distributed unit vector.
+pub(crate) fn unit(rng: &mut SplitMix64) -> Vec3 {
     Vec3::from(rng.unit())
 }
 
-fn perp(v: Vec3, rng: &mut SplitMix64) -> Vec3 {
+/// A random unit vector perpendicular to the unit `v` (rejecting near-parallel draws).
+pub(crate) fn perp(v: Vec3, rng: &mut SplitMix64) -> Vec3 {
     loop {
         let w = unit(rng);
         let p = w - v * w.dot(v);
@@ -137,6 +143,7 @@ pub fn link_case(seed: u64, region: LinkRegion) -> LinkCase {
                 rb = 0.0
             }
         }
+        LinkRegion::ZeroLength => len = 0.0,
         _ => {}
     }
     let a = (centre - axis * (len / 2.0)).round_f32();
@@ -267,6 +274,10 @@ mod tests {
                     _ => {}
                 }
             }
+        }
+        for seed in 0..20 {
+            let c = link_case(seed, LinkRegion::ZeroLength);
+            assert!(c.link.a == c.link.b && c.size == c.link.ra.max(c.link.rb), "{c:?}");
         }
     }
 

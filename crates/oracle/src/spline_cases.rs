@@ -1,6 +1,7 @@
 //! Seeded quadratic-tube cases aimed at the spline kernel's failure regions, and what the
 //! dense oracle says about them (the report's generators).
 
+use crate::link_cases::{perp, unit};
 use crate::minimise::golden_min;
 use crate::rng::{splitmix, FloatRng, SplitMix64};
 use crate::spline::{quad_crossing, quad_gap, Quad};
@@ -74,20 +75,6 @@ pub fn spline_truth(c: &SplineCase) -> SplineTruth {
     let gap = quad_gap(&c.tube, &c.ray, SPLINE_SAMPLES);
     let iv = quad_crossing(&c.tube, &c.ray, SPLINE_SAMPLES).map(|x| (x.t_in, x.t_out));
     SplineTruth { gap, iv }
-}
-
-fn unit(rng: &mut SplitMix64) -> Vec3 {
-    Vec3::from(rng.unit())
-}
-
-fn perp(v: Vec3, rng: &mut SplitMix64) -> Vec3 {
-    loop {
-        let w = unit(rng);
-        let p = w - v * w.dot(v);
-        if p.length() > 0.1 {
-            return p * (1.0 / p.length());
-        }
-    }
 }
 
 /// A deterministic spline case for `seed`, aimed at `region`. Sizes ~1 around the origin.
