@@ -16,10 +16,12 @@
 //!   ray the distance to the surface grows only quadratically).
 //! * Forming `x = o + t·d` in the test adds 2ε·(|o − m| + |t·d|) ≤ 2ε·(2D + 2S); evaluating the
 //!   oracle distance in f64 adds ≈ 8ε₆₄·(D + S).
+//!
 //! Hence `E = 64·ε·(S + D)` bounds the distance of a reported hit point from the surface with a
 //! safety factor of ~2, and a `t` error, converted through the incidence cosine `γ = |n·d̂|`
 //! (distance changes by at least `γ·|d|·Δt` along a ray entering a convex solid), is bounded by
 //! `(E + E₆₄)/(γ·|d|)`.
+//!
 //! Normals: on a sphere of radius r, a point displaced by `E` turns the normal by ≤ `E/r`; on the
 //! cone the normal is constant along generators and turns by ≤ `E/ρ` around the axis (ρ ≥ r_min),
 //! plus ~8ε of rounding: `|Δn| ≤ 4E/r_min + 16ε`. The curve parameter moves by ≤ `E/(L·c²)` per
@@ -218,8 +220,8 @@ proptest! {
         let l8 = RoundCone::<WideF32x8>::from_lanes(|i| cases[i].link.cast());
         let r8 = Ray::<WideF32x8>::from_fn(|i| Ray::new(cases[i].ray.o.cast(), cases[i].ray.d.cast()));
         let (s8, h8) = (l8.intersect(&r8), HanLink::new(&l8).intersect(&r8));
-        for i in 0..8 {
-            let l: RoundCone<f32> = cases[i].link.cast();
+        for (i, c) in cases.iter().enumerate() {
+            let l: RoundCone<f32> = c.link.cast();
             let r = r8.lane(i);
             prop_assert_eq!(s8.lane(i), l.intersect(&r), "stable f32x8 lane {}", i);
             prop_assert_eq!(h8.lane(i), HanLink::new(&l).intersect(&r), "Han f32x8 lane {}", i);
@@ -227,9 +229,9 @@ proptest! {
         let l4 = RoundCone::<WideF64x4>::from_lanes(|i| cases[i].link);
         let r4 = Ray::<WideF64x4>::from_fn(|i| cases[i].ray);
         let (s4, h4) = (l4.intersect(&r4), HanLink::new(&l4).intersect(&r4));
-        for i in 0..4 {
-            prop_assert_eq!(s4.lane(i), cases[i].link.intersect(&cases[i].ray), "stable f64x4 lane {}", i);
-            prop_assert_eq!(h4.lane(i), HanLink::new(&cases[i].link).intersect(&cases[i].ray), "Han f64x4 lane {}", i);
+        for (i, c) in cases.iter().enumerate().take(4) {
+            prop_assert_eq!(s4.lane(i), c.link.intersect(&c.ray), "stable f64x4 lane {}", i);
+            prop_assert_eq!(h4.lane(i), HanLink::new(&c.link).intersect(&c.ray), "Han f64x4 lane {}", i);
         }
     }
 

@@ -25,8 +25,9 @@
 //!   the reported piece is conservative).
 //! * Mesh (inscribed) — see `reference/README.md` for the proofs: outward slack
 //!   `μ = manifold_tolerance + vertex rounding` (~1e-11), inward bound `H = h + μ`. Rays from
-//!   outside: `t_K − slack ≤ t_M ≤ t_K + s*/|d| + slack`, with `s* = r cosα − √(r²cos²α − 2rH'
-//!   + H'²)` the depth-`H'` reach into the generating ball `B(c, r) ⊂ S` at the entry,
+//!   outside: `t_K − slack ≤ t_M ≤ t_K + s*/|d| + slack`, with
+//!   `s* = r cosα − √(r²cos²α − 2rH' + H'²)` the depth-`H'` reach into the generating ball
+//!   `B(c, r) ⊂ S` at the entry,
 //!   `H' = H + E_K`; no real `s*` ⇔ grazing band, where the mesh may miss. Rays from inside:
 //!   `deep_until − slack ≤ t_M ≤ t_K + slack`. `slack = (μ + E_K + E_ref + 8·EPS·(D + S))/(cos α·|d|)`
 //!   (the last term: libigl's t recomputed in double from the triangle plane).

@@ -200,15 +200,15 @@ proptest! {
             let t4 = QuadTube::<WideF64x4>::from_lanes(|i| tube(&cases[i].0 .0, &cases[i].0 .1));
             let r4 = Ray::<WideF64x4>::from_fn(|i| Ray::new(V3::from(cases[i].1 .0), V3::from(cases[i].1 .1)));
             let w = t4.intersect_with(&r4, solver);
-            for i in 0..4 {
-                let sc = tube(&cases[i].0 .0, &cases[i].0 .1).intersect_with(&r4.lane(i), solver);
+            for (i, c) in cases.iter().enumerate().take(4) {
+                let sc = tube(&c.0 .0, &c.0 .1).intersect_with(&r4.lane(i), solver);
                 prop_assert_eq!(w.lane(i), sc, "f64x4 {:?} lane {}", solver, i);
             }
             let t8 = QuadTube::<WideF32x8>::from_lanes(|i| tube(&cases[i].0 .0, &cases[i].0 .1).cast::<f32>());
             let r8 = Ray::<WideF32x8>::from_fn(|i| Ray::new(V3::from(cases[i].1 .0).cast(), V3::from(cases[i].1 .1).cast()));
             let w = t8.intersect_with(&r8, solver);
-            for i in 0..8 {
-                let sc = tube(&cases[i].0 .0, &cases[i].0 .1).cast::<f32>().intersect_with(&r8.lane(i), solver);
+            for (i, c) in cases.iter().enumerate() {
+                let sc = tube(&c.0 .0, &c.0 .1).cast::<f32>().intersect_with(&r8.lane(i), solver);
                 let (a, b) = (w.lane(i), sc);
                 prop_assert!(a == b || (a.hit == b.hit && a.t_in.to_bits() == b.t_in.to_bits()), "f32x8 {:?} lane {}: {:?} vs {:?}", solver, i, a, b);
             }
