@@ -61,17 +61,18 @@ fn bvh_closest_and_any_hit_equal_brute_force_including_grazing_rays() {
     let nodes = generate::neurons(1, &[generate::base_neuron(3)], 5);
     let scene = Scene::from_swc(&nodes, "n").unwrap();
     let bvh = Bvh::build(scene.primitives());
-    let mut rng = generate::Rng(42);
+    let mut rng = generate::Rng::new(42);
     let mut checked = 0;
     for i in 0..400 {
         // Aim at a random link: half of the rays graze it, passing at 0.999999·radius from a
         // point of its axis, perpendicular to the axis.
         let p = &bvh.prims[(rng.uniform() * bvh.prims.len() as f64) as usize];
-        let a = V3::from(p.origin) + p.a.cast::<f64>();
-        let b = V3::from(p.origin) + p.b.cast::<f64>();
+        let cone = p.round_cone().expect("the link model has no spline primitives");
+        let a = V3::from(p.origin) + cone.a.cast::<f64>();
+        let b = V3::from(p.origin) + cone.b.cast::<f64>();
         let u = rng.uniform();
         let c = a + (b - a) * u;
-        let r = p.ra as f64 + (p.rb as f64 - p.ra as f64) * u;
+        let r = cone.ra as f64 + (cone.rb as f64 - cone.ra as f64) * u;
         let axis = (b - a).normalize_or_zero();
         let mut side = V3::from(rng.unit());
         side = (side - axis * side.dot(axis)).normalize_or_zero();
@@ -159,8 +160,8 @@ fn transparent_crossing_tubes_composite_only_exterior_boundaries() {
                 }
                 tr *= 1.0 - alpha;
             }
-            for c in 0..3 {
-                exp[c] += tr * 1.0;
+            for e in &mut exp {
+                *e += tr * 1.0;
             }
             let got = img.at(x, y);
             for c in 0..3 {
@@ -231,13 +232,14 @@ fn shading_options_render_without_nan() {
 fn bvh_queries_on_dense_links_equal_brute_force_bitwise() {
     let scene = Scene::from_polylines(&generate::furball(40, 20, 7), 0.05, "furball").unwrap();
     let bvh = Bvh::build(scene.primitives());
-    let mut rng = generate::Rng(11);
+    let mut rng = generate::Rng::new(11);
     let (mut hits, mut intervals) = (0, 0);
     for i in 0..300 {
         // Aim near a random link's axis (within two radii), so most rays hit.
         let p = &bvh.prims[(rng.uniform() * bvh.prims.len() as f64) as usize];
         let u = rng.uniform();
-        let c = V3::from(p.origin) + (p.a.cast::<f64>() * (1.0 - u) + p.b.cast::<f64>() * u);
+        let cone = p.round_cone().expect("the link model has no spline primitives");
+        let c = V3::from(p.origin) + (cone.a.cast::<f64>() * (1.0 - u) + cone.b.cast::<f64>() * u);
         let target = c + V3::from(rng.unit()) * (2.0 * p.max_radius() as f64 * rng.uniform());
         let dir = V3::from(rng.unit());
         // Some rays start inside the scene (shadow-ray-like), some far outside.

@@ -105,7 +105,7 @@ fn spline_depth_buffer_equals_direct_f64_spline_kernel_calls() {
     let scene = Scene::from_polylines(&lines, 1.0, "helix").unwrap();
     let prims = scene.spline_primitives().unwrap();
     // Every helix segment is curved: 2 strands × 24 segments × 2 sub-segments.
-    assert_eq!(prims.iter().filter(|p| p.kind == PrimKind::Spline).count(), 96);
+    assert_eq!(prims.iter().filter(|p| p.kind() == PrimKind::Spline).count(), 96);
     let st = scene.stats_of(&prims);
     assert_eq!(st.splines, 48);
     let bvh = Bvh::build(prims);
@@ -184,7 +184,7 @@ fn straight_polyline_with_splines_matches_links() {
     let kept = scene.spline_primitives().unwrap();
     assert_eq!(kept, links, "straight segments stay links");
     let forced = scene.spline_primitives_with(false).unwrap();
-    assert_eq!(forced.iter().filter(|p| p.kind == PrimKind::Spline).count(), 12);
+    assert_eq!(forced.iter().filter(|p| p.kind() == PrimKind::Spline).count(), 12);
 
     let side = V3::new(2.0, -1.0, 0.0).normalize_or_zero();
     let cam = Camera::look_at(c + u * 3.5 + side * 4.5, c + u * 3.5, V3::new(0.0, 0.0, 1.0), 50.0, 48, 32).unwrap();
@@ -250,7 +250,7 @@ fn transparent_splines_show_no_interior_surfaces_at_joints() {
             crossing_joints += (ivs.len() >= 2) as usize;
             let mut b = Vec::new();
             union(&mut ivs, 0.0, f64::INFINITY, |x| b.push(x));
-            assert!(b.len() == 0 || b.len() == 2, "ray at ({x}, {y}): {} boundaries: {b:?}", b.len());
+            assert!(b.is_empty() || b.len() == 2, "ray at ({x}, {y}): {} boundaries: {b:?}", b.len());
             if b.len() == 2 {
                 hit_rays += 1;
                 assert!(b[0].entering && !b[1].entering);

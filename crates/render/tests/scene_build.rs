@@ -4,7 +4,7 @@
 use tubecast::{Ray, RoundCone, V3};
 use tubecast_render::accel::Bvh;
 use tubecast_render::io::Polyline;
-use tubecast_render::scene::{PrimKind, Scene};
+use tubecast_render::scene::{PrimKind, Scene, Shape};
 
 #[test]
 fn primitive_selection_models_no_more_than_needed() {
@@ -18,7 +18,7 @@ fn primitive_selection_models_no_more_than_needed() {
         Polyline { points: vec![[9.0, 9.0, 9.0]], radii: vec![] },
     ];
     let s = Scene::from_polylines(&lines, 0.7, "t").unwrap();
-    let kinds: Vec<PrimKind> = s.primitives().iter().map(|p| p.kind).collect();
+    let kinds: Vec<PrimKind> = s.primitives().iter().map(|p| p.kind()).collect();
     assert_eq!(kinds, vec![PrimKind::Cylinder, PrimKind::Cone, PrimKind::Sphere, PrimKind::Sphere]);
     let st = s.stats();
     assert_eq!((st.nodes, st.links, st.cylinders, st.cones, st.spheres), (5, 4, 1, 1, 2));
@@ -27,7 +27,7 @@ fn primitive_selection_models_no_more_than_needed() {
     assert_eq!(st.bounds.1[0], 9.7);
     // The contained link is modelled by its larger sphere: centre (4, 0, 0), radius 0.3.
     let p = s.primitives()[2];
-    assert_eq!((p.origin, p.ra), ([4.0, 0.0, 0.0], 0.3));
+    assert_eq!((p.origin, p.shape), ([4.0, 0.0, 0.0], Shape::Sphere { r: 0.3 }));
 }
 
 #[test]

@@ -3,7 +3,7 @@
 //! of `-1` marks a root and there may be several roots. Coordinates and radii are kept in the
 //! file's units.
 
-use super::{parse_finite, IoError};
+use super::{parse_finite, IoError, Polyline};
 use std::collections::HashMap;
 
 /// One SWC row.
@@ -143,4 +143,27 @@ pub fn write(nodes: &[SwcNode]) -> String {
         ));
     }
     s
+}
+
+/// SWC rows for polylines: each polyline a chain (first point a root), types 0.
+pub fn from_polylines(lines: &[Polyline], default_radius: f64) -> Vec<SwcNode> {
+    let mut out = Vec::new();
+    for l in lines {
+        for (k, p) in l.points.iter().enumerate() {
+            let id = out.len() as i64 + 1;
+            out.push(SwcNode {
+                id,
+                kind: 0,
+                pos: *p,
+                radius: l.radii.get(k).copied().unwrap_or(default_radius),
+                parent: if k == 0 { -1 } else { id - 1 },
+            });
+        }
+    }
+    out
+}
+
+/// Read the SWC file at `path` ([`read`], named by its path in errors).
+pub fn load(path: &std::path::Path) -> Result<Vec<SwcNode>, IoError> {
+    read(&super::read_bytes(path)?, &path.display().to_string())
 }
