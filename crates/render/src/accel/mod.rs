@@ -65,6 +65,22 @@ pub struct Hit {
 }
 
 /// A BVH over primitives.
+///
+/// ```
+/// use tubecast::{Ray, V3};
+/// use tubecast_render::accel::Bvh;
+/// use tubecast_render::io::Polyline;
+/// use tubecast_render::scene::Scene;
+///
+/// // One tube of radius 0.5 along x from 0 to 4.
+/// let line = Polyline { points: vec![[0.0; 3], [4.0, 0.0, 0.0]], radii: vec![] };
+/// let scene = Scene::from_polylines(&[line], 0.5, "tube").unwrap();
+/// let bvh = Bvh::build(scene.primitives());
+/// let down = Ray::new(V3::new(2.0, 3.0, 0.0), V3::new(0.0, -1.0, 0.0));
+/// let hit = bvh.closest_hit(&down).unwrap();
+/// assert_eq!((hit.t, hit.link, hit.entering), (2.5, 0, true));
+/// assert!(!bvh.any_hit(&Ray::new(V3::new(2.0, 3.0, 0.0), V3::new(0.0, 1.0, 0.0))));
+/// ```
 pub struct Bvh {
     bvh: Bvh2,
     /// The primitives, in BVH leaf order.

@@ -92,7 +92,13 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<SwcNode>, IoError> {
     if nodes.is_empty() {
         return Err(IoError::file(name, "no nodes (empty or only comments)"));
     }
-    // Parents exist, and following parents always reaches a root (no cycles).
+    check_parents(&nodes, &lines, &index, name)?;
+    Ok(nodes)
+}
+
+/// Parents exist, and following parents always reaches a root (no cycles). `lines`: the line
+/// of each node; `index`: node index by id.
+fn check_parents(nodes: &[SwcNode], lines: &[usize], index: &HashMap<i64, usize>, name: &str) -> Result<(), IoError> {
     let mut state = vec![0u8; nodes.len()]; // 0 unknown, 1 on current path, 2 reaches a root
     for start in 0..nodes.len() {
         let mut path = Vec::new();
@@ -130,7 +136,7 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<SwcNode>, IoError> {
             state[k] = 2;
         }
     }
-    Ok(nodes)
+    Ok(())
 }
 
 /// Write nodes as SWC text (shortest round-trip formatting of every number).

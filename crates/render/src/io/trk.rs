@@ -72,13 +72,9 @@ fn axcodes(m: &[[f32; 4]; 4]) -> [u8; 3] {
     out
 }
 
-/// Parse a `.trk` file into streamlines in RAS+ mm (no radii), with its header.
-///
-/// Errors: short header, bad magic, `hdr_size` ≠ 1000 in both byte orders, non-positive or
-/// non-finite voxel size, negative or too many scalars/properties, a singular or non-finite
-/// `vox_to_ras`, a `voxel_order` that disagrees with it, a negative point count, a truncated
-/// streamline, non-finite coordinates, fewer streamlines than `n_count`, or trailing bytes.
-pub fn read(data: &[u8], name: &str) -> Result<(TrkHeader, Vec<Polyline>), IoError> {
+/// The validated header of a TrackVis file, its byte order (`true`: big endian) and
+/// `n_count` (0: unknown).
+fn read_header(data: &[u8], name: &str) -> Result<(TrkHeader, bool, i32), IoError> {
     if data.is_empty() {
         return Err(IoError::file(name, "empty file"));
     }
@@ -161,6 +157,19 @@ pub fn read(data: &[u8], name: &str) -> Result<(TrkHeader, Vec<Polyline>), IoErr
     if n_count < 0 {
         return Err(IoError::offset(name, 988, format!("n_count {n_count} is negative")));
     }
+    Ok((h, big, n_count))
+}
+
+/// Parse a `.trk` file into streamlines in RAS+ mm (no radii), with its header.
+///
+/// Errors: short header, bad magic, `hdr_size` ≠ 1000 in both byte orders, non-positive or
+/// non-finite voxel size, negative or too many scalars/properties, a singular or non-finite
+/// `vox_to_ras`, a `voxel_order` that disagrees with it, a negative point count, a truncated
+/// streamline, non-finite coordinates, fewer streamlines than `n_count`, or trailing bytes.
+pub fn read(data: &[u8], name: &str) -> Result<(TrkHeader, Vec<Polyline>), IoError> {
+    let (h, big, n_count) = read_header(data, name)?;
+    let m = h.vox_to_ras.map(|r| r.map(|v| v as f64));
+    let mut c = Cursor::new(data, name, big);
     c.pos = 1000;
     let per_point = 3 + h.n_scalars as usize;
     let vs = h.voxel_size.map(|v| v as f64);

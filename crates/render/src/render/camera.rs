@@ -6,6 +6,19 @@ use tubecast::ray::Ray;
 use tubecast::V3;
 
 /// A perspective pinhole camera.
+///
+/// ```
+/// use tubecast::V3;
+/// use tubecast_render::render::Camera;
+///
+/// let (eye, target, up) = (V3::new(0.0, 0.0, 10.0), V3::zero(), V3::new(0.0, 1.0, 0.0));
+/// let cam = Camera::look_at(eye, target, up, 40.0, 64, 64).unwrap();
+/// assert_eq!(cam.forward, V3::new(0.0, 0.0, -1.0));
+/// // Pixel centres straddle the view axis of an even-sized image.
+/// let (a, b) = (cam.ray(31, 31).d, cam.ray(32, 32).d);
+/// assert_eq!((a.x, a.y), (-b.x, -b.y));
+/// assert!(Camera::look_at(eye, eye, up, 40.0, 64, 64).is_err());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
     /// Eye position.

@@ -27,6 +27,14 @@ pub enum Shading {
 }
 
 /// Render settings.
+///
+/// ```
+/// use tubecast_render::render::{ColorBy, Options};
+///
+/// let glass = Options { opacity: 0.4, color: ColorBy::Radius, ..Options::default() };
+/// assert!(glass.validate().is_ok());
+/// assert!(Options { opacity: 0.0, ..glass }.validate().is_err());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Options {
     /// Surface colouring.
