@@ -14,7 +14,7 @@ pub struct Image {
     pub height: u32,
     /// Row-major linear RGB.
     pub rgb: Vec<[f32; 3]>,
-    /// Row-major depth in the camera ray's parameter ([`Camera::ray`]).
+    /// Row-major depth in the camera ray's parameter ([`super::Camera::ray`]).
     pub depth: Vec<f64>,
 }
 

@@ -148,7 +148,7 @@ impl Scene {
         out
     }
 
-    /// Primitives of the spline model (see the module docs): two [`PrimKind::Spline`]
+    /// Primitives of the spline model (see the module docs): two [`super::PrimKind::Spline`]
     /// sub-segments per curved chain link, the link's own primitive for straight ones and for
     /// isolated nodes. Errors (a guard; see [`Prim::from_quad`]) when a segment cannot be stored
     /// as an `f32` spline primitive.
