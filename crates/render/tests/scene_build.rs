@@ -97,3 +97,11 @@ fn far_from_origin_keeps_precision_and_naive_f32_does_not() {
     // by more than the radius; it must be visibly worse (misses count as infinite error).
     assert!(worst_naive > 1e-3, "naive f32 error {worst_naive:e} unexpectedly small");
 }
+
+/// Memory per primitive: the `f64` origin (24 bytes), the link index and the largest shape, a
+/// spline sub-segment's three `f32` control points and radii (48 bytes) plus its half and the
+/// tag, padded to 8: 80 bytes, as before `Prim` held its shape as an enum.
+#[test]
+fn primitive_size_does_not_grow() {
+    assert_eq!(std::mem::size_of::<tubecast_render::scene::Prim>(), 80);
+}
