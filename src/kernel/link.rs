@@ -17,12 +17,12 @@
 //! Because the hull is convex and equals the union of its three pieces, the ray interval is
 //! the earliest entry and the latest exit over the pieces.
 
-use super::cone::{cylinder_line, quadric_in_slab_disc, slab, stump_line};
+use super::cone::{cylinder_line, stump_line};
 use super::cone::{TangentCone, UnitConeTransform};
 use super::sphere::sphere_line;
+use crate::math::quadric::{quadric_in_slab_disc, slab};
 use crate::ray::{in_range, Interval, Ray};
 use crate::real::{Mask, Real, Scalar};
-
 use crate::vec::V3;
 use crate::GeometryError;
 
@@ -241,7 +241,8 @@ impl<T: Real> RoundCone<T> {
             // (e ≫ |P|) — the discriminant is then c²s²zd²|P|², tiny against e².
             let eq = q * e + p * (s * zd);
             let disc = c2 * (eq.length2() - c2 * p.cross(q).length2());
-            let (k0, k1, q0, q1, ok) = quadric_in_slab_disc(qa, qb, qc, disc, lo, hi);
+            let hits = quadric_in_slab_disc(qa, qb, qc, disc, lo, hi);
+            let (k0, k1, q0, q1, ok) = (hits.t0, hits.t1, hits.root0, hits.root1, hits.ok);
             // F squares the distance-like g(τ) = c·|p + τq| − (e − s·zd·τ) (zero on the side,
             // |∇g| = 1): near a thin end seen from a far c0, F's root loses digits that g keeps.
             // One safeguarded Newton step on g restores them.

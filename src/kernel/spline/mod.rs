@@ -1,0 +1,255 @@
+//! Ray–spline-tube intersection: the sphere sweep `S(p(t), r(t))`, `t ∈ [0, 1]`, of a
+//! **quadratic** Bézier position curve and radius curve ([`QuadTube`]; a cubic Hermite segment
+//! is split into two of them by [`crate::kernel::hermite`]).
+//!
+//! # Ray space (Russig §3.2, Salm §3.2)
+//! With `d̂ = d/|d|` and `q(t) = p(t) − o`, the ray enters the sphere `t` at `s = h − √g` and
+//! leaves it at `h + √g` (`s` = distance along `d̂`), where
+//!
+//! * `h(t) = q·d̂` — quadratic,
+//! * `g(t) = r² − |q|² + (q·d̂)² = r² − |q × d̂|²` — quartic; formed from the cross products,
+//!   so no ray-space basis is built and there is no `|q|² − (q·d̂)²` cancellation.
+//!
+//! The ray origin is first moved to the point of the line closest to `p(½)` (so far origins
+//! lose only what representing the origin loses). The entry of the sweep is `min f`,
+//! `f = h − √g`, over `{t : g(t) ≥ 0}`, the exit `max e`, `e = h + √g`. Both extrema are at
+//! interior critical points or at the segment ends `t = 0, 1` (where the tube continues into
+//! the neighbouring segment: a minimum exactly at a joint is a candidate, never missed).
+//!
+//! # Solvers ([`Solver`])
+//! * Russig's cascade ([`Solver::Bisection`], [`Solver::Itp`], [`Solver::Newton`]): real
+//!   intervals of `g` by the cascade `g''` (analytic) → `g'` → `g`; on each real interval the
+//!   critical points of `f` by `f'''` → `f''` → `f'` (sign functions scaled by powers of `g`
+//!   so they stay finite at the interval ends: `F₁ = 2h'√g − g'`,
+//!   `F₂ = 4h''g√g − 2g''g + g'²`, `F₃ = −4g'''g² + 6g'g''g − 3g'³`), and the same for the exit
+//!   with `h → −h`. This assumes Russig's empirical claim that `f'''` has at most one root per
+//!   real interval (`f'` at most three). `tests/spline_claims.rs` tests it: it holds on random
+//!   segments, but **fails** on a real interval bounded by the segment ends (a radius
+//!   shrinking 600-fold; f''' has two roots, the middle of f''s three roots is the minimum), where
+//!   these solvers report a point inside the tube instead of the entry.
+//! * [`Solver::Polynomial`]: the critical points of `f` **and** `e` are exactly the roots of
+//!   `P = 4h'²g − g'² = (2h'√g − g')(2h'√g + g')` where `g > 0`; all roots of `P` in `[0, 1]`
+//!   by the derivative cascade (the union of the roots of `P` formed in powers of `t` and in
+//!   powers of `t − t_v`, `t_v` the vertex of the centre line, where a slow curve makes `P`
+//!   tiny), then `f` and `e` at every root with `g ≥ 0` (to rounding; `g(1)` formed from the
+//!   end itself, exactly 0 for a zero-radius end on the line) and at `t = 0, 1`.
+//!   Needs no real intervals and no claim.
+//!
+//! The kernel returns the hull `[first entry, last exit]` ([`QuadTube::intersect`]). A strongly
+//! bent segment can be crossed more than once; [`QuadTube::intersect_pieces`] returns one
+//! interval per real interval of `g` (each exact: the part of the sweep over a connected
+//! `t`-interval meets the line in one interval), which is what CSG needs.
+
+mod ray_space;
+mod sdf;
+
+pub use sdf::quadratic_tube;
+
+use self::ray_space::RaySpace;
+use super::roots::Solver;
+use crate::kernel::link::RoundCone;
+use crate::math::bezier::{bernstein2, bezier2, bezier2_max, bezier2_min};
+use crate::math::roots::{horner, poly_breakpoints, Bracket};
+use crate::ray::{in_range, Interval, Ray};
+use crate::real::{Mask, Real, Scalar};
+use crate::vec::V3;
+use crate::GeometryError;
+
+/// A quadratic sphere-swept segment: Bézier control points `b` and control radii `r`;
+/// `p(t) = (1−t)²b₀ + 2t(1−t)b₁ + t²b₂`, likewise `r(t)`.
+///
+/// Build scalar segments with [`QuadTube::new`] (validated: the interpolated radius must not
+/// be negative anywhere on `[0, 1]`); lanes with [`QuadTube::from_lanes`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct QuadTube<T> {
+    /// Control points.
+    pub b: [V3<T>; 3],
+    /// Control radii (`r₁` may be negative as long as `r(t) ≥ 0` on `[0, 1]`).
+    pub r: [T; 3],
+}
+
+impl<T: Scalar> QuadTube<T> {
+    /// A validated segment. Errors: non-finite input ([`GeometryError::NonFinite`]), a radius
+    /// curve that is negative somewhere on `[0, 1]` ([`GeometryError::NegativeRadius`]), a
+    /// radius that is zero everywhere ([`GeometryError::ZeroRadius`]), or an extent whose
+    /// square overflows ([`GeometryError::NonFinite`]).
+    pub fn new(b: [V3<T>; 3], r: [T; 3]) -> Result<Self, GeometryError> {
+        if b.iter().any(|p| !p.is_finite()) {
+            return Err(GeometryError::NonFinite { what: "spline control point" });
+        }
+        if r.iter().any(|x| !x.is_finite()) {
+            return Err(GeometryError::NonFinite { what: "spline control radius" });
+        }
+        if bezier2_min(r) < T::zero() {
+            return Err(GeometryError::NegativeRadius);
+        }
+        if bezier2_max(r) <= T::zero() {
+            return Err(GeometryError::ZeroRadius);
+        }
+        let mut e = T::zero();
+        for i in 0..3 {
+            e = e.max((b[i] - b[0]).max_abs()).max(r[i].abs());
+        }
+        // The kernel works in units of the bounding radius (≤ 4e), which it computes from
+        // squared lengths: those must not overflow.
+        let e2 = e * e * T::cst(64.0);
+        if !e2.is_finite() {
+            return Err(GeometryError::NonFinite { what: "spline extent (overflows in the kernel)" });
+        }
+        Ok(Self { b, r })
+    }
+    /// The straight segment equal to a link: `b₁`, `r₁` at the midpoints (the same sweep as
+    /// the round cone, parametrised at the same speed).
+    pub fn from_link(l: &RoundCone<T>) -> Result<Self, GeometryError> {
+        let h = T::cst(0.5);
+        Self::new([l.a, (l.a + l.b) * h, l.b], [l.ra, (l.ra + l.rb) * h, l.rb])
+    }
+    /// Minimum of `r(t)` over `[0, 1]`.
+    pub fn min_radius(&self) -> T {
+        bezier2_min(self.r)
+    }
+    /// Convert the precision.
+    pub fn cast<U: Scalar>(&self) -> QuadTube<U> {
+        QuadTube {
+            b: [self.b[0].cast(), self.b[1].cast(), self.b[2].cast()],
+            r: [U::from_f64(self.r[0].to_f64()), U::from_f64(self.r[1].to_f64()), U::from_f64(self.r[2].to_f64())],
+        }
+    }
+}
+
+impl<T: Real> QuadTube<T> {
+    /// Lanes from validated scalar segments (one per lane).
+    pub fn from_lanes(f: impl Fn(usize) -> QuadTube<T::Elem>) -> Self {
+        Self {
+            b: [V3::from_fn(|i| f(i).b[0]), V3::from_fn(|i| f(i).b[1]), V3::from_fn(|i| f(i).b[2])],
+            r: [T::from_fn(|i| f(i).r[0]), T::from_fn(|i| f(i).r[1]), T::from_fn(|i| f(i).r[2])],
+        }
+    }
+    /// Every lane the same segment.
+    pub fn splat(s: QuadTube<T::Elem>) -> Self {
+        Self {
+            b: [V3::splat(s.b[0]), V3::splat(s.b[1]), V3::splat(s.b[2])],
+            r: [T::splat(s.r[0]), T::splat(s.r[1]), T::splat(s.r[2])],
+        }
+    }
+    /// Lane `i` as a scalar segment.
+    pub fn lane(&self, i: usize) -> QuadTube<T::Elem> {
+        QuadTube {
+            b: [self.b[0].lane(i), self.b[1].lane(i), self.b[2].lane(i)],
+            r: [self.r[0].lane(i), self.r[1].lane(i), self.r[2].lane(i)],
+        }
+    }
+    /// Centre-line point `p(t)`.
+    #[inline(always)]
+    pub fn point(&self, t: T) -> V3<T> {
+        let [w0, w1, w2] = bernstein2(t);
+        self.b[0] * w0 + self.b[1] * w1 + self.b[2] * w2
+    }
+    /// Radius `r(t)`.
+    #[inline(always)]
+    pub fn radius(&self, t: T) -> T {
+        bezier2(self.r, t)
+    }
+    /// Tangent `p'(t)`.
+    #[inline(always)]
+    pub fn tangent(&self, t: T) -> V3<T> {
+        let two = T::cst(2.0);
+        ((self.b[1] - self.b[0]) * (T::one() - t) + (self.b[2] - self.b[1]) * t) * two
+    }
+    /// Radius derivative `r'(t)`.
+    #[inline(always)]
+    pub fn radius_deriv(&self, t: T) -> T {
+        T::cst(2.0) * ((self.r[1] - self.r[0]) * (T::one() - t) + (self.r[2] - self.r[1]) * t)
+    }
+
+    /// Ray–segment interval with the default solver ([`Solver::Polynomial`]): entry
+    /// `min f`, exit `max e` over the whole segment (the hull of [`Self::intersect_pieces`]).
+    #[inline(always)]
+    pub fn intersect(&self, ray: &Ray<T>) -> Interval<T> {
+        self.intersect_with(ray, Solver::Polynomial)
+    }
+
+    /// Ray–segment interval (hull) with a chosen solver.
+    #[inline(always)]
+    pub fn intersect_with(&self, ray: &Ray<T>, solver: Solver) -> Interval<T> {
+        let rs = RaySpace::new(self, ray);
+        if rs.near.none() {
+            return Interval::miss();
+        }
+        match solver {
+            Solver::Polynomial => {
+                let (bp, n) = rs.p_breakpoints();
+                let (x, any) = rs.polished_candidates(&bp[..n], T::zero(), T::one(), false);
+                rs.interval(ray, x, any, true)
+            }
+            _ => {
+                // Hull of the line pieces, then clipped to the ray's range (a piece behind the
+                // origin still belongs to the line interval).
+                let pieces = self.pieces_in(&rs, ray, solver, false);
+                let mut iv = pieces[0];
+                for p in &pieces[1..] {
+                    iv = iv.hull(*p);
+                }
+                iv.masked(in_range(ray, iv.t_in, iv.t_out))
+            }
+        }
+    }
+
+    /// One interval per real interval of `g` (at most three non-empty, in slots `0..5`; the
+    /// others miss), each exact. Feed them to [`crate::kernel::csg::union`] for transparency.
+    /// With [`Solver::Polynomial`] the real intervals come from `g`'s cascade with Newton and
+    /// the candidates from `P`'s roots.
+    #[inline(always)]
+    pub fn intersect_pieces(&self, ray: &Ray<T>, solver: Solver) -> [Interval<T>; 5] {
+        let rs = RaySpace::new(self, ray);
+        if rs.near.none() {
+            return [Interval::miss(); 5];
+        }
+        self.pieces_in(&rs, ray, solver, true)
+    }
+
+    #[inline(always)]
+    fn pieces_in(&self, rs: &RaySpace<T>, ray: &Ray<T>, solver: Solver, clip: bool) -> [Interval<T>; 5] {
+        let half = T::cst(0.5);
+        let method = match solver {
+            Solver::Bisection { iters } => Bracket::Bisection(iters),
+            Solver::Itp => Bracket::Itp,
+            Solver::Newton | Solver::Polynomial => Bracket::Newton,
+        };
+        // Real intervals of g: breakpoints 0 = z₀ ≤ z₁ ≤ … ≤ z₅ = 1, g of one sign on each piece.
+        let (z, _) = poly_breakpoints(&rs.g, T::zero(), T::one(), method);
+        let mut real = [T::Mask::splat(false); 5];
+        for k in 0..5 {
+            let mid = (z[k] + z[k + 1]) * half;
+            real[k] = horner(&rs.g, mid).gt(T::zero()) & z[k + 1].gt(z[k]);
+        }
+        // A boundary is a cut (a root of g) where realness changes or g ≤ 0 there.
+        let mut cut = [T::Mask::splat(true); 6];
+        for j in 1..5 {
+            let rj = real[j - 1] & real[j];
+            cut[j] = !rj | horner(&rs.g, z[j]).le(T::zero());
+        }
+        let ppoly = if solver == Solver::Polynomial { Some(rs.p_breakpoints()) } else { None };
+        let mut out = [Interval::miss(); 5];
+        for k in 0..5 {
+            // Process piece k only where it starts a merged real interval.
+            let first = real[k] & cut[k];
+            if first.none() {
+                continue;
+            }
+            let lo = z[k];
+            let mut hi = z[k + 1];
+            let mut open = T::Mask::splat(true);
+            for j in k + 1..5 {
+                open = open & !cut[j];
+                hi = T::select(open, z[j + 1], hi);
+            }
+            let x = match ppoly {
+                Some((bp, n)) => rs.polished_candidates(&bp[..n], lo, hi, true).0,
+                None => rs.russig(lo, hi, method),
+            };
+            out[k] = rs.interval(ray, x, first, clip);
+        }
+        out
+    }
+}
