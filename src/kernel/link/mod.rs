@@ -1,0 +1,211 @@
+//! The link: a round cone, i.e. the convex hull of two spheres (= sphere ∪ tangent-cone stump
+//! ∪ sphere, = the sphere sweep `S(p(u), r(u))` with `p`, `r` linear in `u ∈ [0, 1]`).
+//!
+//! Two formulations, both public, so the reports can chart them against each other:
+//!
+//! * **faithful** — Han et al. 2019: apex, unit-cone transform, quadratic, slab `[z_cap, 1]`,
+//!   plus the two spheres; a textbook cylinder when the radii are exactly equal. With the
+//!   transform precomputed ([`HanLink`], Han Table 1 option d) or built per call
+//!   ([`RoundCone::intersect_han_on_the_fly`], option c).
+//! * **stable** — [`RoundCone::intersect`]: no apex. The cone is written with its half-angle,
+//!   `sin θ = (r₁ − r₂)/L`, in coordinates centred on the link's midpoint, and the ray origin is
+//!   first moved to the point of the line closest to that midpoint. The quadratic's
+//!   coefficients are built from cross products (`|d × â|²`, `(o × â)·(d × â)`, …), so
+//!   axis-parallel rays, equal radii and far origins lose no digits that the input did not
+//!   already lose.
+//!
+//! Because the hull is convex and equals the union of its three pieces, the ray interval is
+//! the earliest entry and the latest exit over the pieces.
+
+mod stable;
+
+use super::cone::{cylinder_line, stump_line};
+use super::cone::{TangentCone, UnitConeTransform};
+use super::sphere::sphere_line;
+use crate::ray::{in_range, Interval, Ray};
+use crate::real::{Mask, Real, Scalar};
+use crate::vec::V3;
+use crate::GeometryError;
+
+/// A round cone (link) between spheres `(a, ra)` and `(b, rb)`. The curve parameter `u` runs
+/// from 0 at `a` to 1 at `b`.
+///
+/// Build scalar links with [`RoundCone::new`] (validated); lane links with
+/// [`RoundCone::from_lanes`] from validated scalar links.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RoundCone<T> {
+    /// First centre.
+    pub a: V3<T>,
+    /// First radius.
+    pub ra: T,
+    /// Second centre.
+    pub b: V3<T>,
+    /// Second radius.
+    pub rb: T,
+}
+
+/// What a link degenerates to, by the classification the kernels use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LinkShape {
+    /// Distinct radii with `|ra − rb| < L`: a tangent cone stump between two spheres.
+    Cone,
+    /// Equal radii and `L > 0`: a cylinder between two spheres.
+    Cylinder,
+    /// `|ra − rb| ≥ L` (one sphere inside the other, or zero length): the larger sphere.
+    Sphere,
+}
+
+impl<T: Scalar> RoundCone<T> {
+    /// A validated link. Errors: non-finite coordinates or radii, a negative radius, or both
+    /// radii zero (no volume). One sphere inside the other and zero length are valid: the
+    /// link is the larger sphere ([`LinkShape::Sphere`]).
+    pub fn new(a: V3<T>, ra: T, b: V3<T>, rb: T) -> Result<Self, GeometryError> {
+        if !a.is_finite() || !b.is_finite() {
+            return Err(GeometryError::NonFinite { what: "link centre" });
+        }
+        if !ra.is_finite() || !rb.is_finite() {
+            return Err(GeometryError::NonFinite { what: "link radius" });
+        }
+        if ra < T::zero() || rb < T::zero() {
+            return Err(GeometryError::NegativeRadius);
+        }
+        if ra == T::zero() && rb == T::zero() {
+            return Err(GeometryError::ZeroRadius);
+        }
+        // Kernels square radii and form differences of squares: a non-zero radius whose square
+        // is within a factor 1/ε of underflow loses its digits in subnormal arithmetic.
+        let tiny = |r: T| r > T::zero() && r * r < T::MIN_POSITIVE / T::EPS;
+        if tiny(ra) || tiny(rb) {
+            return Err(GeometryError::TooSmall { what: "link radius (its square underflows)" });
+        }
+        // Squared length must not overflow, or every kernel sees L = ∞.
+        let e = (b - a).max_abs().max(ra).max(rb);
+        if !(e * e * T::cst(4.0)).is_finite() {
+            return Err(GeometryError::NonFinite { what: "link extent (overflows when squared)" });
+        }
+        Ok(Self { a, ra, b, rb })
+    }
+    /// How the kernels classify this link.
+    pub fn shape(&self) -> LinkShape {
+        let l = (self.b - self.a).length();
+        let dr = (self.ra - self.rb).abs();
+        if dr >= l {
+            LinkShape::Sphere
+        } else if dr == T::zero() {
+            LinkShape::Cylinder
+        } else {
+            LinkShape::Cone
+        }
+    }
+    /// Convert the precision.
+    pub fn cast<U: Scalar>(&self) -> RoundCone<U> {
+        RoundCone {
+            a: self.a.cast(),
+            ra: U::from_f64(self.ra.to_f64()),
+            b: self.b.cast(),
+            rb: U::from_f64(self.rb.to_f64()),
+        }
+    }
+    /// Axis-aligned bounding box `(min, max)`.
+    pub fn aabb(&self) -> (V3<T>, V3<T>) {
+        let lo = |p: T, q: T| (p - self.ra).min(q - self.rb);
+        let hi = |p: T, q: T| (p + self.ra).max(q + self.rb);
+        (
+            V3::new(lo(self.a.x, self.b.x), lo(self.a.y, self.b.y), lo(self.a.z, self.b.z)),
+            V3::new(hi(self.a.x, self.b.x), hi(self.a.y, self.b.y), hi(self.a.z, self.b.z)),
+        )
+    }
+}
+
+impl<T: Real> RoundCone<T> {
+    /// Lanes from validated scalar links (one per lane).
+    pub fn from_lanes(f: impl Fn(usize) -> RoundCone<T::Elem>) -> Self {
+        Self {
+            a: V3::from_fn(|i| f(i).a),
+            ra: T::from_fn(|i| f(i).ra),
+            b: V3::from_fn(|i| f(i).b),
+            rb: T::from_fn(|i| f(i).rb),
+        }
+    }
+    /// Every lane the same link.
+    pub fn splat(l: RoundCone<T::Elem>) -> Self {
+        Self { a: V3::splat(l.a), ra: T::splat(l.ra), b: V3::splat(l.b), rb: T::splat(l.rb) }
+    }
+
+    /// Stable ray–round-cone interval (no apex; see the module docs).
+    #[inline(always)]
+    pub fn intersect(&self, ray: &Ray<T>) -> Interval<T> {
+        let iv = self.stable_line(ray, true);
+        iv.masked(in_range(ray, iv.t_in, iv.t_out))
+    }
+
+    /// The tangent-cone stump alone (no end spheres), stable form.
+    #[inline(always)]
+    pub fn intersect_stump_stable(&self, ray: &Ray<T>) -> Interval<T> {
+        let iv = self.stable_line(ray, false);
+        iv.masked(in_range(ray, iv.t_in, iv.t_out))
+    }
+
+    /// Faithful Han et al. round cone, tangent cone and transform built per call
+    /// (Han Table 1 option c).
+    #[inline(always)]
+    pub fn intersect_han_on_the_fly(&self, ray: &Ray<T>) -> Interval<T> {
+        HanLink::new(self).intersect(ray)
+    }
+}
+
+/// A link with Han's tangent cone and unit-cone transform precomputed (Han Table 1 option d).
+#[derive(Clone, Copy, Debug)]
+pub struct HanLink<T: Real> {
+    /// The link.
+    pub link: RoundCone<T>,
+    /// Its tangent cone (Han §3.2.2).
+    pub cone: TangentCone<T>,
+    /// The unit-cone transform (Han §4.1).
+    pub xf: UnitConeTransform<T>,
+}
+
+impl<T: Real> HanLink<T> {
+    /// Precompute the cone and the transform.
+    #[inline(always)]
+    pub fn new(link: &RoundCone<T>) -> Self {
+        let cone = TangentCone::new(link.a, link.ra, link.b, link.rb);
+        let xf = UnitConeTransform::new(&cone);
+        Self { link: *link, cone, xf }
+    }
+    /// Ray–round-cone interval: spheres ∪ (cone stump, or the textbook cylinder for equal radii).
+    #[inline(always)]
+    pub fn intersect(&self, ray: &Ray<T>) -> Interval<T> {
+        let l = &self.link;
+        let s1 = sphere_line(ray, l.a, l.ra, T::zero());
+        let s2 = sphere_line(ray, l.b, l.rb, T::one());
+        let mut iv = s1.hull(s2);
+        if self.cone.is_cone.any() {
+            iv = iv.hull(stump_line(ray, &self.cone, &self.xf));
+        }
+        if self.cone.is_cylinder.any() {
+            let cyl = cylinder_line(ray, l.a, l.b, l.ra).masked(self.cone.is_cylinder);
+            iv = iv.hull(cyl);
+        }
+        iv.masked(in_range(ray, iv.t_in, iv.t_out))
+    }
+}
+
+/// The sphere-sweep curve parameter of the point of a link's surface with unit normal `n`
+/// at hit point `x` (used by tests and renderers; exact on the cone, 0/1 on the end spheres).
+pub fn link_parameter<T: Scalar>(link: &RoundCone<T>, x: V3<T>, n: V3<T>) -> T {
+    let v = link.b - link.a;
+    let l2 = v.length2();
+    if l2 <= T::zero() {
+        return T::zero();
+    }
+    // The touching sphere's centre a + u·v satisfies x − r(u)·n = a + u·v along the axis.
+    let na = n.dot(v);
+    let dr = link.rb - link.ra;
+    let num = (x - link.a).dot(v) - link.ra * na;
+    let den = l2 + dr * na;
+    if den <= T::zero() {
+        return T::zero();
+    }
+    (num / den).clamp(T::zero(), T::one())
+}
