@@ -63,10 +63,10 @@ pub(super) struct RaySpace<T: Real> {
 }
 
 /// `h` and `g` (ascending powers of the parameter) from the power-basis position
-/// `q = qa x² + qb x + qc` and radius `ra x² + rb x + rc`.
+/// `q = qa x² + qb x + qc` and radius `ra x² + rb x + rc` (`q = [qa, qb, qc]`, `r = [ra, rb, rc]`).
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn ray_polys<T: Real>(qa: V3<T>, qb: V3<T>, qc: V3<T>, ra: T, rb: T, rc: T, dhat: V3<T>) -> ([T; 3], [T; 5]) {
+fn ray_polys<T: Real>(q: [V3<T>; 3], r: [T; 3], dhat: V3<T>) -> ([T; 3], [T; 5]) {
+    let ([qa, qb, qc], [ra, rb, rc]) = (q, r);
     let two = T::cst(2.0);
     let h = [qc.dot(dhat), qb.dot(dhat), qa.dot(dhat)];
     let (wa, wb, wc) = (qa.cross(dhat), qb.cross(dhat), qc.cross(dhat));
@@ -121,7 +121,7 @@ impl<T: Real> RaySpace<T> {
         let qc = c0;
         let [r0, r1, r2] = [tube.r[0] * inv, tube.r[1] * inv, tube.r[2] * inv];
         let (ra, rb, rc) = (r0 - r1 * two + r2, (r1 - r0) * two, r0);
-        let (h, g) = ray_polys(qa, qb, qc, ra, rb, rc, dhat);
+        let (h, g) = ray_polys([qa, qb, qc], [ra, rb, rc], dhat);
         // The same about the vertex tv of the centre line (|p'|² = |qb + 2qa·t|² least), from
         // the control points (de Casteljau: each coefficient to ε of the local sizes). Where
         // the curve is slow (p' ≈ 0, e.g. b₁ = b₂) the ray meets the tube over a wide range
@@ -138,7 +138,7 @@ impl<T: Real> RaySpace<T> {
         let qbv = ((c1 - c0) * sv + (c2 - c1) * tv) * two;
         let rcv = r0 * wv0 + r1 * wv1 + r2 * wv2;
         let rbv = ((r1 - r0) * sv + (r2 - r1) * tv) * two;
-        let (hv, gv) = ray_polys(qa, qbv, qcv, ra, rbv, rcv, dhat);
+        let (hv, gv) = ray_polys([qa, qbv, qcv], [ra, rbv, rcv], dhat);
         // g at t = 1 from the end itself (fuzz finding regression-tip-on-ray: r(1) = 0 with
         // p(1) on the ray, g = c(1 − t)⁴; Σ gᵢ came out −2.2e-16, below the tolerance 16ε·Σ|gᵢ|,
         // which bounds the evaluation of g's coefficients but not their own rounding, and the
