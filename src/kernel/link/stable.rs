@@ -85,6 +85,7 @@ struct StableFrame<T: Real> {
 }
 
 impl<T: Real> StableFrame<T> {
+    /// The frame of `ray` for the link `l`.
     #[inline(always)]
     fn new(l: &RoundCone<T>, ray: &Ray<T>) -> Self {
         let zero = T::zero();

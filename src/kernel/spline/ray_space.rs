@@ -13,13 +13,13 @@ use crate::vec::V3;
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Crossings<T> {
     /// Entry distance `min (h − √g)`.
-    pub s_in: T,
+    s_in: T,
     /// Curve parameter of the entry.
-    pub u_in: T,
+    u_in: T,
     /// Exit distance `max (h + √g)`.
-    pub s_out: T,
+    s_out: T,
     /// Curve parameter of the exit.
-    pub u_out: T,
+    u_out: T,
 }
 
 /// The best entry and exit among candidate parameters ([`RaySpace::best_of_candidates`]).
@@ -37,29 +37,29 @@ struct Candidates<T: Real> {
 /// Working data of one ray–segment query in ray space.
 pub(super) struct RaySpace<T: Real> {
     /// `h` coefficients, ascending powers of `t`.
-    pub(super) h: [T; 3],
+    h: [T; 3],
     /// `g` coefficients.
     pub(super) g: [T; 5],
     /// Power-basis position relative to the re-centred origin, in units of the bounding
     /// radius: `q = qa t² + qb t + qc`.
-    pub(super) qa: V3<T>,
-    pub(super) qb: V3<T>,
-    pub(super) qc: V3<T>,
-    pub(super) dhat: V3<T>,
+    qa: V3<T>,
+    qb: V3<T>,
+    qc: V3<T>,
+    dhat: V3<T>,
     /// Ray parameter of the re-centred origin.
-    pub(super) tc: T,
+    tc: T,
     /// Bounding radius / |d|: converts a ray-space distance to a ray parameter step.
-    pub(super) inv_dlen: T,
+    inv_dlen: T,
     /// Lanes whose line comes within the bounding sphere.
     pub(super) near: T::Mask,
     /// `h` and `g` re-expanded about `tv` (coefficients of powers of `t − tv`), for `P`.
-    pub(super) hv: [T; 3],
-    pub(super) gv: [T; 5],
+    hv: [T; 3],
+    gv: [T; 5],
     /// Expansion point of `hv`, `gv`: the vertex of the centre line (least `|p'|`), in `[0, 1]`.
-    pub(super) tv: T,
+    tv: T,
     /// `g(1) = r₂² − |c₂ × d̂|²` formed directly from the end (not as `Σ gᵢ`, which carries
     /// the rounding of every coefficient): exactly 0 for a zero-radius end on the line.
-    pub(super) g_end: T,
+    g_end: T,
 }
 
 /// `h` and `g` (ascending powers of the parameter) from the power-basis position
