@@ -20,6 +20,7 @@
 #![deny(missing_docs)]
 
 pub mod kernel;
+mod math;
 pub mod ray;
 pub mod real;
 pub mod vec;

@@ -70,7 +70,8 @@ impl<T: Scalar> Ray<T> {
         }
         // |d|² must be a normal number and |o|² finite: kernels square both.
         let d2 = self.d.length2();
-        if !(d2 >= T::MIN_POSITIVE) {
+        // (NaN compares as unordered: also an error.)
+        if matches!(d2.partial_cmp(&T::MIN_POSITIVE), None | Some(core::cmp::Ordering::Less)) {
             return Err(E::ZeroDirection);
         }
         if !d2.is_finite() || !self.o.length2().is_finite() {

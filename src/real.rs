@@ -158,6 +158,20 @@ pub trait Scalar: Real<Mask = bool, Elem = Self> + PartialOrd + Default + core::
     fn to_f64(self) -> f64;
 }
 
+/// The lane-wise comparisons of a [`Real`] implementation: `name: |a, b| body` becomes
+/// `fn name(self, o: Self) -> Mask` with `a = self`, `b = o`.
+macro_rules! comparisons {
+    ($mask:ty; $($name:ident: |$a:ident, $b:ident| $body:expr),+ $(,)?) => {
+        $(
+            #[inline(always)]
+            fn $name(self, o: Self) -> $mask {
+                let ($a, $b) = (self, o);
+                $body
+            }
+        )+
+    };
+}
+
 macro_rules! impl_scalar {
     ($t:ty) => {
         impl Real for $t {
@@ -202,26 +216,7 @@ macro_rules! impl_scalar {
                 // A plain multiply-add: `f64::mul_add` is a slow libm call without FMA hardware.
                 self * a + b
             }
-            #[inline(always)]
-            fn lt(self, o: Self) -> bool {
-                self < o
-            }
-            #[inline(always)]
-            fn le(self, o: Self) -> bool {
-                self <= o
-            }
-            #[inline(always)]
-            fn gt(self, o: Self) -> bool {
-                self > o
-            }
-            #[inline(always)]
-            fn ge(self, o: Self) -> bool {
-                self >= o
-            }
-            #[inline(always)]
-            fn eq(self, o: Self) -> bool {
-                self == o
-            }
+            comparisons!(bool; lt: |a, b| a < b, le: |a, b| a <= b, gt: |a, b| a > b, ge: |a, b| a >= b, eq: |a, b| a == b);
             #[inline(always)]
             fn is_finite(self) -> bool {
                 <$t>::is_finite(self)
@@ -326,26 +321,13 @@ mod lanes {
                 fn mul_add(self, a: Self, b: Self) -> Self {
                     $w(self.0.mul_add(a.0, b.0))
                 }
-                #[inline(always)]
-                fn lt(self, o: Self) -> $b {
-                    SimdPartialOrd::simd_lt(self, o)
-                }
-                #[inline(always)]
-                fn le(self, o: Self) -> $b {
-                    SimdPartialOrd::simd_le(self, o)
-                }
-                #[inline(always)]
-                fn gt(self, o: Self) -> $b {
-                    SimdPartialOrd::simd_gt(self, o)
-                }
-                #[inline(always)]
-                fn ge(self, o: Self) -> $b {
-                    SimdPartialOrd::simd_ge(self, o)
-                }
-                #[inline(always)]
-                fn eq(self, o: Self) -> $b {
-                    SimdPartialOrd::simd_eq(self, o)
-                }
+                comparisons!($b;
+                    lt: |a, b| SimdPartialOrd::simd_lt(a, b),
+                    le: |a, b| SimdPartialOrd::simd_le(a, b),
+                    gt: |a, b| SimdPartialOrd::simd_gt(a, b),
+                    ge: |a, b| SimdPartialOrd::simd_ge(a, b),
+                    eq: |a, b| SimdPartialOrd::simd_eq(a, b),
+                );
                 #[inline(always)]
                 fn is_finite(self) -> $b {
                     $b(self.0.is_finite())

@@ -12,7 +12,9 @@
 //! `a·p − r`. So every face of the box touches the tube (the box is the tightest one in
 //! its frame) and the box is conservative up to the rounding of those few operations.
 
-use crate::kernel::spline::{bezier2_max, bezier2_min, QuadTube};
+use crate::kernel::spline::QuadTube;
+use crate::math::bezier::{bezier2_max, bezier2_min};
+use crate::math::frame::orthonormal_basis;
 use crate::real::Real;
 use crate::vec::V3;
 
@@ -37,14 +39,11 @@ fn unit<T: Real>(v: V3<T>) -> V3<T> {
     (v * s).normalize_or_zero()
 }
 
-/// A unit vector orthogonal to the unit vector `n` (Duff et al. 2017).
+/// A unit vector orthogonal to the unit vector `n` (Duff et al. 2017): the first vector of
+/// [`crate::kernel::cone::orthonormal_basis`].
 #[inline(always)]
 pub fn orthogonal<T: Real>(n: V3<T>) -> V3<T> {
-    let one = T::one();
-    let sign = T::select(n.z.lt(T::zero()), -one, one);
-    let a = -one / (sign + n.z);
-    let b = n.x * n.y * a;
-    V3::new(one + sign * n.x * n.x * a, sign * b, -sign * n.x)
+    orthonormal_basis(n).0
 }
 
 impl<T: Real> Obb<T> {

@@ -5,6 +5,7 @@
 //! vector of length ≈ distance(line, centre) rather than from `|o − c|²`: far origins lose only
 //! what representing `o` itself loses.
 
+use crate::math::quadric::{sphere_chord, Chord};
 use crate::ray::{in_range, Interval, Ray};
 use crate::real::Real;
 use crate::vec::V3;
@@ -27,14 +28,7 @@ pub(crate) fn sphere_line<T: Real>(ray: &Ray<T>, c: V3<T>, r: T, u: T) -> Interv
     // length (τ), so nothing over/underflows because |d| is far from 1; t = τ/|d|.
     let dl = ray.d.length();
     let dn = ray.d * (T::one() / dl);
-    let f = ray.o - c;
-    // τ of the closest point of the line to c.
-    let tc = -f.dot(dn);
-    // Perpendicular from c to the line (accurate: no |f|² − (f·d)² cancellation).
-    let l = f + dn * tc;
-    let disc = r * r - l.length2();
-    let ok = disc.ge(T::zero()) & r.gt(T::zero());
-    let h = disc.max(T::zero()).sqrt();
+    let Chord { tc, h, l, ok } = sphere_chord(ray.o, dn, c, r);
     let inv_dl = T::one() / dl;
     let t_in = (tc - h) * inv_dl;
     let t_out = (tc + h) * inv_dl;
