@@ -27,10 +27,20 @@
 
 use crate::real::{Mask, Real};
 
-/// Root-finding strategy of the spline kernel ([`crate::kernel::spline::QuadTube`]).
+/// Root-finding strategy of the spline kernel ([`crate::QuadTube::intersect_with`]).
 ///
 /// All variants are exact in the sense that they bracket every critical point the method's
 /// model admits; they differ in the work per bracket and in the final accuracy.
+///
+/// ```
+/// use tubecast::{QuadTube, Ray, Solver, V3};
+/// let tube = QuadTube::new([V3::new(0.0f64, 0.0, 0.0), V3::new(1.0, 1.0, 0.0), V3::new(2.0, 0.0, 0.0)], [0.2; 3])?;
+/// let ray = Ray::new(V3::new(1.0, 0.5, -5.0), V3::new(0.0, 0.0, 1.0));
+/// let exact = tube.intersect_with(&ray, Solver::Polynomial);
+/// let fast = tube.intersect_with(&ray, Solver::Bisection { iters: 10 });
+/// assert!(exact.hit && fast.hit && (exact.t_in - fast.t_in).abs() < 1e-2);
+/// # Ok::<(), tubecast::GeometryError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Solver {
     /// Russig's cascade (real intervals of `g` by `g''` analytic → `g'` → `g`; minima of `f`
@@ -82,17 +92,6 @@ pub fn horner<T: Real, const N: usize>(c: &[T; N], x: T) -> T {
         acc = acc * x + c[i];
     }
     acc
-}
-
-/// Coefficients of the derivative: `M = N − 1` (checked at compile time by the caller's types).
-#[inline(always)]
-pub fn derivative<T: Real, const N: usize, const M: usize>(c: &[T; N]) -> [T; M] {
-    debug_assert!(M + 1 == N);
-    let mut d = [T::zero(); M];
-    for (i, di) in d.iter_mut().enumerate() {
-        *di = c[i + 1] * T::cst((i + 1) as f64);
-    }
-    d
 }
 
 /// Product of two polynomials (`K = N + M − 1`).
