@@ -7,7 +7,7 @@
 //!   plus the two spheres; a textbook cylinder when the radii are exactly equal. With the
 //!   transform precomputed ([`HanLink`], Han Table 1 option d) or built per call
 //!   ([`RoundCone::intersect_han_on_the_fly`], option c).
-//! * **stable** — [`RoundCone`]'s [`Primitive`] implementation: no apex. The cone is written with its half-angle,
+//! * **stable** — [`RoundCone`] ([`Primitive`]): no apex. The cone is written with its half-angle,
 //!   `sin θ = (r₁ − r₂)/L`, in coordinates centred on the link's midpoint, and the ray origin is
 //!   first moved to the point of the line closest to that midpoint. The quadratic's
 //!   coefficients are built from cross products (`|d × â|²`, `(o × â)·(d × â)`, …), so
