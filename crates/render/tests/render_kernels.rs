@@ -2,7 +2,7 @@
 //! kernels, BVH queries against brute force (including grazing rays), and transparent
 //! compositing of two crossing tubes against an analytic expectation (no interior surfaces).
 
-use tubecast::{Ray, V3};
+use tubecast::{Primitive, Ray, V3};
 use tubecast_render::accel::Bvh;
 use tubecast_render::io::Polyline;
 use tubecast_render::render::{render, Camera, ColorBy, Options, Shading};

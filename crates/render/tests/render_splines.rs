@@ -2,9 +2,9 @@
 //! spline-kernel calls on independently built Hermite segments, a straight polyline against
 //! its link rendering, and transparent compositing without interior surfaces at joints.
 
-use tubecast::kernel::csg::{union, Tagged};
-use tubecast::kernel::HermiteSegment;
-use tubecast::{Ray, V3};
+use tubecast::csg::{union, Tagged};
+use tubecast::HermiteSegment;
+use tubecast::{Primitive, Ray, V3};
 use tubecast_render::accel::{first_component, Bvh};
 use tubecast_render::io::Polyline;
 use tubecast_render::render::{render, Camera, ColorBy, Image, Options, Shading};

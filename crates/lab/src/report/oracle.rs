@@ -9,7 +9,7 @@
 //! bisection for that `u` range, dense sampling and golden-section refinement. The spline oracle
 //! (after `tests/common_spline`) samples the quadratic sweep densely and refines by golden section.
 
-use tubecast::kernel::spline::QuadTube;
+use tubecast::QuadTube;
 use tubecast::{Ray, RoundCone, V3};
 use tubecast_render::scene::generate::Rng;
 

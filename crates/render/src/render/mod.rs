@@ -17,8 +17,8 @@ use crate::accel::Bvh;
 use crate::scene::{Prim, PrimKind, Scene};
 use rayon::prelude::*;
 use std::path::Path;
-use tubecast::kernel::csg::{union, Boundary, Tagged};
-use tubecast::ray::Ray;
+use tubecast::csg::{union, Boundary, Tagged};
+use tubecast::Ray;
 use tubecast::V3;
 
 /// A perspective pinhole camera.

@@ -51,11 +51,11 @@ pub use prim::{Prim, PrimKind};
 use crate::io::{self, IoError, Polyline};
 use std::fmt;
 use std::path::Path;
-use tubecast::kernel::hermite::HermiteSegment;
-use tubecast::kernel::link::RoundCone;
+use tubecast::HermiteSegment;
 #[allow(unused_imports)] // documentation links
-use tubecast::kernel::spline::QuadTube;
-use tubecast::{LinkShape, V3};
+use tubecast::QuadTube;
+use tubecast::RoundCone;
+use tubecast::{LinkShape, Primitive, V3};
 
 /// Largest coordinate or radius magnitude a scene may hold: squares of lengths must stay
 /// finite in `f32` (`(2·1e18)² ≈ 4e36 < 3.4e38`), since primitives are stored in `f32`.
@@ -449,8 +449,8 @@ impl Scene {
                 LinkShape::Cone => s.cones += 1,
                 LinkShape::Sphere => s.spheres += 1,
             }
-            let (a, b) = l.aabb();
-            for (i, (x, y)) in a.to_array().iter().zip(b.to_array()).enumerate() {
+            let bx = l.aabb();
+            for (i, (x, y)) in bx.min.to_array().iter().zip(bx.max.to_array()).enumerate() {
                 lo[i] = lo[i].min(*x);
                 hi[i] = hi[i].max(y);
             }

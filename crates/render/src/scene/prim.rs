@@ -1,12 +1,10 @@
 //! Renderer primitives: `f32` geometry relative to an `f64` local origin.
 
-use tubecast::kernel::link::RoundCone;
-use tubecast::kernel::obb::Obb;
-use tubecast::kernel::roots::Solver;
-use tubecast::kernel::sphere::intersect_sphere;
-use tubecast::kernel::spline::QuadTube;
-use tubecast::ray::{Interval, Ray};
-use tubecast::{GeometryError, LinkShape, V3};
+use tubecast::QuadTube;
+use tubecast::RoundCone;
+use tubecast::Solver;
+use tubecast::{GeometryError, LinkShape, Primitive, Sphere, V3};
+use tubecast::{Interval, Ray};
 
 /// Which exact shape a primitive is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -19,7 +17,7 @@ pub enum PrimKind {
     Cone,
     /// A quadratic sphere-swept spline sub-segment (control points `a`, `m`, `b`, control
     /// radii `ra`, `rm`, `rb`): one half of a cubic Hermite segment
-    /// ([`tubecast::kernel::HermiteSegment::split`]).
+    /// ([`tubecast::HermiteSegment::split`]).
     Spline,
 }
 
@@ -128,17 +126,17 @@ impl Prim {
 
     /// World-space bounding box `(min, max)` of the stored (rounded) primitive, in `f64`.
     ///
-    /// For a spline sub-segment this is [`Obb::aabb`] of the stored control data evaluated
+    /// For a spline sub-segment this is [`QuadTube`]'s [`Primitive::aabb`] of the stored control data evaluated
     /// in `f64` (exact extents up to a few `f64` roundings, far below the BVH's padding).
     pub fn aabb(&self) -> ([f64; 3], [f64; 3]) {
         let (lo, hi) = if self.kind == PrimKind::Spline {
             let q = self.quad().cast::<f64>();
-            let b = Obb::aabb(&q);
-            ((b.origin + b.lo).to_array(), (b.origin + b.hi).to_array())
+            let b = q.aabb();
+            (b.min.to_array(), b.max.to_array())
         } else {
             let rc = RoundCone { a: self.a, ra: self.ra, b: self.b, rb: self.rb };
-            let (lo, hi) = rc.aabb();
-            (lo.cast::<f64>().to_array(), hi.cast::<f64>().to_array())
+            let b = rc.aabb();
+            (b.min.cast::<f64>().to_array(), b.max.cast::<f64>().to_array())
         };
         (std::array::from_fn(|i| self.origin[i] + lo[i]), std::array::from_fn(|i| self.origin[i] + hi[i]))
     }
@@ -147,18 +145,18 @@ impl Prim {
     /// with the hit mask set when it is non-empty and overlaps `[t_min, t_max]`.
     ///
     /// The ray is moved in `f64` to the point of its line nearest the local origin and its
-    /// direction normalised, then the `f32` kernel runs ([`RoundCone::intersect`], stable, or
-    /// [`intersect_sphere`]) and `t` is mapped back in `f64`.
+    /// direction normalised, then the `f32` kernel runs ([`Primitive::intersect`] of [`RoundCone`], stable, or
+    /// of [`Sphere`]) and `t` is mapped back in `f64`.
     ///
     /// A spline sub-segment returns the **hull** `[first entry, last exit]` of its line
-    /// pieces ([`QuadTube::intersect`], [`Solver::Polynomial`]): its entry is the exact first
+    /// pieces ([`QuadTube::intersect_with`], [`Solver::Polynomial`]): its entry is the exact first
     /// entry, but a strongly bent segment may be crossed more than once, so the hull can
     /// cover gaps; [`Self::pieces`] gives the exact pieces.
     #[inline]
     pub fn intersect(&self, ray: &Ray<f64>) -> Interval<f64> {
         let (rl, tc, len) = self.local_ray(ray);
         let iv = match self.kind {
-            PrimKind::Sphere => intersect_sphere(&rl, self.a, self.ra, 0.0),
+            PrimKind::Sphere => Sphere { c: self.a, r: self.ra }.intersect(&rl),
             PrimKind::Spline => self.quad().intersect_with(&rl, Solver::Polynomial),
             _ => RoundCone { a: self.a, ra: self.ra, b: self.b, rb: self.rb }.intersect(&rl),
         };
