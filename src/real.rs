@@ -16,6 +16,12 @@ use core::ops::{Add, AddAssign, BitAnd, BitOr, Div, Mul, MulAssign, Neg, Not, Su
 /// A lane mask: the result of comparing two [`Real`] values lane by lane.
 ///
 /// For scalars this is `bool`.
+///
+/// ```
+/// use tubecast::{Mask, Real};
+/// let m = 1.0f32.lt(2.0);
+/// assert!(m.any() && m.all() && !m.none() && m.lane(0));
+/// ```
 pub trait Mask: Copy + Debug + BitAnd<Output = Self> + BitOr<Output = Self> + Not<Output = Self> + Send + Sync {
     /// A mask with every lane set to `b`.
     fn splat(b: bool) -> Self;
@@ -56,6 +62,21 @@ impl Mask for bool {
 ///
 /// Arithmetic follows IEEE 754 lane by lane. [`Real::min`] and [`Real::max`] return the
 /// non-NaN operand when exactly one operand is NaN (like `f64::min`), for every implementor.
+///
+/// ```
+/// use tubecast::Real;
+/// /// `|x|` clamped to 1, one source for scalars and lanes.
+/// fn f<T: Real>(x: T) -> T {
+///     T::select(x.lt(T::zero()), -x, x).min(T::one())
+/// }
+/// assert_eq!(f(-0.5f64), 0.5);
+/// # #[cfg(feature = "wide")] {
+/// let x = tubecast::WideF32x8::from_fn(|i| i as f32 - 4.0);
+/// for i in 0..8 {
+///     assert_eq!(f(x).lane(i), f(i as f32 - 4.0));
+/// }
+/// # }
+/// ```
 pub trait Real:
     Copy
     + Debug
@@ -147,6 +168,11 @@ pub trait Real:
 }
 
 /// A scalar [`Real`]: `f32` or `f64`. Masks are `bool`.
+///
+/// ```
+/// use tubecast::Scalar;
+/// assert_eq!(f32::from_f64(0.1).to_f64(), 0.1f32 as f64);
+/// ```
 pub trait Scalar: Real<Mask = bool, Elem = Self> + PartialOrd + Default + core::fmt::Display {
     /// Machine epsilon.
     const EPS: Self;

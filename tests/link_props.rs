@@ -28,9 +28,8 @@
 mod common;
 use common::*;
 use proptest::prelude::*;
-use tubecast::kernel::sdf;
-use tubecast::real::{WideF32x8, WideF64x4};
 use tubecast::{HanLink, Interval, LinkShape, Ray, Real, RoundCone, Scalar, V3};
+use tubecast::{Primitive, WideF32x8, WideF64x4};
 
 fn region() -> impl Strategy<Value = Region> {
     proptest::sample::select(REGIONS.to_vec())
@@ -304,7 +303,7 @@ proptest! {
         let c = make_case(seed, region);
         let x = c.link.a + (c.ray.o - c.link.a) * (k * k * 0.1);
         let (want, _) = sweep_dist(&c.link, x);
-        let got = sdf::round_cone(x, &c.link);
+        let got = c.link.sdf(x);
         let tol = 64.0 * f64::EPSILON * ((x - c.link.a).length() + c.size);
         if want >= 0.0 {
             prop_assert!((got - want).abs() <= tol, "sdf {got:e} vs oracle {want:e}");

@@ -7,9 +7,9 @@
 mod common_spline;
 use common_spline::*;
 use proptest::prelude::*;
-use tubecast::kernel::roots::Solver;
-use tubecast::kernel::spline::{quadratic_tube, QuadTube};
+use tubecast::Solver;
 use tubecast::{GeometryError, Ray, RoundCone, V3};
+use tubecast::{Primitive, QuadTube};
 
 const SOLVERS: [Solver; 5] =
     [Solver::Polynomial, Solver::Itp, Solver::Newton, Solver::Bisection { iters: 40 }, Solver::Bisection { iters: 10 }];
@@ -82,7 +82,7 @@ proptest! {
         let s = scale(&b, &r) + 2.0;
         for (tt, n) in [(iv.t_in, iv.n_in), (iv.t_out, iv.n_out)] {
             let x = ray.at(tt);
-            let sdf = quadratic_tube(x, &t);
+            let sdf = t.sdf(x);
             // |d|·(t error) ≤ bound(ε, S), and the SDF is 1-Lipschitz; plus the SDF's own
             // rounding (|x − p| − r: ≤ 8εS).
             prop_assert!(sdf.abs() <= bound(f64::EPSILON, s) + 8.0 * f64::EPSILON * s, "sdf {sdf}");
@@ -99,7 +99,7 @@ proptest! {
                 let mut e = [0.0; 3];
                 e[k] = h;
                 let (xp, xm) = (x + V3::from(e), x - V3::from(e));
-                let (fp, f0, fm) = (quadratic_tube(xp, &t), quadratic_tube(x, &t), quadratic_tube(xm, &t));
+                let (fp, f0, fm) = (t.sdf(xp), t.sdf(x), t.sdf(xm));
                 g[k] = (fp - fm) / (2.0 * h);
                 crease |= ((fp - f0) / h - (f0 - fm) / h).abs() > 1e-3;
             }
@@ -213,7 +213,7 @@ proptest! {
     /// lanes are frozen, skipped branches are masked).
     #[test]
     fn lanes_equal_scalar(cases in prop::collection::vec((tube_strategy(0.02, 0.6), ray_strategy()), 8)) {
-        use tubecast::real::{WideF32x8, WideF64x4};
+        use tubecast::{WideF32x8, WideF64x4};
         for solver in SOLVERS {
             let t4 = QuadTube::<WideF64x4>::from_lanes(|i| tube(&cases[i].0 .0, &cases[i].0 .1));
             let r4 = Ray::<WideF64x4>::from_fn(|i| Ray::new(V3::from(cases[i].1 .0), V3::from(cases[i].1 .1)));
@@ -259,7 +259,7 @@ proptest! {
     #[test]
     fn sdf_matches_sampling((b, r) in tube_strategy(0.02, 0.6), x in prop::array::uniform3(-2.0f64..2.0)) {
         let t = tube(&b, &r);
-        let phi = quadratic_tube(V3::from(x), &t);
+        let phi = t.sdf(V3::from(x));
         let mut best = f64::INFINITY;
         for k in 0..=4000 {
             let (p, rr) = eval(&b, &r, k as f64 / 4000.0);
@@ -358,14 +358,14 @@ proptest! {
         let tol = bound(f64::EPSILON, s) / dl;
         for solver in [Solver::Polynomial, Solver::Itp] {
             let pieces = t.intersect_pieces(&ray, solver);
-            let mut tagged: Vec<_> = pieces.iter().map(|iv| tubecast::kernel::csg::Tagged { iv: *iv, id: 0 }).collect();
+            let mut tagged: Vec<_> = pieces.iter().map(|iv| tubecast::csg::Tagged { iv: *iv, id: 0 }).collect();
             let mut bounds = Vec::new();
-            tubecast::kernel::csg::union(&mut tagged, f64::NEG_INFINITY, f64::INFINITY, |bd| bounds.push(bd.t));
+            tubecast::csg::union(&mut tagged, f64::NEG_INFINITY, f64::INFINITY, |bd| bounds.push(bd.t));
             for k in 0..=400 {
                 let tt = -2.0 + 14.0 * k as f64 / 400.0 / dl;
                 let near_bd = pieces.iter().any(|p| p.hit && ((tt - p.t_in).abs() <= tol || (tt - p.t_out).abs() <= tol));
                 if near_bd { continue; }
-                let inside_sdf = quadratic_tube(ray.at(tt), &t) < 0.0;
+                let inside_sdf = t.sdf(ray.at(tt)) < 0.0;
                 let inside_pieces = pieces.iter().any(|p| p.hit && p.t_in <= tt && tt <= p.t_out);
                 // The union's boundaries alternate entry/exit: count of boundaries ≤ tt is odd inside.
                 let inside_union = bounds.iter().filter(|&&x| x <= tt).count() % 2 == 1;
@@ -446,7 +446,7 @@ fn hull_keeps_pieces_behind_the_origin() {
         let iv = t.intersect_with(&ray, solver);
         assert!(iv.hit, "{solver:?}");
         for tt in [iv.t_in, iv.t_out] {
-            assert!(quadratic_tube(ray.at(tt), &t).abs() <= bound(f64::EPSILON, 60.0), "{solver:?}: {iv:?}");
+            assert!(t.sdf(ray.at(tt)).abs() <= bound(f64::EPSILON, 60.0), "{solver:?}: {iv:?}");
         }
         // Bisection{10}: t* off by ≤ 2⁻¹⁰ moves the entry by ≤ ½|f''|δt², < 1e-3 here.
         let tol = if solver == (Solver::Bisection { iters: 10 }) { 1e-3 } else { 1e-9 };
@@ -496,7 +496,7 @@ fn thin_long_tube_far_end() {
         let iv = t.intersect_with(&ray, solver);
         assert!(iv.hit);
         for tt in [iv.t_in, iv.t_out] {
-            assert!(quadratic_tube(ray.at(tt), &t).abs() <= 1e-9, "{solver:?} {iv:?}");
+            assert!(t.sdf(ray.at(tt)).abs() <= 1e-9, "{solver:?} {iv:?}");
         }
         assert!((iv.t_in - want.t_in).abs() <= 1e-8 && (iv.t_out - want.t_out).abs() <= 1e-8, "{solver:?}");
     }
@@ -547,7 +547,7 @@ fn thin_long_tube_exit() {
     let ray = Ray::new(V3::new(-0.001, -0.001, -0.001), V3::new(-0.001, -0.002, -0.001));
     let iv = t.intersect(&ray);
     let want = t.intersect_with(&ray, Solver::Itp);
-    assert!(iv.hit && quadratic_tube(ray.at(iv.t_out), &t).abs() <= 1e-9, "{iv:?}");
+    assert!(iv.hit && t.sdf(ray.at(iv.t_out)).abs() <= 1e-9, "{iv:?}");
     assert!((iv.t_out - want.t_out).abs() <= 1e-6);
 }
 
@@ -566,7 +566,7 @@ fn zero_radius_tip_on_the_ray() {
     let ray = Ray::new(V3::new(0.0, 0.0, 0.0), V3::new(0.0, -0.001, 0.255));
     let iv = t.intersect(&ray);
     assert!(iv.hit && iv.t_in.abs() * 0.255 <= bound(f64::EPSILON, 30.0), "{iv:?}");
-    assert!(quadratic_tube(ray.at(iv.t_out), &t).abs() <= bound(f64::EPSILON, 30.0));
+    assert!(t.sdf(ray.at(iv.t_out)).abs() <= bound(f64::EPSILON, 30.0));
 }
 
 /// Fuzz finding (fuzz/corpus/spline/regression-pinched-slow-end): a 0.001-thin, 46-long tube
@@ -591,7 +591,7 @@ fn pinched_tube_slow_end() {
     assert!(iv.hit, "{iv:?}");
     let s = 4.0 * 32.768 * (3f64.sqrt() + 1.0);
     for tt in [iv.t_in, iv.t_out] {
-        let e = quadratic_tube(ray.at(tt), &t);
+        let e = t.sdf(ray.at(tt));
         assert!(e.abs() <= 1e-9 && e.abs() <= bound(f64::EPSILON, s), "{tt}: sdf {e}, {iv:?}");
     }
     let itp = t.intersect_with(&ray, Solver::Itp);
@@ -616,14 +616,14 @@ fn tiny_tube_sdf_does_not_underflow() {
     assert!(iv.hit, "{iv:?}");
     let s = 4.0 * e * (3f64.sqrt() + 1.0);
     for tt in [iv.t_in, iv.t_out] {
-        let sdf = quadratic_tube(ray.at(tt), &t);
+        let sdf = t.sdf(ray.at(tt));
         assert!(sdf.abs() <= bound(f64::EPSILON, s), "{tt}: sdf {sdf:e} vs {:e}", bound(f64::EPSILON, s));
     }
     // Scaling by 2^k (exact) scales the SDF exactly, from 1e-304 up to ~1e0 and for far points.
     let f = 2f64.powi(1000);
     let tf = QuadTube::<f64>::new([t.b[0] * f, t.b[1] * f, t.b[2] * f], [t.r[0] * f, t.r[1] * f, t.r[2] * f]).unwrap();
     for x in [ray.at(iv.t_in), V3::new(e, e, e), V3::new(-3.0 * e, 0.5 * e, 1e3 * e)] {
-        assert_eq!(quadratic_tube(x * f, &tf), quadratic_tube(x, &t) * f, "{x:?}");
+        assert_eq!(tf.sdf(x * f), t.sdf(x) * f, "{x:?}");
     }
 }
 
@@ -655,7 +655,7 @@ fn zero_radius_tip_on_the_ray_far_side() {
         assert!((iv.t_in - -38.75).abs() <= tol, "{solver:?}: entry {} vs -38.75 (tol {tol}): {iv:?}", iv.t_in);
         assert!((iv.t_out - want_out).abs() <= tol, "{solver:?}: exit {} vs {want_out}: {iv:?}", iv.t_out);
         for tt in [iv.t_in, iv.t_out] {
-            assert!(quadratic_tube(ray.at(tt), &t).abs() <= bound(f64::EPSILON, s), "{solver:?} {tt}: {iv:?}");
+            assert!(t.sdf(ray.at(tt)).abs() <= bound(f64::EPSILON, s), "{solver:?} {tt}: {iv:?}");
         }
     }
 }

@@ -14,11 +14,20 @@
 //! charts it). Equal radii are a cylinder, handled by [`intersect_cylinder_naive`].
 
 use crate::math::quadric::{quadric_in_slab, slab};
-use crate::ray::{in_range, Interval, Ray};
+use crate::ray::{Interval, Ray};
 use crate::real::Real;
 use crate::vec::V3;
 
 /// The tangent cone of two spheres, per Han §3.2.2 (smaller sphere first).
+///
+/// ```
+/// use tubecast::cone::TangentCone;
+/// use tubecast::V3;
+/// let c = TangentCone::new(V3::new(0.0f64, 0.0, 0.0), 0.5, V3::new(4.0, 0.0, 0.0), 1.0);
+/// assert!(c.is_cone && !c.swapped);
+/// assert_eq!((c.p1, c.p2), (4.0, 8.0)); // p₁ = L·r₁/(r₂ − r₁)
+/// assert_eq!(c.apex, V3::new(-4.0, 0.0, 0.0));
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct TangentCone<T: Real> {
     /// Apex `A` (undefined where `is_cone` is false).
@@ -85,6 +94,16 @@ impl<T: Real> TangentCone<T> {
 ///
 /// World point `x` maps to `R·(x − A)` with rows `R = [v̂ₓ/(z₂·w/p₂), v̂ᵧ/(z₂·w/p₂), Ĉ/z₂]`; the
 /// cone becomes `X² + Y² = Z²` and the stump the slab `Z ∈ [z_cap, 1]`.
+///
+/// ```
+/// use tubecast::cone::{TangentCone, UnitConeTransform};
+/// use tubecast::V3;
+/// let c = TangentCone::new(V3::new(0.0f64, 0.0, 0.0), 0.5, V3::new(4.0, 0.0, 0.0), 1.0);
+/// let m = UnitConeTransform::new(&c);
+/// assert_eq!(m.point(c.apex), V3::new(0.0, 0.0, 0.0));
+/// let big_cap = m.point(c.apex + c.axis * c.z2); // centre of the large cap circle
+/// assert!((big_cap.z - 1.0).abs() < 1e-15);
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct UnitConeTransform<T: Real> {
     /// Rows of the linear part.
@@ -134,7 +153,7 @@ impl<T: Real> UnitConeTransform<T> {
 
 /// Ray–cone-stump interval in the unit-cone frame (Han §4.1), with a precomputed transform
 /// (Han Table 1 option d). Only the stump (cone side and two flat caps) — see
-/// [`crate::kernel::link`] for the round cone. `u` is the parameter along the stump from the
+/// [`crate::HanLink`] for the round cone. `u` is the parameter along the stump from the
 /// caller's first sphere (0) to its second (1), measured by the axial position of the hit.
 #[inline(always)]
 pub fn intersect_stump_precomputed<T: Real>(
@@ -142,8 +161,7 @@ pub fn intersect_stump_precomputed<T: Real>(
     cone: &TangentCone<T>,
     m: &UnitConeTransform<T>,
 ) -> Interval<T> {
-    let iv = stump_line(ray, cone, m);
-    iv.masked(in_range(ray, iv.t_in, iv.t_out))
+    stump_line(ray, cone, m).clip(ray)
 }
 
 /// The stump's line interval, no range test (see [`crate::kernel::sphere`]).
@@ -193,8 +211,7 @@ pub fn intersect_stump_on_the_fly<T: Real>(ray: &Ray<T>, c1: V3<T>, r1: T, c2: V
 /// equal-radius links: formed directly from `o − c1` without re-centring.
 #[inline(always)]
 pub fn intersect_cylinder_naive<T: Real>(ray: &Ray<T>, c1: V3<T>, c2: V3<T>, r: T) -> Interval<T> {
-    let iv = cylinder_line(ray, c1, c2, r);
-    iv.masked(in_range(ray, iv.t_in, iv.t_out))
+    cylinder_line(ray, c1, c2, r).clip(ray)
 }
 
 /// The cylinder's line interval, no range test.

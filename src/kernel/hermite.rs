@@ -9,13 +9,23 @@
 //! sweep (`tests/spline_hermite.rs` measures by how much); it is exact for straight segments
 //! whose node derivatives are the chord (`tᵢ = tⱼ = nⱼ − nᵢ`).
 
+use crate::error::GeometryError;
 use crate::kernel::spline::QuadTube;
 use crate::real::{Real, Scalar};
 use crate::vec::V3;
-use crate::GeometryError;
 
 /// A cubic Hermite segment: positions, position derivatives (tangents), radii and radius
 /// derivatives at both nodes; the parameter runs over `[0, 1]`.
+///
+/// ```
+/// use tubecast::{HermiteSegment, V3};
+/// let (p0, p1) = (V3::new(0.0f64, 0.0, 0.0), V3::new(3.0, 0.0, 0.0));
+/// let seg = HermiteSegment::new(p0, p1 - p0, 0.5, 0.0, p1, p1 - p0, 0.5, 0.0);
+/// let [a, b] = seg.split()?; // two quadratic sphere-swept segments, joined at t = ½
+/// assert_eq!(a.b[2], b.b[0]);
+/// assert_eq!(a.point(1.0), seg.point(0.5)); // straight, chord tangents: exact
+/// # Ok::<(), tubecast::GeometryError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HermiteSegment<T> {
     /// Start position.

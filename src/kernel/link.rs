@@ -7,7 +7,7 @@
 //!   plus the two spheres; a textbook cylinder when the radii are exactly equal. With the
 //!   transform precomputed ([`HanLink`], Han Table 1 option d) or built per call
 //!   ([`RoundCone::intersect_han_on_the_fly`], option c).
-//! * **stable** — [`RoundCone::intersect`]: no apex. The cone is written with its half-angle,
+//! * **stable** — [`RoundCone`] ([`Primitive`]): no apex. The cone is written with its half-angle,
 //!   `sin θ = (r₁ − r₂)/L`, in coordinates centred on the link's midpoint, and the ray origin is
 //!   first moved to the point of the line closest to that midpoint. The quadratic's
 //!   coefficients are built from cross products (`|d × â|²`, `(o × â)·(d × â)`, …), so
@@ -22,16 +22,29 @@ mod stable;
 use super::cone::{cylinder_line, stump_line};
 use super::cone::{TangentCone, UnitConeTransform};
 use super::sphere::sphere_line;
-use crate::ray::{in_range, Interval, Ray};
+use crate::error::GeometryError;
+use crate::primitive::Primitive;
+use crate::ray::{Interval, Ray};
 use crate::real::{Mask, Real, Scalar};
 use crate::vec::V3;
-use crate::GeometryError;
 
 /// A round cone (link) between spheres `(a, ra)` and `(b, rb)`. The curve parameter `u` runs
 /// from 0 at `a` to 1 at `b`.
 ///
 /// Build scalar links with [`RoundCone::new`] (validated); lane links with
-/// [`RoundCone::from_lanes`] from validated scalar links.
+/// [`RoundCone::from_lanes`] from validated scalar links. Ray queries, the box and the
+/// distance come from [`Primitive`]: the **stable** formulation (no apex: the cone by its
+/// half-angle in coordinates centred on the link, the ray origin moved to the point of the
+/// line closest to it; derivation in `src/kernel/link.rs`). [`HanLink`] is the faithful one.
+///
+/// ```
+/// use tubecast::{Primitive, Ray, RoundCone, V3};
+/// let link = RoundCone::new(V3::new(0.0, 0.0, 0.0), 1.0, V3::new(4.0, 0.0, 0.0), 0.5)?;
+/// let iv = link.intersect(&Ray::new(V3::new(0.0, 0.0, -5.0), V3::new(0.0, 0.0, 1.0)));
+/// assert_eq!((iv.t_in, iv.t_out, iv.u_in), (4.0, 6.0, 0.0)); // through the centre of sphere a
+/// assert!(link.sdf(V3::new(2.0, 0.0, 0.0)) < 0.0);
+/// # Ok::<(), tubecast::GeometryError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RoundCone<T> {
     /// First centre.
@@ -45,6 +58,16 @@ pub struct RoundCone<T> {
 }
 
 /// What a link degenerates to, by the classification the kernels use.
+///
+/// ```
+/// use tubecast::{LinkShape, RoundCone, V3};
+/// let o = V3::new(0.0, 0.0, 0.0);
+/// let x = V3::new(1.0, 0.0, 0.0);
+/// assert_eq!(RoundCone::new(o, 0.5, x, 0.5)?.shape(), LinkShape::Cylinder);
+/// assert_eq!(RoundCone::new(o, 0.5, x, 0.2)?.shape(), LinkShape::Cone);
+/// assert_eq!(RoundCone::new(o, 2.0, x, 0.5)?.shape(), LinkShape::Sphere);
+/// # Ok::<(), tubecast::GeometryError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LinkShape {
     /// Distinct radii with `|ra − rb| < L`: a tangent cone stump between two spheres.
@@ -106,15 +129,6 @@ impl<T: Scalar> RoundCone<T> {
             rb: U::from_f64(self.rb.to_f64()),
         }
     }
-    /// Axis-aligned bounding box `(min, max)`.
-    pub fn aabb(&self) -> (V3<T>, V3<T>) {
-        let lo = |p: T, q: T| (p - self.ra).min(q - self.rb);
-        let hi = |p: T, q: T| (p + self.ra).max(q + self.rb);
-        (
-            V3::new(lo(self.a.x, self.b.x), lo(self.a.y, self.b.y), lo(self.a.z, self.b.z)),
-            V3::new(hi(self.a.x, self.b.x), hi(self.a.y, self.b.y), hi(self.a.z, self.b.z)),
-        )
-    }
 }
 
 impl<T: Real> RoundCone<T> {
@@ -132,18 +146,10 @@ impl<T: Real> RoundCone<T> {
         Self { a: V3::splat(l.a), ra: T::splat(l.ra), b: V3::splat(l.b), rb: T::splat(l.rb) }
     }
 
-    /// Stable ray–round-cone interval (no apex; see the module docs).
-    #[inline(always)]
-    pub fn intersect(&self, ray: &Ray<T>) -> Interval<T> {
-        let iv = self.stable_line(ray, true);
-        iv.masked(in_range(ray, iv.t_in, iv.t_out))
-    }
-
     /// The tangent-cone stump alone (no end spheres), stable form.
     #[inline(always)]
     pub fn intersect_stump_stable(&self, ray: &Ray<T>) -> Interval<T> {
-        let iv = self.stable_line(ray, false);
-        iv.masked(in_range(ray, iv.t_in, iv.t_out))
+        self.stable_line(ray, false).clip(ray)
     }
 
     /// Faithful Han et al. round cone, tangent cone and transform built per call
@@ -154,7 +160,17 @@ impl<T: Real> RoundCone<T> {
     }
 }
 
-/// A link with Han's tangent cone and unit-cone transform precomputed (Han Table 1 option d).
+/// A link with Han's tangent cone and unit-cone transform precomputed (Han Table 1 option d):
+/// the faithful formulation of the same solid as its [`RoundCone`].
+///
+/// ```
+/// use tubecast::{HanLink, Primitive, Ray, RoundCone, V3};
+/// let link = RoundCone::new(V3::new(0.0f64, 0.0, 0.0), 1.0, V3::new(4.0, 0.0, 0.0), 0.5)?;
+/// let ray = Ray::new(V3::new(2.0, -10.0, 0.0), V3::new(0.0, 1.0, 0.0));
+/// let (stable, han) = (link.intersect(&ray), HanLink::new(&link).intersect(&ray));
+/// assert!(han.hit && (han.t_in - stable.t_in).abs() < 1e-12);
+/// # Ok::<(), tubecast::GeometryError>(())
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct HanLink<T: Real> {
     /// The link.
@@ -173,9 +189,9 @@ impl<T: Real> HanLink<T> {
         let xf = UnitConeTransform::new(&cone);
         Self { link: *link, cone, xf }
     }
-    /// Ray–round-cone interval: spheres ∪ (cone stump, or the textbook cylinder for equal radii).
+    /// The line interval: spheres ∪ (cone stump, or the textbook cylinder for equal radii).
     #[inline(always)]
-    pub fn intersect(&self, ray: &Ray<T>) -> Interval<T> {
+    pub(crate) fn line(&self, ray: &Ray<T>) -> Interval<T> {
         let l = &self.link;
         let s1 = sphere_line(ray, l.a, l.ra, T::zero());
         let s2 = sphere_line(ray, l.b, l.rb, T::one());
@@ -187,25 +203,6 @@ impl<T: Real> HanLink<T> {
             let cyl = cylinder_line(ray, l.a, l.b, l.ra).masked(self.cone.is_cylinder);
             iv = iv.hull(cyl);
         }
-        iv.masked(in_range(ray, iv.t_in, iv.t_out))
+        iv
     }
-}
-
-/// The sphere-sweep curve parameter of the point of a link's surface with unit normal `n`
-/// at hit point `x` (used by tests and renderers; exact on the cone, 0/1 on the end spheres).
-pub fn link_parameter<T: Scalar>(link: &RoundCone<T>, x: V3<T>, n: V3<T>) -> T {
-    let v = link.b - link.a;
-    let l2 = v.length2();
-    if l2 <= T::zero() {
-        return T::zero();
-    }
-    // The touching sphere's centre a + u·v satisfies x − r(u)·n = a + u·v along the axis.
-    let na = n.dot(v);
-    let dr = link.rb - link.ra;
-    let num = (x - link.a).dot(v) - link.ra * na;
-    let den = l2 + dr * na;
-    if den <= T::zero() {
-        return T::zero();
-    }
-    (num / den).clamp(T::zero(), T::one())
 }

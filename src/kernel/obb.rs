@@ -19,6 +19,20 @@ use crate::real::Real;
 use crate::vec::V3;
 
 /// A box `{origin + Σ axesᵢ·cᵢ : loᵢ ≤ cᵢ ≤ hiᵢ}` with orthonormal `axes`.
+///
+/// ```
+/// use tubecast::{Obb, QuadTube, V3};
+/// let tube = QuadTube::new(
+///     [V3::new(0.0f64, 0.0, 0.0), V3::new(1.0, 1.0, 0.0), V3::new(2.0, 0.0, 0.0)],
+///     [0.1, 0.1, 0.1],
+/// )?;
+/// let obb = tube.obb(); // = Obb::fit(&tube): x̂ along the chord
+/// assert!((obb.axes[0].x - 1.0).abs() < 1e-15);
+/// assert!((obb.hi.x - 2.1).abs() < 1e-15 && (obb.lo.x + 0.1).abs() < 1e-15);
+/// let c = obb.local(tube.point(0.5));
+/// assert!(c.x >= obb.lo.x && c.x <= obb.hi.x && c.y <= obb.hi.y);
+/// # Ok::<(), tubecast::GeometryError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Obb<T> {
     /// Frame origin (the segment's first control point: extents stay small numbers).
@@ -66,13 +80,6 @@ impl<T: Real> Obb<T> {
         let z = unit(x.cross(y0));
         let y = z.cross(x);
         Self::with_axes(tube, [x, y, z])
-    }
-
-    /// The axis-aligned box, by the same extent computation.
-    #[inline(always)]
-    pub fn aabb(tube: &QuadTube<T>) -> Self {
-        let (o, l) = (T::zero(), T::one());
-        Self::with_axes(tube, [V3::new(l, o, o), V3::new(o, l, o), V3::new(o, o, l)])
     }
 
     /// The tightest box of the segment in a given orthonormal frame.

@@ -1,24 +1,20 @@
-//! The spline kernel's solver choice, [`Solver`], and the polynomial root finders it uses
-//! (re-exported from the crate's shared maths).
-//!
-//! * [`bisection`]: fixed iteration count (Russig and Salm use 10 on the GPU).
-//! * [`itp`]: Oliveira & Takahashi's ITP method (interpolate, truncate, project) — never
-//!   slower than bisection in the worst case, superlinear on smooth roots.
-//! * [`newton`]: safeguarded Newton (`rtsafe`): a Newton step where it stays inside the
-//!   bracket and shrinks fast enough, bisection otherwise.
-//! * [`cascade_level`], [`poly_breakpoints`]: the derivative cascade (Russig §3.2, Salm §3.2):
-//!   between consecutive roots of `u'` the function `u` is monotone and holds at most one root.
+//! The spline kernel's solver choice, [`Solver`]. The root finders it selects (bisection, ITP,
+//! safeguarded Newton, the derivative cascade) live in the crate's shared maths (`math::roots`).
 
-pub use crate::math::quadric::quadratic_roots_in;
-pub use crate::math::roots::{
-    bisection, cascade_level, default_tol, derivative, horner, itp, newton, opposite, poly_breakpoints, poly_mul,
-    Bracket, MAX_ITER,
-};
-
-/// Root-finding strategy of the spline kernel ([`crate::kernel::spline::QuadTube`]).
+/// Root-finding strategy of the spline kernel ([`crate::QuadTube::intersect_with`]).
 ///
 /// All variants are exact in the sense that they bracket every critical point the method's
 /// model admits; they differ in the work per bracket and in the final accuracy.
+///
+/// ```
+/// use tubecast::{QuadTube, Ray, Solver, V3};
+/// let tube = QuadTube::new([V3::new(0.0f64, 0.0, 0.0), V3::new(1.0, 1.0, 0.0), V3::new(2.0, 0.0, 0.0)], [0.2; 3])?;
+/// let ray = Ray::new(V3::new(1.0, 0.5, -5.0), V3::new(0.0, 0.0, 1.0));
+/// let exact = tube.intersect_with(&ray, Solver::Polynomial);
+/// let fast = tube.intersect_with(&ray, Solver::Bisection { iters: 10 });
+/// assert!(exact.hit && fast.hit && (exact.t_in - fast.t_in).abs() < 1e-2);
+/// # Ok::<(), tubecast::GeometryError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Solver {
     /// Russig's cascade (real intervals of `g` by `g''` analytic → `g'` → `g`; minima of `f`

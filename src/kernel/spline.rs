@@ -35,7 +35,7 @@
 //!   end itself, exactly 0 for a zero-radius end on the line) and at `t = 0, 1`.
 //!   Needs no real intervals and no claim.
 //!
-//! The kernel returns the hull `[first entry, last exit]` ([`QuadTube::intersect`]). A strongly
+//! The kernel returns the hull `[first entry, last exit]` ([`QuadTube::intersect_with`]). A strongly
 //! bent segment can be crossed more than once; [`QuadTube::intersect_pieces`] returns one
 //! interval per real interval of `g` (each exact: the part of the sweep over a connected
 //! `t`-interval meets the line in one interval), which is what CSG needs.
@@ -47,19 +47,35 @@ pub use sdf::quadratic_tube;
 
 use self::ray_space::RaySpace;
 use super::roots::Solver;
+use crate::error::GeometryError;
 use crate::kernel::link::RoundCone;
 use crate::math::bezier::{bernstein2, bezier2, bezier2_max, bezier2_min};
 use crate::math::roots::{horner, poly_breakpoints, Bracket};
-use crate::ray::{in_range, Interval, Ray};
+use crate::ray::{Interval, Ray};
 use crate::real::{Mask, Real, Scalar};
 use crate::vec::V3;
-use crate::GeometryError;
 
 /// A quadratic sphere-swept segment: Bézier control points `b` and control radii `r`;
 /// `p(t) = (1−t)²b₀ + 2t(1−t)b₁ + t²b₂`, likewise `r(t)`.
 ///
 /// Build scalar segments with [`QuadTube::new`] (validated: the interpolated radius must not
-/// be negative anywhere on `[0, 1]`); lanes with [`QuadTube::from_lanes`].
+/// be negative anywhere on `[0, 1]`); lanes with [`QuadTube::from_lanes`]. [`Primitive`](crate::Primitive)
+/// gives the ray queries with the default solver ([`Solver::Polynomial`]), the box and the
+/// distance.
+///
+/// ```
+/// use tubecast::{Primitive, QuadTube, Ray, Solver, V3};
+/// let tube = QuadTube::new(
+///     [V3::new(0.0f64, 0.0, 0.0), V3::new(1.0, 1.0, 0.0), V3::new(2.0, 0.0, 0.0)],
+///     [0.2, 0.3, 0.2],
+/// )?;
+/// let ray = Ray::new(V3::new(1.0, 0.5, -5.0), V3::new(0.0, 0.0, 1.0));
+/// let iv = tube.intersect(&ray);
+/// assert!(iv.hit && iv.t_in < 5.0 && iv.t_out > 5.0);
+/// assert_eq!(tube.intersect_with(&ray, Solver::Itp).hit, true);
+/// assert!(tube.sdf(ray.at(iv.t_in)).abs() < 1e-12); // on the surface
+/// # Ok::<(), tubecast::GeometryError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct QuadTube<T> {
     /// Control points.
@@ -162,16 +178,18 @@ impl<T: Real> QuadTube<T> {
         T::cst(2.0) * ((self.r[1] - self.r[0]) * (T::one() - t) + (self.r[2] - self.r[1]) * t)
     }
 
-    /// Ray–segment interval with the default solver ([`Solver::Polynomial`]): entry
-    /// `min f`, exit `max e` over the whole segment (the hull of [`Self::intersect_pieces`]).
-    #[inline(always)]
-    pub fn intersect(&self, ray: &Ray<T>) -> Interval<T> {
-        self.intersect_with(ray, Solver::Polynomial)
-    }
-
-    /// Ray–segment interval (hull) with a chosen solver.
+    /// Ray–segment interval (hull: entry `min f`, exit `max e` over the whole segment, the
+    /// hull of [`Self::intersect_pieces`]) with a chosen solver; [`crate::Primitive::intersect`] uses
+    /// [`Solver::Polynomial`].
     #[inline(always)]
     pub fn intersect_with(&self, ray: &Ray<T>, solver: Solver) -> Interval<T> {
+        self.line_interval_with(ray, solver).clip(ray)
+    }
+
+    /// The hull's interval on the ray's whole line (`hit`: the line meets the segment) with a
+    /// chosen solver; [`Self::intersect_with`] clips it to the ray.
+    #[inline(always)]
+    pub fn line_interval_with(&self, ray: &Ray<T>, solver: Solver) -> Interval<T> {
         let rs = RaySpace::new(self, ray);
         if rs.near.none() {
             return Interval::miss();
@@ -180,23 +198,23 @@ impl<T: Real> QuadTube<T> {
             Solver::Polynomial => {
                 let (bp, n) = rs.p_breakpoints();
                 let (x, any) = rs.polished_candidates(&bp[..n], T::zero(), T::one(), false);
-                rs.interval(ray, x, any, true)
+                rs.interval(ray, x, any, false)
             }
             _ => {
-                // Hull of the line pieces, then clipped to the ray's range (a piece behind the
-                // origin still belongs to the line interval).
+                // Hull of the line pieces (a piece behind the origin still belongs to the line
+                // interval).
                 let pieces = self.pieces_in(&rs, ray, solver, false);
                 let mut iv = pieces[0];
                 for p in &pieces[1..] {
                     iv = iv.hull(*p);
                 }
-                iv.masked(in_range(ray, iv.t_in, iv.t_out))
+                iv
             }
         }
     }
 
     /// One interval per real interval of `g` (at most three non-empty, in slots `0..5`; the
-    /// others miss), each exact. Feed them to [`crate::kernel::csg::union`] for transparency.
+    /// others miss), each exact. Feed them to [`crate::csg::union`] for transparency.
     /// With [`Solver::Polynomial`] the real intervals come from `g`'s cascade with Newton and
     /// the candidates from `P`'s roots.
     #[inline(always)]

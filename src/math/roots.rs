@@ -55,17 +55,6 @@ fn horner_slice<T: Real>(c: &[T], x: T) -> T {
     acc
 }
 
-/// Coefficients of the derivative: `M = N − 1` (checked at compile time by the caller's types).
-#[inline(always)]
-pub fn derivative<T: Real, const N: usize, const M: usize>(c: &[T; N]) -> [T; M] {
-    debug_assert!(M + 1 == N);
-    let mut d = [T::zero(); M];
-    for (i, di) in d.iter_mut().enumerate() {
-        *di = c[i + 1] * T::cst((i + 1) as f64);
-    }
-    d
-}
-
 /// Product of two polynomials (`K = N + M − 1`).
 #[inline(always)]
 pub fn poly_mul<T: Real, const N: usize, const M: usize, const K: usize>(a: &[T; N], b: &[T; M]) -> [T; K] {

@@ -3,7 +3,7 @@
 #![allow(dead_code)]
 
 use proptest::prelude::*;
-use tubecast::kernel::spline::QuadTube;
+use tubecast::QuadTube;
 use tubecast::V3;
 
 /// `p(t)`, `r(t)` of a quadratic Bézier tube written out directly (independent of the crate).

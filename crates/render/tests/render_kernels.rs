@@ -5,7 +5,7 @@
 mod common;
 
 use common::{compare_depth, flat, render_links};
-use tubecast::{Ray, V3};
+use tubecast::{Primitive, Ray, V3};
 use tubecast_render::accel::Bvh;
 use tubecast_render::io::Polyline;
 use tubecast_render::render::{render, Camera, ColorBy, Options};

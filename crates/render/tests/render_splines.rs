@@ -5,9 +5,9 @@
 mod common;
 
 use common::{compare_depth, flat};
-use tubecast::kernel::csg::{union, Tagged};
-use tubecast::kernel::HermiteSegment;
-use tubecast::{Ray, V3};
+use tubecast::csg::{union, Tagged};
+use tubecast::HermiteSegment;
+use tubecast::{Primitive, Ray, V3};
 use tubecast_render::accel::{first_component, Bvh};
 use tubecast_render::io::Polyline;
 use tubecast_render::render::{render, Camera, ColorBy};

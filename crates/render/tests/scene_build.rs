@@ -1,7 +1,7 @@
 //! Scene building: primitive selection, and far-from-origin precision of the local-origin
 //! f32 primitives versus a naive absolute-f32 path.
 
-use tubecast::{Ray, RoundCone, V3};
+use tubecast::{Primitive, Ray, RoundCone, V3};
 use tubecast_render::accel::Bvh;
 use tubecast_render::io::Polyline;
 use tubecast_render::scene::{PrimKind, Scene, Shape};

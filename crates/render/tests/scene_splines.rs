@@ -1,8 +1,8 @@
 //! The spline model of a scene: chains, finite-difference derivatives (checked against hand
 //! computations), the radius-derivative limit, the straight-run rule, counts and errors.
 
-use tubecast::kernel::HermiteSegment;
-use tubecast::kernel::QuadTube;
+use tubecast::HermiteSegment;
+use tubecast::QuadTube;
 use tubecast::{GeometryError, V3};
 use tubecast_render::io::swc::SwcNode;
 use tubecast_render::io::Polyline;

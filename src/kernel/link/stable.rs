@@ -15,7 +15,7 @@ impl<T: Real> RoundCone<T> {
     /// [`PieceHull`]), and only then are the normals and curve parameters of the two winning
     /// crossings computed ([`StableFrame::finish`]).
     #[inline(always)]
-    pub(super) fn stable_line(&self, ray: &Ray<T>, spheres: bool) -> Interval<T> {
+    pub(crate) fn stable_line(&self, ray: &Ray<T>, spheres: bool) -> Interval<T> {
         let f = StableFrame::new(self, ray);
         let mut hull = PieceHull::empty();
         if spheres {

@@ -4,9 +4,9 @@
 use super::oracle::{link_bound, LinkCase, LinkTruth, SplineCase, SplineTruth};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
-use tubecast::kernel::roots::Solver;
-use tubecast::kernel::spline::QuadTube;
-use tubecast::{HanLink, Interval, Ray, Real, RoundCone, Scalar};
+use tubecast::QuadTube;
+use tubecast::Solver;
+use tubecast::{HanLink, Interval, Primitive, Ray, Real, RoundCone, Scalar};
 
 /// Lane type of a method.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -302,9 +302,9 @@ pub fn run_link(m: LinkMethod, cases: &[LinkCase], budget: Duration) -> MethodRu
         Precision::F32 => run_link_t::<f32>(m.kernel, cases, budget),
         Precision::F64 => run_link_t::<f64>(m.kernel, cases, budget),
         #[cfg(feature = "wide")]
-        Precision::F32x8 => run_link_t::<tubecast::real::WideF32x8>(m.kernel, cases, budget),
+        Precision::F32x8 => run_link_t::<tubecast::WideF32x8>(m.kernel, cases, budget),
         #[cfg(feature = "wide")]
-        Precision::F64x4 => run_link_t::<tubecast::real::WideF64x4>(m.kernel, cases, budget),
+        Precision::F64x4 => run_link_t::<tubecast::WideF64x4>(m.kernel, cases, budget),
         #[cfg(not(feature = "wide"))]
         _ => MethodRun { outcomes: Vec::new(), ns: f64::NAN },
     }
@@ -319,9 +319,9 @@ pub fn run_spline(m: SplineMethod, cases: &[SplineCase], budget: Duration) -> Me
         Precision::F32 => run_spline_t::<f32>(m.solver, cases, budget),
         Precision::F64 => run_spline_t::<f64>(m.solver, cases, budget),
         #[cfg(feature = "wide")]
-        Precision::F32x8 => run_spline_t::<tubecast::real::WideF32x8>(m.solver, cases, budget),
+        Precision::F32x8 => run_spline_t::<tubecast::WideF32x8>(m.solver, cases, budget),
         #[cfg(feature = "wide")]
-        Precision::F64x4 => run_spline_t::<tubecast::real::WideF64x4>(m.solver, cases, budget),
+        Precision::F64x4 => run_spline_t::<tubecast::WideF64x4>(m.solver, cases, budget),
         #[cfg(not(feature = "wide"))]
         _ => MethodRun { outcomes: Vec::new(), ns: f64::NAN },
     }

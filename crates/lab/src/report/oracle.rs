@@ -9,7 +9,7 @@
 //! bisection for that `u` range, dense sampling and golden-section refinement. The spline oracle
 //! (after `tests/common_spline`) samples the quadratic sweep densely and refines by golden section.
 
-use tubecast::kernel::spline::QuadTube;
+use tubecast::QuadTube;
 use tubecast::{Ray, RoundCone, V3};
 use tubecast_render::scene::generate::Rng;
 
@@ -273,7 +273,7 @@ fn v32(p: V) -> V {
 
 /// A deterministic link case for `seed`, aimed at `region`. Scales range over 1e-4 … 1e4.
 pub fn link_case(seed: u64, region: LinkRegion) -> LinkCase {
-    let mut rng = Rng(seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 0x5DEE_CE66);
+    let mut rng = Rng::new(seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 0x5DEE_CE66);
     let coin = |rng: &mut Rng| rng.uniform() < 0.5;
     let scale = 10f64.powf(rng.range(-4.0, 4.0));
     let centre = V::new(rng.range(-3.0, 3.0), rng.range(-3.0, 3.0), rng.range(-3.0, 3.0)) * scale;
@@ -509,7 +509,7 @@ pub fn spline_truth(c: &SplineCase) -> SplineTruth {
 
 /// A deterministic spline case for `seed`, aimed at `region`. Sizes ~1 around the origin.
 pub fn spline_case(seed: u64, region: SplineRegion) -> SplineCase {
-    let mut rng = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ 0xC0FF_EE00);
+    let mut rng = Rng::new(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ 0xC0FF_EE00);
     loop {
         let pt = |rng: &mut Rng| V::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
         let b0 = pt(&mut rng);

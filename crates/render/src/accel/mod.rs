@@ -26,8 +26,8 @@ use crate::scene::Prim;
 use glam::Vec3A;
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::Bvh2;
-use tubecast::kernel::csg::Tagged;
-use tubecast::ray::Ray;
+use tubecast::csg::Tagged;
+use tubecast::Ray;
 use tubecast::V3;
 
 #[cfg(feature = "wide")]
@@ -44,7 +44,7 @@ enum Test {
     /// Link `id` was tested in a lane packet: its interval (a hit), as [`Prim::intersect`]
     /// gives it.
     #[cfg_attr(not(feature = "wide"), allow(dead_code))]
-    Link(usize, tubecast::ray::Interval<f64>),
+    Link(usize, tubecast::Interval<f64>),
 }
 
 /// The first surface crossing along a ray.
@@ -376,7 +376,7 @@ impl Bvh {
 
     /// Every primitive's interval with the ray's whole **line** (not only `[t_min, t_max]`),
     /// appended to `out` tagged with the primitive index — the input of
-    /// [`tubecast::kernel::csg::union`]. A spline sub-segment contributes one interval per
+    /// [`tubecast::csg::union`]. A spline sub-segment contributes one interval per
     /// connected piece ([`Prim::pieces`]), so the union is exact for bent segments too.
     pub fn line_intervals(&self, ray: &Ray<f64>, out: &mut Vec<Tagged<f64>>) {
         let Some(c) = self.clip(ray, f64::NEG_INFINITY, f64::INFINITY) else {
@@ -422,10 +422,10 @@ pub const HIT_COLUMNS: usize = 8;
 pub fn first_component(
     bvh: &Bvh,
     ray: &Ray<f64>,
-) -> Option<(tubecast::kernel::csg::Boundary<f64>, tubecast::kernel::csg::Boundary<f64>)> {
+) -> Option<(tubecast::csg::Boundary<f64>, tubecast::csg::Boundary<f64>)> {
     let mut ivs = Vec::new();
     bvh.line_intervals(ray, &mut ivs);
     let mut b = Vec::new();
-    tubecast::kernel::csg::union(&mut ivs, f64::NEG_INFINITY, f64::INFINITY, |x| b.push(x));
+    tubecast::csg::union(&mut ivs, f64::NEG_INFINITY, f64::INFINITY, |x| b.push(x));
     b.chunks_exact(2).find(|p| p[1].t >= ray.t_min && p[0].t <= ray.t_max).map(|p| (p[0], p[1]))
 }

@@ -13,8 +13,8 @@
 //! link, so no lane computes on garbage) and their results are never read.
 
 use crate::scene::Prim;
-use tubecast::ray::{Interval, Ray};
-use tubecast::real::{Mask, Real, WideF32x8};
+use tubecast::{Interval, Primitive, Ray};
+use tubecast::{Mask, Real, WideF32x8};
 use tubecast::{RoundCone, V3};
 
 /// Links per packet.

@@ -2,7 +2,7 @@
 
 use super::RenderError;
 use std::cmp::Ordering;
-use tubecast::ray::Ray;
+use tubecast::Ray;
 use tubecast::V3;
 
 /// A perspective pinhole camera.

@@ -31,7 +31,7 @@ use rayon::prelude::*;
 use shade::Palette;
 use trace::Ctx;
 #[allow(unused_imports)] // documentation links
-use tubecast::kernel::csg::union;
+use tubecast::csg::union;
 use tubecast::V3;
 
 /// Render `scene` (with its BVH `bvh`, built from [`Scene::primitives`] for links or

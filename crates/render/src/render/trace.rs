@@ -6,8 +6,8 @@ use super::{Camera, Options, Shading};
 use crate::accel::Bvh;
 use crate::scene::generate::Rng;
 use crate::scene::Scene;
-use tubecast::kernel::csg::{union, Boundary, Tagged};
-use tubecast::ray::Ray;
+use tubecast::csg::{union, Boundary, Tagged};
+use tubecast::Ray;
 use tubecast::V3;
 
 /// Everything the per-pixel work needs.

@@ -2,7 +2,7 @@
 
 use super::{Prim, Scene, SceneError};
 use std::cmp::Ordering;
-use tubecast::kernel::hermite::HermiteSegment;
+use tubecast::HermiteSegment;
 use tubecast::V3;
 
 /// A chain of links: a maximal path whose interior nodes have exactly two links.

@@ -55,10 +55,10 @@ pub use error::SceneError;
 pub use prim::{Prim, PrimKind, Shape};
 pub use stats::Stats;
 
-use tubecast::kernel::link::RoundCone;
-#[allow(unused_imports)] // documentation links
-use tubecast::kernel::{hermite::HermiteSegment, spline::QuadTube};
+use tubecast::RoundCone;
 use tubecast::V3;
+#[allow(unused_imports)] // documentation links
+use tubecast::{HermiteSegment, QuadTube};
 
 /// Largest coordinate or radius magnitude a scene may hold: squares of lengths must stay
 /// finite in `f32` (`(2·1e18)² ≈ 4e36 < 3.4e38`), since primitives are stored in `f32`.

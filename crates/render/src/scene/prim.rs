@@ -1,12 +1,10 @@
 //! Renderer primitives: `f32` geometry relative to an `f64` local origin.
 
-use tubecast::kernel::link::RoundCone;
-use tubecast::kernel::obb::Obb;
-use tubecast::kernel::roots::Solver;
-use tubecast::kernel::sphere::intersect_sphere;
-use tubecast::kernel::spline::QuadTube;
-use tubecast::ray::{Interval, Ray};
-use tubecast::{GeometryError, LinkShape, V3};
+use tubecast::QuadTube;
+use tubecast::RoundCone;
+use tubecast::Solver;
+use tubecast::{GeometryError, LinkShape, Primitive, Sphere, V3};
+use tubecast::{Interval, Ray};
 
 /// Which exact shape a primitive is (the tag of [`Shape`], for counting and comparing).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -157,19 +155,19 @@ impl Prim {
 
     /// World-space bounding box `(min, max)` of the stored (rounded) primitive, in `f64`.
     ///
-    /// For a spline sub-segment this is [`Obb::aabb`] of the stored control data evaluated
+    /// For a spline sub-segment this is [`QuadTube`]'s [`Primitive::aabb`] of the stored control data evaluated
     /// in `f64` (exact extents up to a few `f64` roundings, far below the BVH's padding).
     pub fn aabb(&self) -> ([f64; 3], [f64; 3]) {
         let cone_box = |rc: RoundCone<f32>| {
-            let (lo, hi) = rc.aabb();
-            (lo.cast::<f64>().to_array(), hi.cast::<f64>().to_array())
+            let b = rc.aabb();
+            (b.min.cast::<f64>().to_array(), b.max.cast::<f64>().to_array())
         };
         let (lo, hi) = match self.shape {
             Shape::Sphere { r } => cone_box(sphere_cone(r)),
             Shape::Cylinder(c) | Shape::Cone(c) => cone_box(c),
             Shape::Spline { quad, .. } => {
-                let b = Obb::aabb(&quad.cast::<f64>());
-                ((b.origin + b.lo).to_array(), (b.origin + b.hi).to_array())
+                let b = quad.cast::<f64>().aabb();
+                (b.min.to_array(), b.max.to_array())
             }
         };
         (std::array::from_fn(|i| self.origin[i] + lo[i]), std::array::from_fn(|i| self.origin[i] + hi[i]))
@@ -179,18 +177,18 @@ impl Prim {
     /// with the hit mask set when it is non-empty and overlaps `[t_min, t_max]`.
     ///
     /// The ray is moved in `f64` to the point of its line nearest the local origin and its
-    /// direction normalised, then the `f32` kernel runs ([`RoundCone::intersect`], stable, or
-    /// [`intersect_sphere`]) and `t` is mapped back in `f64`.
+    /// direction normalised, then the `f32` kernel runs ([`Primitive::intersect`] of [`RoundCone`], stable, or
+    /// of [`Sphere`]) and `t` is mapped back in `f64`.
     ///
     /// A spline sub-segment returns the **hull** `[first entry, last exit]` of its line
-    /// pieces ([`QuadTube::intersect`], [`Solver::Polynomial`]): its entry is the exact first
+    /// pieces ([`QuadTube::intersect_with`], [`Solver::Polynomial`]): its entry is the exact first
     /// entry, but a strongly bent segment may be crossed more than once, so the hull can
     /// cover gaps; [`Self::pieces`] gives the exact pieces.
     #[inline]
     pub fn intersect(&self, ray: &Ray<f64>) -> Interval<f64> {
         let (rl, tc, len) = self.local_ray(ray);
         let iv = match &self.shape {
-            Shape::Sphere { r } => intersect_sphere(&rl, V3::zero(), *r, 0.0),
+            Shape::Sphere { r } => Sphere { c: V3::zero(), r: *r }.intersect(&rl),
             Shape::Cylinder(c) | Shape::Cone(c) => c.intersect(&rl),
             Shape::Spline { quad, .. } => quad.intersect_with(&rl, Solver::Polynomial),
         };

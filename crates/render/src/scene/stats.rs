@@ -2,6 +2,7 @@
 
 use super::{Prim, PrimKind, Scene};
 use tubecast::LinkShape;
+use tubecast::Primitive;
 
 /// Counts and extents of a scene's primitives (what `tubecast info` prints).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -60,8 +61,8 @@ impl Scene {
                 LinkShape::Cone => s.cones += 1,
                 LinkShape::Sphere => s.spheres += 1,
             }
-            let (a, b) = l.aabb();
-            for (i, (x, y)) in a.to_array().iter().zip(b.to_array()).enumerate() {
+            let b = l.aabb();
+            for (i, (x, y)) in b.min.to_array().iter().zip(b.max.to_array()).enumerate() {
                 lo[i] = lo[i].min(*x);
                 hi[i] = hi[i].max(y);
             }
