@@ -3,13 +3,12 @@
 //! per core; compare kernels by the ratio to `sphere` measured in the same run.
 //!
 //!     RUSTFLAGS="-C target-cpu=x86-64-v3" cargo bench --bench kernels
-use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::measurement::Measurement;
+use criterion::{black_box, criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion, Throughput};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use tubecast::kernel::cone::{intersect_stump_precomputed, TangentCone, UnitConeTransform};
-use tubecast::kernel::sphere::intersect_sphere;
-use tubecast::real::{WideF32x8, WideF64x4};
-use tubecast::{HanLink, Ray, Real, RoundCone, V3};
+use tubecast::cone::{intersect_stump_precomputed, TangentCone, UnitConeTransform};
+use tubecast::{HanLink, Interval, Primitive, Ray, Real, RoundCone, Sphere, WideF32x8, WideF64x4, V3};
 
 const N: usize = 1024;
 
@@ -34,12 +33,7 @@ fn bench_precision<T: Real>(c: &mut Criterion, name: &str, links: &[RoundCone<f6
 where
     T::Elem: tubecast::Scalar,
 {
-    let cast = |l: &RoundCone<f64>| RoundCone::<T::Elem> {
-        a: l.a.cast(),
-        ra: <T::Elem as tubecast::Scalar>::from_f64(l.ra),
-        b: l.b.cast(),
-        rb: <T::Elem as tubecast::Scalar>::from_f64(l.rb),
-    };
+    let cast = |l: &RoundCone<f64>| l.cast::<T::Elem>();
     let castr = |r: &Ray<f64>| Ray::<T::Elem>::new(r.o.cast(), r.d.cast());
     let w = T::LANES;
     let ls: Vec<RoundCone<T>> = (0..N / w).map(|k| RoundCone::from_lanes(|i| cast(&links[k * w + i]))).collect();
@@ -52,51 +46,33 @@ where
             (c, UnitConeTransform::new(&c))
         })
         .collect();
+    let spheres: Vec<Sphere<T>> = ls.iter().map(|l| Sphere { c: l.a, r: l.ra }).collect();
     let mut g = c.benchmark_group(format!("kernels/{name}"));
     g.throughput(Throughput::Elements(N as u64));
-    g.bench_function(BenchmarkId::new("sphere", name), |b| {
-        b.iter(|| {
-            for (l, r) in ls.iter().zip(&rs) {
-                black_box(intersect_sphere(r, l.a, l.ra, T::zero()));
-            }
-        })
-    });
-    g.bench_function(BenchmarkId::new("link_stable", name), |b| {
-        b.iter(|| {
-            for (l, r) in ls.iter().zip(&rs) {
-                black_box(l.intersect(r));
-            }
-        })
-    });
-    g.bench_function(BenchmarkId::new("link_han_precomputed", name), |b| {
-        b.iter(|| {
-            for (h, r) in hans.iter().zip(&rs) {
-                black_box(h.intersect(r));
-            }
-        })
-    });
-    g.bench_function(BenchmarkId::new("link_han_on_the_fly", name), |b| {
-        b.iter(|| {
-            for (l, r) in ls.iter().zip(&rs) {
-                black_box(l.intersect_han_on_the_fly(r));
-            }
-        })
-    });
-    g.bench_function(BenchmarkId::new("stump_han_precomputed", name), |b| {
-        b.iter(|| {
-            for ((c, m), r) in cones.iter().zip(&rs) {
-                black_box(intersect_stump_precomputed(r, c, m));
-            }
-        })
-    });
-    g.bench_function(BenchmarkId::new("stump_stable", name), |b| {
-        b.iter(|| {
-            for (l, r) in ls.iter().zip(&rs) {
-                black_box(l.intersect_stump_stable(r));
-            }
-        })
-    });
+    run(&mut g, "sphere", name, &rs, |k, r| spheres[k].intersect(r));
+    run(&mut g, "link_stable", name, &rs, |k, r| ls[k].intersect(r));
+    run(&mut g, "link_han_precomputed", name, &rs, |k, r| hans[k].intersect(r));
+    run(&mut g, "link_han_on_the_fly", name, &rs, |k, r| ls[k].intersect_han_on_the_fly(r));
+    run(&mut g, "stump_han_precomputed", name, &rs, |k, r| intersect_stump_precomputed(r, &cones[k].0, &cones[k].1));
+    run(&mut g, "stump_stable", name, &rs, |k, r| ls[k].intersect_stump_stable(r));
     g.finish();
+}
+
+/// One bench: `f(k, ray)` over every lane group `k` (generic, so the kernel is inlined).
+fn run<T: Real, M: Measurement>(
+    g: &mut BenchmarkGroup<'_, M>,
+    id: &str,
+    name: &str,
+    rs: &[Ray<T>],
+    f: impl Fn(usize, &Ray<T>) -> Interval<T>,
+) {
+    g.bench_function(BenchmarkId::new(id, name), |b| {
+        b.iter(|| {
+            for (k, r) in rs.iter().enumerate() {
+                black_box(f(k, r));
+            }
+        })
+    });
 }
 
 fn kernels(c: &mut Criterion) {

@@ -8,9 +8,9 @@
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use rand::{Rng, SeedableRng};
-use tubecast::kernel::roots::Solver;
-use tubecast::kernel::spline::QuadTube;
-use tubecast::real::{Real, Scalar, WideF32x8, WideF64x4};
+use tubecast::QuadTube;
+use tubecast::Solver;
+use tubecast::{Primitive, Real, Scalar, WideF32x8, WideF64x4};
 use tubecast::{Ray, RoundCone, V3};
 
 const N: usize = 64;

@@ -2,67 +2,77 @@
 //!
 //! Exact, fast, verified ray–tube intersection kernels: spheres, tangent cones and cone
 //! stumps (Han et al. 2019), round-cone links in a faithful and a numerically stable
-//! formulation, and CSG union of intervals for correct transparency. Every kernel is a pure
-//! function written once against [`Real`] and instantiated for `f32`, `f64` and SIMD lanes
-//! (`WideF32x8`, `WideF64x4`, feature `wide`).
+//! formulation, sphere-swept quadratic spline tubes, and CSG union of intervals for correct
+//! transparency. Every kernel is a pure function written once against [`Real`] and
+//! instantiated for `f32`, `f64` and SIMD lanes ([`WideF32x8`], [`WideF64x4`], feature `wide`).
 //!
 //! ```
-//! use tubecast::{Ray, RoundCone, V3};
-//! let link = RoundCone::new(V3::new(0.0, 0.0, 0.0), 1.0, V3::new(4.0, 0.0, 0.0), 0.5).unwrap();
+//! use tubecast::{Primitive, Ray, RoundCone, V3};
+//! let link = RoundCone::new(V3::new(0.0, 0.0, 0.0), 1.0, V3::new(4.0, 0.0, 0.0), 0.5)?;
 //! let ray = Ray::new(V3::new(2.0, -10.0, 0.0), V3::new(0.0, 1.0, 0.0));
 //! let iv = link.intersect(&ray).get().expect("hits");
 //! assert!(iv.t_in < iv.t_out);
+//! # Ok::<(), tubecast::GeometryError>(())
 //! ```
 //!
-//! Conventions: rays are `o + t·d` with `t ∈ [t_min, t_max]`; kernels return the interval of
-//! the ray's whole line with the solid ([`Interval`]) with unit outward normals and the curve
-//! parameter `u`, and a hit mask that says whether it overlaps the ray's range.
+//! Every primitive ([`Sphere`], [`RoundCone`], [`HanLink`], [`QuadTube`]) implements
+//! [`Primitive`]: the interval of the ray's whole line with the solid ([`Interval`]: entry
+//! and exit `t`, unit outward normals, the curve parameter `u`), the same clipped to the ray's
+//! range `[t_min, t_max]`, an [`Aabb`] and the exact signed distance. [`csg::union`] merges
+//! line intervals into the exterior boundaries for transparency. Bad input to a constructor
+//! is a [`GeometryError`]; kernels never panic and never return NaN for validated input.
+//!
+//! Optional features: `wide` (default; SIMD lanes), `glam`, `nalgebra`, `mint` (conversions
+//! of [`V3`] and [`Ray`], see [`interop`]).
 #![deny(missing_docs)]
 
-pub mod kernel;
-pub mod ray;
-pub mod real;
-pub mod vec;
+mod bounds;
+mod error;
+pub mod interop;
+mod kernel;
+mod math;
+mod primitive;
+mod ray;
+mod real;
+mod vec;
 
-pub use kernel::{HanLink, LinkShape, RoundCone};
+pub use bounds::{Aabb, Obb};
+pub use error::GeometryError;
+pub use kernel::csg::{self, union, Boundary, Tagged};
+pub use kernel::hermite::HermiteSegment;
+pub use kernel::link::{HanLink, LinkShape, RoundCone};
+pub use kernel::roots::Solver;
+pub use kernel::spline::QuadTube;
+pub use primitive::{Primitive, Sphere};
 pub use ray::{Interval, Ray};
 pub use real::{Mask, Real, Scalar};
+#[cfg(feature = "wide")]
+pub use real::{WideBoolF32x8, WideBoolF64x4, WideF32x8, WideF64x4};
 pub use vec::V3;
 
-/// Invalid geometry or rays given to a constructor or validator.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum GeometryError {
-    /// A coordinate, radius or extent is NaN or infinite.
-    NonFinite {
-        /// What was not finite.
-        what: &'static str,
-    },
-    /// A radius is negative.
-    NegativeRadius,
-    /// A radius is zero where a volume is required.
-    ZeroRadius,
-    /// A ray direction is zero.
-    ZeroDirection,
-    /// A non-zero size is so small that its square (nearly) underflows.
-    TooSmall {
-        /// What was too small.
-        what: &'static str,
-    },
-    /// A ray range is NaN or has `t_min > t_max`.
-    BadRange,
+/// The faithful pieces of Han et al. 2019 on their own, for comparisons and benchmarks: the
+/// tangent cone of two spheres (§3.2.2), the unit-cone transform and the ray–stump slab test
+/// (§4.1) with the transform precomputed (Table 1 option d) or built per call (option c), and
+/// the textbook cylinder. [`HanLink`] composes them into the round cone.
+///
+/// ```
+/// use tubecast::cone::{intersect_stump_precomputed, TangentCone, UnitConeTransform};
+/// use tubecast::{Ray, V3};
+/// let cone = TangentCone::new(V3::new(0.0, 0.0, 0.0), 1.0, V3::new(4.0, 0.0, 0.0), 0.5);
+/// assert!(cone.is_cone && cone.swapped); // apex behind the smaller sphere
+/// let xf = UnitConeTransform::new(&cone);
+/// let ray = Ray::new(V3::new(2.0, -10.0, 0.0), V3::new(0.0, 1.0, 0.0));
+/// let iv = intersect_stump_precomputed(&ray, &cone, &xf);
+/// assert!(iv.hit && iv.u_in > 0.0 && iv.u_in < 1.0); // on the cone side
+/// ```
+pub mod cone {
+    pub use crate::kernel::cone::{
+        intersect_cylinder_naive, intersect_stump_on_the_fly, intersect_stump_precomputed, TangentCone,
+        UnitConeTransform,
+    };
 }
 
-impl core::fmt::Display for GeometryError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            Self::NonFinite { what } => write!(f, "{what} is NaN or infinite"),
-            Self::NegativeRadius => write!(f, "radius is negative"),
-            Self::ZeroRadius => write!(f, "radius is zero (the primitive has no volume)"),
-            Self::ZeroDirection => write!(f, "ray direction is zero (or its squared length underflows)"),
-            Self::TooSmall { what } => write!(f, "{what} is too small"),
-            Self::BadRange => write!(f, "ray range is NaN or t_min > t_max"),
-        }
-    }
-}
-
-impl std::error::Error for GeometryError {}
+/// The README's Rust snippet, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

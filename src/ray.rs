@@ -4,6 +4,14 @@ use crate::real::{Mask, Real, Scalar};
 use crate::vec::V3;
 
 /// A ray `o + t·d`, `t ∈ [t_min, t_max]`. `d` need not be unit length.
+///
+/// ```
+/// use tubecast::{Ray, V3};
+/// let ray = Ray::with_range(V3::new(0.0, 0.0, 0.0), V3::new(0.0, 0.0, 2.0), 0.0, 10.0);
+/// assert_eq!(ray.at(1.5), V3::new(0.0, 0.0, 3.0));
+/// assert!(ray.validate().is_ok());
+/// assert!(Ray::new(ray.o, V3::new(0.0, 0.0, 0.0)).validate().is_err());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray<T> {
     /// Origin.
@@ -63,14 +71,15 @@ impl<T: Real> Ray<T> {
 impl<T: Scalar> Ray<T> {
     /// Check that origin, direction and range are usable: finite origin and direction,
     /// non-zero direction, `t_min ≤ t_max`, no NaN in the range.
-    pub fn validate(&self) -> Result<(), crate::GeometryError> {
-        use crate::GeometryError as E;
+    pub fn validate(&self) -> Result<(), crate::error::GeometryError> {
+        use crate::error::GeometryError as E;
         if !self.o.is_finite() || !self.d.is_finite() {
             return Err(E::NonFinite { what: "ray origin or direction" });
         }
         // |d|² must be a normal number and |o|² finite: kernels square both.
         let d2 = self.d.length2();
-        if !(d2 >= T::MIN_POSITIVE) {
+        // (NaN compares as unordered: also an error.)
+        if matches!(d2.partial_cmp(&T::MIN_POSITIVE), None | Some(core::cmp::Ordering::Less)) {
             return Err(E::ZeroDirection);
         }
         if !d2.is_finite() || !self.o.length2().is_finite() {
@@ -90,6 +99,15 @@ impl<T: Scalar> Ray<T> {
 /// (not clipped to `[t_min, t_max]`), so `t_in < t_min` means the ray starts inside the solid;
 /// `hit` is set when the interval is non-empty **and** overlaps `[t_min, t_max]`.
 /// Lanes without a hit hold `t_in = +∞`, `t_out = −∞`, zero normals and zero `u`.
+///
+/// ```
+/// use tubecast::{Primitive, Ray, Sphere, V3};
+/// let ball = Sphere::new(V3::new(0.0, 0.0, 0.0), 1.0).unwrap();
+/// // A ray starting inside: the line interval begins behind the origin.
+/// let iv = ball.intersect(&Ray::new(V3::new(0.0, 0.0, 0.5), V3::new(0.0, 0.0, 1.0)));
+/// assert!(iv.hit && iv.t_in == -1.5 && iv.t_out == 0.5);
+/// assert_eq!(iv.first_hit(0.0, f64::INFINITY).map(|h| h.0), Some(0.5)); // the exit
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Interval<T: Real> {
     /// Entry parameter.
@@ -127,6 +145,14 @@ impl<T: Real> Interval<T> {
     pub fn masked(self, m: T::Mask) -> Self {
         let e = Self::miss();
         Self::select(m & self.hit, self, e)
+    }
+    /// A line interval clipped to a ray: lanes whose interval is non-empty and overlaps
+    /// `[t_min, t_max]` keep it (unclipped: `t_in < t_min` still says the ray starts inside),
+    /// the others become misses. This is the step from a `line_interval` to an `intersect`
+    /// ([`crate::Primitive::intersect`]).
+    #[inline(always)]
+    pub fn clip(self, ray: &Ray<T>) -> Self {
+        self.masked(in_range(ray, self.t_in, self.t_out))
     }
     /// Lane-wise choice between two intervals.
     #[inline(always)]

@@ -16,6 +16,12 @@ use core::ops::{Add, AddAssign, BitAnd, BitOr, Div, Mul, MulAssign, Neg, Not, Su
 /// A lane mask: the result of comparing two [`Real`] values lane by lane.
 ///
 /// For scalars this is `bool`.
+///
+/// ```
+/// use tubecast::{Mask, Real};
+/// let m = 1.0f32.lt(2.0);
+/// assert!(m.any() && m.all() && !m.none() && m.lane(0));
+/// ```
 pub trait Mask: Copy + Debug + BitAnd<Output = Self> + BitOr<Output = Self> + Not<Output = Self> + Send + Sync {
     /// A mask with every lane set to `b`.
     fn splat(b: bool) -> Self;
@@ -56,6 +62,21 @@ impl Mask for bool {
 ///
 /// Arithmetic follows IEEE 754 lane by lane. [`Real::min`] and [`Real::max`] return the
 /// non-NaN operand when exactly one operand is NaN (like `f64::min`), for every implementor.
+///
+/// ```
+/// use tubecast::Real;
+/// /// `|x|` clamped to 1, one source for scalars and lanes.
+/// fn f<T: Real>(x: T) -> T {
+///     T::select(x.lt(T::zero()), -x, x).min(T::one())
+/// }
+/// assert_eq!(f(-0.5f64), 0.5);
+/// # #[cfg(feature = "wide")] {
+/// let x = tubecast::WideF32x8::from_fn(|i| i as f32 - 4.0);
+/// for i in 0..8 {
+///     assert_eq!(f(x).lane(i), f(i as f32 - 4.0));
+/// }
+/// # }
+/// ```
 pub trait Real:
     Copy
     + Debug
@@ -147,6 +168,11 @@ pub trait Real:
 }
 
 /// A scalar [`Real`]: `f32` or `f64`. Masks are `bool`.
+///
+/// ```
+/// use tubecast::Scalar;
+/// assert_eq!(f32::from_f64(0.1).to_f64(), 0.1f32 as f64);
+/// ```
 pub trait Scalar: Real<Mask = bool, Elem = Self> + PartialOrd + Default + core::fmt::Display {
     /// Machine epsilon.
     const EPS: Self;
@@ -156,6 +182,20 @@ pub trait Scalar: Real<Mask = bool, Elem = Self> + PartialOrd + Default + core::
     fn from_f64(x: f64) -> Self;
     /// Convert to `f64` (exact).
     fn to_f64(self) -> f64;
+}
+
+/// The lane-wise comparisons of a [`Real`] implementation: `name: |a, b| body` becomes
+/// `fn name(self, o: Self) -> Mask` with `a = self`, `b = o`.
+macro_rules! comparisons {
+    ($mask:ty; $($name:ident: |$a:ident, $b:ident| $body:expr),+ $(,)?) => {
+        $(
+            #[inline(always)]
+            fn $name(self, o: Self) -> $mask {
+                let ($a, $b) = (self, o);
+                $body
+            }
+        )+
+    };
 }
 
 macro_rules! impl_scalar {
@@ -202,26 +242,7 @@ macro_rules! impl_scalar {
                 // A plain multiply-add: `f64::mul_add` is a slow libm call without FMA hardware.
                 self * a + b
             }
-            #[inline(always)]
-            fn lt(self, o: Self) -> bool {
-                self < o
-            }
-            #[inline(always)]
-            fn le(self, o: Self) -> bool {
-                self <= o
-            }
-            #[inline(always)]
-            fn gt(self, o: Self) -> bool {
-                self > o
-            }
-            #[inline(always)]
-            fn ge(self, o: Self) -> bool {
-                self >= o
-            }
-            #[inline(always)]
-            fn eq(self, o: Self) -> bool {
-                self == o
-            }
+            comparisons!(bool; lt: |a, b| a < b, le: |a, b| a <= b, gt: |a, b| a > b, ge: |a, b| a >= b, eq: |a, b| a == b);
             #[inline(always)]
             fn is_finite(self) -> bool {
                 <$t>::is_finite(self)
@@ -326,26 +347,13 @@ mod lanes {
                 fn mul_add(self, a: Self, b: Self) -> Self {
                     $w(self.0.mul_add(a.0, b.0))
                 }
-                #[inline(always)]
-                fn lt(self, o: Self) -> $b {
-                    SimdPartialOrd::simd_lt(self, o)
-                }
-                #[inline(always)]
-                fn le(self, o: Self) -> $b {
-                    SimdPartialOrd::simd_le(self, o)
-                }
-                #[inline(always)]
-                fn gt(self, o: Self) -> $b {
-                    SimdPartialOrd::simd_gt(self, o)
-                }
-                #[inline(always)]
-                fn ge(self, o: Self) -> $b {
-                    SimdPartialOrd::simd_ge(self, o)
-                }
-                #[inline(always)]
-                fn eq(self, o: Self) -> $b {
-                    SimdPartialOrd::simd_eq(self, o)
-                }
+                comparisons!($b;
+                    lt: |a, b| SimdPartialOrd::simd_lt(a, b),
+                    le: |a, b| SimdPartialOrd::simd_le(a, b),
+                    gt: |a, b| SimdPartialOrd::simd_gt(a, b),
+                    ge: |a, b| SimdPartialOrd::simd_ge(a, b),
+                    eq: |a, b| SimdPartialOrd::simd_eq(a, b),
+                );
                 #[inline(always)]
                 fn is_finite(self) -> $b {
                     $b(self.0.is_finite())

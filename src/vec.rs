@@ -4,6 +4,15 @@ use crate::real::{Real, Scalar};
 use core::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 
 /// A 3-vector of [`Real`]s. For lane types each component holds one value per lane.
+///
+/// ```
+/// use tubecast::V3;
+/// let (x, y) = (V3::new(1.0, 0.0, 0.0), V3::new(0.0, 2.0, 0.0));
+/// assert_eq!(x.cross(y), V3::new(0.0, 0.0, 2.0));
+/// assert_eq!((x + y).length2(), 5.0);
+/// assert_eq!(y.normalize_or_zero(), V3::new(0.0, 1.0, 0.0));
+/// assert_eq!(V3::from([1.0, 2.0, 3.0]).to_array(), [1.0, 2.0, 3.0]);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct V3<T> {
     /// x component.

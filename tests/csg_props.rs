@@ -17,8 +17,8 @@ use common::*;
 use proptest::prelude::*;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use tubecast::kernel::csg::{union, Boundary, Tagged};
-use tubecast::{Ray, RoundCone, V3};
+use tubecast::csg::{union, Boundary, Tagged};
+use tubecast::{Primitive, Ray, RoundCone, V3};
 
 fn scene(seed: u64) -> Vec<RoundCone<f64>> {
     let mut rng = StdRng::seed_from_u64(seed);

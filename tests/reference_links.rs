@@ -33,6 +33,7 @@
 //!   (the last term: libigl's t recomputed in double from the triangle plane).
 mod common_reference;
 use common_reference::*;
+use tubecast::Primitive;
 
 const LINK_SCENES: [&str; 6] =
     ["link_cone", "link_cylinder", "link_steep", "polyline", "bifurcation", "bifurcation_n64"];
@@ -104,7 +105,7 @@ fn sdf_samples_within_mesh_bound() {
                 s.x
             );
             max_err = max_err.max(err);
-            let ours = links.iter().map(|l| tubecast::kernel::sdf::round_cone(s.x, l)).fold(f64::INFINITY, f64::min);
+            let ours = links.iter().map(|l| l.sdf(s.x)).fold(f64::INFINITY, f64::min);
             // sdf.rs error: ≈ 20 roundings on values ≤ |x − a| + S (as in link_props).
             let tol = 64.0 * EPS * (s.x.length() + fx.radius);
             if s.exact >= 0.0 {

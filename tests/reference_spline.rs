@@ -14,8 +14,8 @@
 //! S + D.
 mod common_reference;
 use common_reference::*;
-use tubecast::kernel::roots::Solver;
-use tubecast::kernel::spline::quadratic_tube;
+use tubecast::Primitive;
+use tubecast::Solver;
 
 #[test]
 fn spline_polynomial_matches_mesh() {
@@ -48,7 +48,7 @@ fn spline_sdf_samples_within_mesh_bound() {
         let round = 32.0 * EPS * (s.x.length() + fx.radius);
         assert!(err >= -mu - round && err <= h + round, "libigl sdf {:e} vs exact {:e} at {:?}", s.mesh, s.exact, s.x);
         max_err = max_err.max(err);
-        let ours = quadratic_tube(s.x, tube);
+        let ours = tube.sdf(s.x);
         // A minimum over u found to a few ulps of u changes the value only to second order;
         // the distance itself carries ~20 roundings of values ≤ |x| + S.
         let tol = 64.0 * EPS * (s.x.length() + fx.radius);

@@ -63,7 +63,7 @@ pub fn fprime_roots(b: &[[f64; 3]; 3], r: &[f64; 3], o: [f64; 3], d: [f64; 3], n
 /// Kernel entry/exit vs the oracle on a case where a claim might fail (the kernel must not
 /// rely on the claim: [`Solver::Polynomial`] does not; the Russig-cascade solvers do).
 fn kernel_still_right(b: &[[f64; 3]; 3], r: &[f64; 3], o: [f64; 3], d: [f64; 3]) -> Result<(), TestCaseError> {
-    use tubecast::{kernel::roots::Solver, Ray, V3};
+    use tubecast::{Ray, Solver, V3};
     let t = tube(b, r);
     let ray = Ray::new(V3::from(o), V3::from(d));
     if let Some(QuadCrossing { t_in: ti, t_out: to, depth, .. }) = oracle(b, r, o, d, 4000) {
@@ -149,7 +149,7 @@ proptest! {
 /// solver (Polynomial) does not rely on the claims and finds the right entry.
 #[test]
 fn counterexample_at_segment_ends() {
-    use tubecast::{kernel::roots::Solver, Ray, V3};
+    use tubecast::{Primitive, Ray, Solver, V3};
     let b = [[0.0, 0.0, -30.464], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]];
     let r = [30.464, 0.0, 0.049];
     let (o, d) = ([0.0; 3], [-12.544, 0.0, 0.05]);

@@ -4,9 +4,9 @@
 mod common_spline;
 use common_spline::*;
 use proptest::prelude::*;
-use tubecast::kernel::hermite::HermiteSegment;
-use tubecast::kernel::roots::Solver;
-use tubecast::{Ray, RoundCone, V3};
+use tubecast::HermiteSegment;
+use tubecast::Solver;
+use tubecast::{Primitive, Ray, RoundCone, V3};
 
 fn v(a: [f64; 3]) -> V3<f64> {
     V3::from(a)

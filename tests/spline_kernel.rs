@@ -7,9 +7,9 @@
 mod common_spline;
 use common_spline::*;
 use proptest::prelude::*;
-use tubecast::kernel::roots::Solver;
-use tubecast::kernel::spline::{quadratic_tube, QuadTube};
+use tubecast::Solver;
 use tubecast::{GeometryError, Ray, RoundCone, V3};
+use tubecast::{Primitive, QuadTube};
 
 proptest! {
     #![proptest_config(config(64))]
@@ -64,7 +64,7 @@ proptest! {
         let s = scale(&b, &r) + 2.0;
         for (tt, n) in [(iv.t_in, iv.n_in), (iv.t_out, iv.n_out)] {
             let x = ray.at(tt);
-            let sdf = quadratic_tube(x, &t);
+            let sdf = t.sdf(x);
             // |d|·(t error) ≤ bound(ε, S), and the SDF is 1-Lipschitz; plus the SDF's own
             // rounding (|x − p| − r: ≤ 8εS).
             prop_assert!(sdf.abs() <= bound(f64::EPSILON, s) + 8.0 * f64::EPSILON * s, "sdf {sdf}");
@@ -81,7 +81,7 @@ proptest! {
                 let mut e = [0.0; 3];
                 e[k] = h;
                 let (xp, xm) = (x + V3::from(e), x - V3::from(e));
-                let (fp, f0, fm) = (quadratic_tube(xp, &t), quadratic_tube(x, &t), quadratic_tube(xm, &t));
+                let (fp, f0, fm) = (t.sdf(xp), t.sdf(x), t.sdf(xm));
                 g[k] = (fp - fm) / (2.0 * h);
                 crease |= ((fp - f0) / h - (f0 - fm) / h).abs() > 1e-3;
             }
@@ -195,7 +195,7 @@ proptest! {
     /// lanes are frozen, skipped branches are masked).
     #[test]
     fn lanes_equal_scalar(cases in prop::collection::vec((tube_strategy(0.02, 0.6), ray_strategy()), 8)) {
-        use tubecast::real::{WideF32x8, WideF64x4};
+        use tubecast::{WideF32x8, WideF64x4};
         for solver in SOLVERS {
             let t4 = QuadTube::<WideF64x4>::from_lanes(|i| tube(&cases[i].0 .0, &cases[i].0 .1));
             let r4 = Ray::<WideF64x4>::from_fn(|i| Ray::new(V3::from(cases[i].1 .0), V3::from(cases[i].1 .1)));
@@ -241,7 +241,7 @@ proptest! {
     #[test]
     fn sdf_matches_sampling((b, r) in tube_strategy(0.02, 0.6), x in prop::array::uniform3(-2.0f64..2.0)) {
         let t = tube(&b, &r);
-        let phi = quadratic_tube(V3::from(x), &t);
+        let phi = t.sdf(V3::from(x));
         let mut best = f64::INFINITY;
         for k in 0..=4000 {
             let (p, rr) = eval(&b, &r, k as f64 / 4000.0);
@@ -340,14 +340,14 @@ proptest! {
         let tol = bound(f64::EPSILON, s) / dl;
         for solver in [Solver::Polynomial, Solver::Itp] {
             let pieces = t.intersect_pieces(&ray, solver);
-            let mut tagged: Vec<_> = pieces.iter().map(|iv| tubecast::kernel::csg::Tagged { iv: *iv, id: 0 }).collect();
+            let mut tagged: Vec<_> = pieces.iter().map(|iv| tubecast::csg::Tagged { iv: *iv, id: 0 }).collect();
             let mut bounds = Vec::new();
-            tubecast::kernel::csg::union(&mut tagged, f64::NEG_INFINITY, f64::INFINITY, |bd| bounds.push(bd.t));
+            tubecast::csg::union(&mut tagged, f64::NEG_INFINITY, f64::INFINITY, |bd| bounds.push(bd.t));
             for k in 0..=400 {
                 let tt = -2.0 + 14.0 * k as f64 / 400.0 / dl;
                 let near_bd = pieces.iter().any(|p| p.hit && ((tt - p.t_in).abs() <= tol || (tt - p.t_out).abs() <= tol));
                 if near_bd { continue; }
-                let inside_sdf = quadratic_tube(ray.at(tt), &t) < 0.0;
+                let inside_sdf = t.sdf(ray.at(tt)) < 0.0;
                 let inside_pieces = pieces.iter().any(|p| p.hit && p.t_in <= tt && tt <= p.t_out);
                 // The union's boundaries alternate entry/exit: count of boundaries ≤ tt is odd inside.
                 let inside_union = bounds.iter().filter(|&&x| x <= tt).count() % 2 == 1;

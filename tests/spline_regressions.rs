@@ -5,8 +5,8 @@
 mod common_spline;
 use common_spline::*;
 use proptest::prelude::*;
-use tubecast::kernel::roots::Solver;
-use tubecast::kernel::spline::{quadratic_tube, QuadTube};
+use tubecast::Solver;
+use tubecast::{Primitive, QuadTube};
 use tubecast::{Ray, V3};
 
 /// Fuzz finding (fuzz/corpus/spline/regression-behind-origin): the Russig-cascade solvers
@@ -26,7 +26,7 @@ fn hull_keeps_pieces_behind_the_origin() {
         let iv = t.intersect_with(&ray, solver);
         assert!(iv.hit, "{solver:?}");
         for tt in [iv.t_in, iv.t_out] {
-            assert!(quadratic_tube(ray.at(tt), &t).abs() <= bound(f64::EPSILON, 60.0), "{solver:?}: {iv:?}");
+            assert!(t.sdf(ray.at(tt)).abs() <= bound(f64::EPSILON, 60.0), "{solver:?}: {iv:?}");
         }
         // Bisection{10}: t* off by ≤ 2⁻¹⁰ moves the entry by ≤ ½|f''|δt², < 1e-3 here.
         let tol = if solver == (Solver::Bisection { iters: 10 }) { 1e-3 } else { 1e-9 };
@@ -76,7 +76,7 @@ fn thin_long_tube_far_end() {
         let iv = t.intersect_with(&ray, solver);
         assert!(iv.hit);
         for tt in [iv.t_in, iv.t_out] {
-            assert!(quadratic_tube(ray.at(tt), &t).abs() <= 1e-9, "{solver:?} {iv:?}");
+            assert!(t.sdf(ray.at(tt)).abs() <= 1e-9, "{solver:?} {iv:?}");
         }
         assert!((iv.t_in - want.t_in).abs() <= 1e-8 && (iv.t_out - want.t_out).abs() <= 1e-8, "{solver:?}");
     }
@@ -127,7 +127,7 @@ fn thin_long_tube_exit() {
     let ray = Ray::new(V3::new(-0.001, -0.001, -0.001), V3::new(-0.001, -0.002, -0.001));
     let iv = t.intersect(&ray);
     let want = t.intersect_with(&ray, Solver::Itp);
-    assert!(iv.hit && quadratic_tube(ray.at(iv.t_out), &t).abs() <= 1e-9, "{iv:?}");
+    assert!(iv.hit && t.sdf(ray.at(iv.t_out)).abs() <= 1e-9, "{iv:?}");
     assert!((iv.t_out - want.t_out).abs() <= 1e-6);
 }
 
@@ -146,7 +146,7 @@ fn zero_radius_tip_on_the_ray() {
     let ray = Ray::new(V3::new(0.0, 0.0, 0.0), V3::new(0.0, -0.001, 0.255));
     let iv = t.intersect(&ray);
     assert!(iv.hit && iv.t_in.abs() * 0.255 <= bound(f64::EPSILON, 30.0), "{iv:?}");
-    assert!(quadratic_tube(ray.at(iv.t_out), &t).abs() <= bound(f64::EPSILON, 30.0));
+    assert!(t.sdf(ray.at(iv.t_out)).abs() <= bound(f64::EPSILON, 30.0));
 }
 
 /// Fuzz finding (fuzz/corpus/spline/regression-pinched-slow-end): a 0.001-thin, 46-long tube
@@ -171,7 +171,7 @@ fn pinched_tube_slow_end() {
     assert!(iv.hit, "{iv:?}");
     let s = 4.0 * 32.768 * (3f64.sqrt() + 1.0);
     for tt in [iv.t_in, iv.t_out] {
-        let e = quadratic_tube(ray.at(tt), &t);
+        let e = t.sdf(ray.at(tt));
         assert!(e.abs() <= 1e-9 && e.abs() <= bound(f64::EPSILON, s), "{tt}: sdf {e}, {iv:?}");
     }
     let itp = t.intersect_with(&ray, Solver::Itp);
@@ -196,14 +196,14 @@ fn tiny_tube_sdf_does_not_underflow() {
     assert!(iv.hit, "{iv:?}");
     let s = 4.0 * e * (3f64.sqrt() + 1.0);
     for tt in [iv.t_in, iv.t_out] {
-        let sdf = quadratic_tube(ray.at(tt), &t);
+        let sdf = t.sdf(ray.at(tt));
         assert!(sdf.abs() <= bound(f64::EPSILON, s), "{tt}: sdf {sdf:e} vs {:e}", bound(f64::EPSILON, s));
     }
     // Scaling by 2^k (exact) scales the SDF exactly, from 1e-304 up to ~1e0 and for far points.
     let f = 2f64.powi(1000);
     let tf = QuadTube::<f64>::new([t.b[0] * f, t.b[1] * f, t.b[2] * f], [t.r[0] * f, t.r[1] * f, t.r[2] * f]).unwrap();
     for x in [ray.at(iv.t_in), V3::new(e, e, e), V3::new(-3.0 * e, 0.5 * e, 1e3 * e)] {
-        assert_eq!(quadratic_tube(x * f, &tf), quadratic_tube(x, &t) * f, "{x:?}");
+        assert_eq!(tf.sdf(x * f), t.sdf(x) * f, "{x:?}");
     }
 }
 
@@ -235,7 +235,7 @@ fn zero_radius_tip_on_the_ray_far_side() {
         assert!((iv.t_in - -38.75).abs() <= tol, "{solver:?}: entry {} vs -38.75 (tol {tol}): {iv:?}", iv.t_in);
         assert!((iv.t_out - want_out).abs() <= tol, "{solver:?}: exit {} vs {want_out}: {iv:?}", iv.t_out);
         for tt in [iv.t_in, iv.t_out] {
-            assert!(quadratic_tube(ray.at(tt), &t).abs() <= bound(f64::EPSILON, s), "{solver:?} {tt}: {iv:?}");
+            assert!(t.sdf(ray.at(tt)).abs() <= bound(f64::EPSILON, s), "{solver:?} {tt}: {iv:?}");
         }
     }
 }

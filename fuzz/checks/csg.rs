@@ -2,8 +2,8 @@
 // Bytes -> up to 6 links and a ray; the CSG union of their intervals must be sorted, alternate
 // entry/exit, lie in [t_min, t_max], carry unit normals and no NaN, and never report more
 // boundaries than 2 × intervals.
-use tubecast::kernel::csg::{union, Tagged};
-use tubecast::{Ray, RoundCone, V3};
+use tubecast::csg::{union, Tagged};
+use tubecast::{Primitive, Ray, RoundCone, V3};
 include!("decode.rs");
 
 fn f(data: &[u8], i: usize) -> f64 {

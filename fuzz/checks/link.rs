@@ -4,7 +4,7 @@
 // f32: no NaN, t_in <= t_out, unit normals; and for the stable kernel hit points on the surface
 // within E = 64ε(S + D) + 8εS/max(c², 32ε) (the bound derived in tests/link_props.rs).
 #[allow(unused_imports)]
-use tubecast::{kernel::sdf, HanLink, Ray, RoundCone, V3};
+use tubecast::{HanLink, Primitive, Ray, RoundCone, V3};
 include!("decode.rs");
 include!("sane.rs");
 
@@ -42,7 +42,7 @@ pub fn check(data: &[u8]) {
                 continue;
             }
             // Forming x = o + t·d and the SDF add ≤ 4ε(|o − m| + |t·d|) + 8ε·S, within E's factor 2.
-            let d = sdf::round_cone(x, &link);
+            let d = link.sdf(x);
             // Plus the absolute rounding of x = o + t·d and of the SDF's x − a: 4ε(|o| + |t·d| + |a|).
             let fx = 4.0 * f64::EPSILON * (ray.o.length() + (t * ray.d.length()).abs() + link.a.length());
             assert!(d.abs() <= 2.0 * e + fx, "hit point off the surface by {d:e} > 2E + {fx:e} = {:e}", 2.0 * e + fx);

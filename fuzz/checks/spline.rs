@@ -7,7 +7,7 @@
 // E = √(64ε)·S + 8εS (tests/spline_kernel.rs) + 8ε(D + |t·d|) (rounding of o + t·d), and for
 // the polynomial solver within E of the surface (exact tube SDF).
 #[allow(unused_imports)]
-use tubecast::{kernel::roots::Solver, kernel::spline::{quadratic_tube, QuadTube}, Ray, V3};
+use tubecast::{Primitive, QuadTube, Ray, Solver, V3};
 include!("decode.rs");
 include!("sane.rs");
 
@@ -61,7 +61,7 @@ pub fn check(data: &[u8]) {
         let dl = ray.d.length();
         if (iv.t_out - iv.t_in) * dl > 1e-6 * s {
             for tt in [iv.t_in, iv.t_out] {
-                let e = quadratic_tube(ray.at(tt), &t);
+                let e = t.sdf(ray.at(tt));
                 // Plus the rounding of the hit point o + t·d itself (and of t): ≤ 8ε(D + |t·d|)
                 // with D = |o − b₀| (a far origin cancels against t·d).
                 let far = 8.0 * f64::EPSILON * ((ray.o - b[0]).length() + (ray.d * tt).length());

@@ -13,11 +13,21 @@
 //! as `r₁ → r₂`: this formulation loses digits for near-equal radii (the stability report
 //! charts it). Equal radii are a cylinder, handled by [`intersect_cylinder_naive`].
 
-use crate::ray::{in_range, Interval, Ray};
-use crate::real::{Mask, Real};
+use crate::math::quadric::{quadric_in_slab, slab};
+use crate::ray::{Interval, Ray};
+use crate::real::Real;
 use crate::vec::V3;
 
 /// The tangent cone of two spheres, per Han §3.2.2 (smaller sphere first).
+///
+/// ```
+/// use tubecast::cone::TangentCone;
+/// use tubecast::V3;
+/// let c = TangentCone::new(V3::new(0.0f64, 0.0, 0.0), 0.5, V3::new(4.0, 0.0, 0.0), 1.0);
+/// assert!(c.is_cone && !c.swapped);
+/// assert_eq!((c.p1, c.p2), (4.0, 8.0)); // p₁ = L·r₁/(r₂ − r₁)
+/// assert_eq!(c.apex, V3::new(-4.0, 0.0, 0.0));
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct TangentCone<T: Real> {
     /// Apex `A` (undefined where `is_cone` is false).
@@ -84,6 +94,16 @@ impl<T: Real> TangentCone<T> {
 ///
 /// World point `x` maps to `R·(x − A)` with rows `R = [v̂ₓ/(z₂·w/p₂), v̂ᵧ/(z₂·w/p₂), Ĉ/z₂]`; the
 /// cone becomes `X² + Y² = Z²` and the stump the slab `Z ∈ [z_cap, 1]`.
+///
+/// ```
+/// use tubecast::cone::{TangentCone, UnitConeTransform};
+/// use tubecast::V3;
+/// let c = TangentCone::new(V3::new(0.0f64, 0.0, 0.0), 0.5, V3::new(4.0, 0.0, 0.0), 1.0);
+/// let m = UnitConeTransform::new(&c);
+/// assert_eq!(m.point(c.apex), V3::new(0.0, 0.0, 0.0));
+/// let big_cap = m.point(c.apex + c.axis * c.z2); // centre of the large cap circle
+/// assert!((big_cap.z - 1.0).abs() < 1e-15);
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct UnitConeTransform<T: Real> {
     /// Rows of the linear part.
@@ -94,17 +114,7 @@ pub struct UnitConeTransform<T: Real> {
     pub z_cap: T,
 }
 
-/// A unit vector orthogonal to `n` (`n` unit), branch-free (Duff et al. 2017).
-#[inline(always)]
-pub fn orthonormal_basis<T: Real>(n: V3<T>) -> (V3<T>, V3<T>) {
-    let one = T::one();
-    let sign = one.copysign_of(n.z);
-    let a = -one / (sign + n.z);
-    let b = n.x * n.y * a;
-    let bx = V3::new(one + sign * n.x * n.x * a, sign * b, -sign * n.x);
-    let by = V3::new(b, sign + n.y * n.y * a, -n.y);
-    (bx, by)
-}
+pub use crate::math::frame::orthonormal_basis;
 
 impl<T: Real> UnitConeTransform<T> {
     /// Precompute the transform of a tangent cone (lanes that are not cones get an
@@ -141,106 +151,9 @@ impl<T: Real> UnitConeTransform<T> {
     }
 }
 
-/// The set `{t : F(t) ≤ 0}` of `F(t) = a·t² + 2b·t + c` intersected with `[lo, hi]`
-/// (known to be a single interval because the caller's solid is convex).
-///
-/// Returns `(t0, t1, q0, q1, nonempty)`: `q0`/`q1` say whether each end is a root of `F` (a
-/// crossing of the curved surface) rather than an end of `[lo, hi]` (a cap plane).
-#[inline(always)]
-pub(crate) fn quadric_in_slab<T: Real>(a: T, b: T, c: T, lo: T, hi: T) -> (T, T, T::Mask, T::Mask, T::Mask) {
-    quadric_in_slab_disc(a, b, c, b * b - a * c, lo, hi)
-}
-
-/// [`quadric_in_slab`] with the discriminant `b² − a·c` supplied by a caller that can form it
-/// without cancellation.
-#[inline(always)]
-pub(crate) fn quadric_in_slab_disc<T: Real>(
-    a: T,
-    b: T,
-    c: T,
-    disc: T,
-    lo: T,
-    hi: T,
-) -> (T, T, T::Mask, T::Mask, T::Mask) {
-    let zero = T::zero();
-    let no = T::Mask::splat(false);
-    let real = disc.ge(zero);
-    let sq = disc.max(zero).sqrt();
-    // Citardauq form: no cancellation. q = 0 only if b = 0 and disc = 0.
-    let q = -(b + sq.copysign_of(b));
-    let q_nz = !q.eq(zero);
-    let a_nz = !a.eq(zero);
-    let r1 = q / T::select(a_nz, a, T::one());
-    let r2 = c / T::select(q_nz, q, T::one());
-    // Citardauq keeps the small root accurate when the roots differ greatly in size (b² ≫ |ac|,
-    // e.g. a ray nearly parallel to a generator). When they are of comparable size its C/q can
-    // be noise over noise: near a tangency q = −(b ± √disc) is tiny and C carries its own
-    // rounding, inconsistent with a discriminant the caller formed without cancellation. There
-    // −b/a ± √disc/|a| is accurate to ε·|b/a| ≲ 4ε·√|c/a|, i.e. to ε of the roots' size.
-    let far_apart = (b * b).gt(T::cst(16.0) * (a * c).abs());
-    let mid = -b / T::select(a_nz, a, T::one());
-    let half = sq / T::select(a_nz, a, T::one()).abs();
-    let r1 = T::select(far_apart, r1, mid - half);
-    let r2 = T::select(far_apart, r2, mid + half);
-    let (rl, rh) = (r1.min(r2), r1.max(r2));
-
-    // a > 0: inside = [rl, rh] (empty without real roots).
-    let pos = a.gt(zero);
-    let (p0, p1) = (lo.max(rl), hi.min(rh));
-    let (pq0, pq1) = (rl.ge(lo), rh.le(hi));
-    let pos_ok = real & q_nz & p0.le(p1);
-
-    // a < 0: inside = (−∞, rl] ∪ [rh, ∞) (the whole line without real roots); only one
-    // piece can meet the slab of a convex stump, take the non-empty (longer) one.
-    let neg = a.lt(zero);
-    let ra = real & q_nz;
-    let (a0, a1) = (lo, T::select(ra, hi.min(rl), hi));
-    let (b0, b1) = (T::select(ra, lo.max(rh), lo), hi);
-    let (ok_a, ok_b) = (a0.le(a1), b0.le(b1));
-    let take_a = ok_a & (!ok_b | (a1 - a0).ge(b1 - b0));
-    let (n0, n1) = (T::select(take_a, a0, b0), T::select(take_a, a1, b1));
-    let nq0 = !take_a & ra & rh.ge(lo);
-    let nq1 = take_a & ra & rl.le(hi);
-    let neg_ok = ok_a | ok_b;
-
-    // a = 0: 2b·t + c ≤ 0, root −c/(2b).
-    let lin = !a_nz;
-    let b_pos = b.gt(zero);
-    let b_neg = b.lt(zero);
-    let root = -c / T::select(b_pos | b_neg, b + b, T::one());
-    let l0 = T::select(b_neg, lo.max(root), lo);
-    let l1 = T::select(b_pos, hi.min(root), hi);
-    let lin_ok = l0.le(l1) & ((b_pos | b_neg) | c.le(zero));
-    let lq0 = b_neg & root.ge(lo);
-    let lq1 = b_pos & root.le(hi);
-
-    let t0 = T::select(lin, l0, T::select(neg, n0, p0));
-    let t1 = T::select(lin, l1, T::select(neg, n1, p1));
-    let q0 = (lin & lq0) | (neg & nq0) | (pos & pq0);
-    let q1 = (lin & lq1) | (neg & nq1) | (pos & pq1);
-    let ok = (lin & lin_ok) | (neg & neg_ok) | (pos & pos_ok) | no;
-    (t0, t1, q0, q1, ok)
-}
-
-/// Slab `{t : lo ≤ z0 + t·zd ≤ hi}` as `[t0, t1]` (empty as `t0 > t1`).
-#[inline(always)]
-pub(crate) fn slab<T: Real>(z0: T, zd: T, lo: T, hi: T) -> (T, T) {
-    let zero = T::zero();
-    let inf = T::infinity();
-    let par = zd.eq(zero);
-    let inv = T::one() / T::select(par, T::one(), zd);
-    let ta = (lo - z0) * inv;
-    let tb = (hi - z0) * inv;
-    let inside = z0.ge(lo) & z0.le(hi);
-    let t0 = T::select(par, T::select(inside, -inf, inf), ta.min(tb));
-    let t1 = T::select(par, T::select(inside, inf, -inf), ta.max(tb));
-    let _ = zero;
-    (t0, t1)
-}
-
 /// Ray–cone-stump interval in the unit-cone frame (Han §4.1), with a precomputed transform
 /// (Han Table 1 option d). Only the stump (cone side and two flat caps) — see
-/// [`crate::kernel::link`] for the round cone. `u` is the parameter along the stump from the
+/// [`crate::HanLink`] for the round cone. `u` is the parameter along the stump from the
 /// caller's first sphere (0) to its second (1), measured by the axial position of the hit.
 #[inline(always)]
 pub fn intersect_stump_precomputed<T: Real>(
@@ -248,8 +161,7 @@ pub fn intersect_stump_precomputed<T: Real>(
     cone: &TangentCone<T>,
     m: &UnitConeTransform<T>,
 ) -> Interval<T> {
-    let iv = stump_line(ray, cone, m);
-    iv.masked(in_range(ray, iv.t_in, iv.t_out))
+    stump_line(ray, cone, m).clip(ray)
 }
 
 /// The stump's line interval, no range test (see [`crate::kernel::sphere`]).
@@ -261,7 +173,8 @@ pub(crate) fn stump_line<T: Real>(ray: &Ray<T>, cone: &TangentCone<T>, m: &UnitC
     let b = o.x * d.x + o.y * d.y - o.z * d.z;
     let c = o.x * o.x + o.y * o.y - o.z * o.z;
     let (lo, hi) = slab(o.z, d.z, m.z_cap, T::one());
-    let (t0, t1, q0, q1, ok) = quadric_in_slab(a, b, c, lo, hi);
+    let hits = quadric_in_slab(a, b, c, lo, hi);
+    let (t0, t1) = (hits.t0, hits.t1);
     // Normals in the unit frame: cone side ∇(X²+Y²−Z²) ∝ (X, Y, −Z); caps ±Ẑ.
     let cap_n = |t: T| {
         let z = o.z + d.z * t;
@@ -274,14 +187,14 @@ pub(crate) fn stump_line<T: Real>(ray: &Ray<T>, cone: &TangentCone<T>, m: &UnitC
         let at_apex = p.length2().eq(T::zero());
         V3::new(p.x, p.y, T::select(at_apex, -T::one(), -p.z))
     };
-    let n_in = m.normal_to_world(V3::select(q0, side_n(t0), cap_n(t0)));
-    let n_out = m.normal_to_world(V3::select(q1, side_n(t1), cap_n(t1)));
+    let n_in = m.normal_to_world(V3::select(hits.root0, side_n(t0), cap_n(t0)));
+    let n_out = m.normal_to_world(V3::select(hits.root1, side_n(t1), cap_n(t1)));
     let zu = |t: T| {
         let z = o.z + d.z * t;
         let u = ((z - m.z_cap) / (T::one() - m.z_cap)).clamp(T::zero(), T::one());
         T::select(cone.swapped, T::one() - u, u)
     };
-    let hit = ok & cone.is_cone;
+    let hit = hits.ok & cone.is_cone;
     Interval { t_in: t0, t_out: t1, n_in, n_out, u_in: zu(t0), u_out: zu(t1), hit }.masked(hit)
 }
 
@@ -298,8 +211,7 @@ pub fn intersect_stump_on_the_fly<T: Real>(ray: &Ray<T>, c1: V3<T>, r1: T, c2: V
 /// equal-radius links: formed directly from `o − c1` without re-centring.
 #[inline(always)]
 pub fn intersect_cylinder_naive<T: Real>(ray: &Ray<T>, c1: V3<T>, c2: V3<T>, r: T) -> Interval<T> {
-    let iv = cylinder_line(ray, c1, c2, r);
-    iv.masked(in_range(ray, iv.t_in, iv.t_out))
+    cylinder_line(ray, c1, c2, r).clip(ray)
 }
 
 /// The cylinder's line interval, no range test.
@@ -316,7 +228,8 @@ pub(crate) fn cylinder_line<T: Real>(ray: &Ray<T>, c1: V3<T>, c2: V3<T>, r: T) -
     let b = f.dot(ray.d) - zo * zd;
     let c = f.length2() - zo * zo - r * r;
     let (lo, hi) = slab(zo, zd, T::zero(), len);
-    let (t0, t1, q0, q1, ok) = quadric_in_slab(a, b, c, lo, hi);
+    let hits = quadric_in_slab(a, b, c, lo, hi);
+    let (t0, t1) = (hits.t0, hits.t1);
     let n_at = |t: T, q: T::Mask| {
         let p = f + ray.d * t;
         let z = p.dot(axis);
@@ -327,7 +240,7 @@ pub(crate) fn cylinder_line<T: Real>(ray: &Ray<T>, c1: V3<T>, c2: V3<T>, r: T) -
         V3::select(q, side, cap)
     };
     let u_at = |t: T| ((zo + zd * t) / T::select(len_ok, len, T::one())).clamp(T::zero(), T::one());
-    let hit = ok & len_ok & r.gt(T::zero());
-    Interval { t_in: t0, t_out: t1, n_in: n_at(t0, q0), n_out: n_at(t1, q1), u_in: u_at(t0), u_out: u_at(t1), hit }
-        .masked(hit)
+    let hit = hits.ok & len_ok & r.gt(T::zero());
+    let (n_in, n_out) = (n_at(t0, hits.root0), n_at(t1, hits.root1));
+    Interval { t_in: t0, t_out: t1, n_in, n_out, u_in: u_at(t0), u_out: u_at(t1), hit }.masked(hit)
 }

@@ -12,6 +12,15 @@ use crate::real::Scalar;
 use crate::vec::V3;
 
 /// One primitive's interval along a ray, tagged with the primitive's id.
+///
+/// ```
+/// use tubecast::{Primitive, Ray, Sphere, Tagged, V3};
+/// let ray = Ray::new(V3::new(0.0, 0.0, 0.0), V3::new(1.0, 0.0, 0.0));
+/// let ball = Sphere::new(V3::new(5.0, 0.0, 0.0), 1.0)?;
+/// let t = Tagged { iv: ball.line_interval(&ray), id: 7 };
+/// assert!(t.iv.hit && t.id == 7);
+/// # Ok::<(), tubecast::GeometryError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tagged<T: Scalar> {
     /// The line interval (a kernel's output; entries with `hit == false` are ignored).
@@ -20,7 +29,13 @@ pub struct Tagged<T: Scalar> {
     pub id: u32,
 }
 
-/// An exterior boundary of the union.
+/// An exterior boundary of the union (see [`union`] for an example).
+///
+/// ```
+/// use tubecast::{Boundary, V3};
+/// let b = Boundary { t: 1.0, n: V3::new(-1.0, 0.0, 0.0), u: 0.0, id: 0, entering: true };
+/// assert!(b.entering && b.n.length() == 1.0);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Boundary<T: Scalar> {
     /// Ray parameter.
@@ -40,6 +55,18 @@ pub struct Boundary<T: Scalar> {
 ///
 /// Sorts `intervals` in place by entry (no allocation). Intervals that touch (`entry ==
 /// previous exit`) merge: a surface shared exactly by two primitives is interior.
+///
+/// ```
+/// use tubecast::{union, Primitive, Ray, Sphere, Tagged, V3};
+/// // Two overlapping balls on the x axis: [4, 6] ∪ [5.5, 7.5] has one entry and one exit.
+/// let ray = Ray::new(V3::new(0.0, 0.0, 0.0), V3::new(1.0, 0.0, 0.0));
+/// let balls = [Sphere::new(V3::new(5.0, 0.0, 0.0), 1.0)?, Sphere::new(V3::new(6.5, 0.0, 0.0), 1.0)?];
+/// let mut ivs: Vec<_> = balls.iter().zip(0..).map(|(b, id)| Tagged { iv: b.line_interval(&ray), id }).collect();
+/// let mut out = Vec::new();
+/// assert_eq!(union(&mut ivs, ray.t_min, ray.t_max, |b| out.push((b.t, b.id, b.entering))), 2);
+/// assert_eq!(out, [(4.0, 0, true), (7.5, 1, false)]);
+/// # Ok::<(), tubecast::GeometryError>(())
+/// ```
 pub fn union<T: Scalar>(intervals: &mut [Tagged<T>], t_min: T, t_max: T, mut emit: impl FnMut(Boundary<T>)) -> usize {
     intervals.sort_unstable_by(|a, b| {
         // Misses (t_in = +∞) sort last; NaN cannot occur for kernel output.

@@ -9,13 +9,23 @@
 //! sweep (`tests/spline_hermite.rs` measures by how much); it is exact for straight segments
 //! whose node derivatives are the chord (`tᵢ = tⱼ = nⱼ − nᵢ`).
 
+use crate::error::GeometryError;
 use crate::kernel::spline::QuadTube;
 use crate::real::{Real, Scalar};
 use crate::vec::V3;
-use crate::GeometryError;
 
 /// A cubic Hermite segment: positions, position derivatives (tangents), radii and radius
 /// derivatives at both nodes; the parameter runs over `[0, 1]`.
+///
+/// ```
+/// use tubecast::{HermiteSegment, V3};
+/// let (p0, p1) = (V3::new(0.0f64, 0.0, 0.0), V3::new(3.0, 0.0, 0.0));
+/// let seg = HermiteSegment::new(p0, p1 - p0, 0.5, 0.0, p1, p1 - p0, 0.5, 0.0);
+/// let [a, b] = seg.split()?; // two quadratic sphere-swept segments, joined at t = ½
+/// assert_eq!(a.b[2], b.b[0]);
+/// assert_eq!(a.point(1.0), seg.point(0.5)); // straight, chord tangents: exact
+/// # Ok::<(), tubecast::GeometryError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HermiteSegment<T> {
     /// Start position.
@@ -40,24 +50,24 @@ pub struct HermiteSegment<T> {
 pub type QuadControls<T> = (([V3<T>; 3], [T; 3]), ([V3<T>; 3], [T; 3]));
 
 impl<T: Real> HermiteSegment<T> {
-    /// Hermite basis weights `(h00, h10, h01, h11)` at `t`.
+    /// Hermite basis weights `[h00, h10, h01, h11]` at `t`.
     #[inline(always)]
-    fn basis(t: T) -> (T, T, T, T) {
+    fn basis(t: T) -> [T; 4] {
         let (two, three) = (T::cst(2.0), T::cst(3.0));
         let t2 = t * t;
         let t3 = t2 * t;
-        (two * t3 - three * t2 + T::one(), t3 - two * t2 + t, three * t2 - two * t3, t3 - t2)
+        [two * t3 - three * t2 + T::one(), t3 - two * t2 + t, three * t2 - two * t3, t3 - t2]
     }
     /// Cubic position `p(t)`.
     #[inline(always)]
     pub fn point(&self, t: T) -> V3<T> {
-        let (a, b, c, d) = Self::basis(t);
+        let [a, b, c, d] = Self::basis(t);
         self.p0 * a + self.m0 * b + self.p1 * c + self.m1 * d
     }
     /// Cubic radius `r(t)`.
     #[inline(always)]
     pub fn radius(&self, t: T) -> T {
-        let (a, b, c, d) = Self::basis(t);
+        let [a, b, c, d] = Self::basis(t);
         self.r0 * a + self.dr0 * b + self.r1 * c + self.dr1 * d
     }
     /// Russig's split control points (`c₁ = c₂ = 1/3`), unvalidated.

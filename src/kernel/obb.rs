@@ -12,11 +12,27 @@
 //! `a·p − r`. So every face of the box touches the tube (the box is the tightest one in
 //! its frame) and the box is conservative up to the rounding of those few operations.
 
-use crate::kernel::spline::{bezier2_max, bezier2_min, QuadTube};
+use crate::kernel::spline::QuadTube;
+use crate::math::bezier::{bezier2_max, bezier2_min};
+use crate::math::frame::orthonormal_basis;
 use crate::real::Real;
 use crate::vec::V3;
 
 /// A box `{origin + Σ axesᵢ·cᵢ : loᵢ ≤ cᵢ ≤ hiᵢ}` with orthonormal `axes`.
+///
+/// ```
+/// use tubecast::{Obb, QuadTube, V3};
+/// let tube = QuadTube::new(
+///     [V3::new(0.0f64, 0.0, 0.0), V3::new(1.0, 1.0, 0.0), V3::new(2.0, 0.0, 0.0)],
+///     [0.1, 0.1, 0.1],
+/// )?;
+/// let obb = tube.obb(); // = Obb::fit(&tube): x̂ along the chord
+/// assert!((obb.axes[0].x - 1.0).abs() < 1e-15);
+/// assert!((obb.hi.x - 2.1).abs() < 1e-15 && (obb.lo.x + 0.1).abs() < 1e-15);
+/// let c = obb.local(tube.point(0.5));
+/// assert!(c.x >= obb.lo.x && c.x <= obb.hi.x && c.y <= obb.hi.y);
+/// # Ok::<(), tubecast::GeometryError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Obb<T> {
     /// Frame origin (the segment's first control point: extents stay small numbers).
@@ -37,14 +53,11 @@ fn unit<T: Real>(v: V3<T>) -> V3<T> {
     (v * s).normalize_or_zero()
 }
 
-/// A unit vector orthogonal to the unit vector `n` (Duff et al. 2017).
+/// A unit vector orthogonal to the unit vector `n` (Duff et al. 2017): the first vector of
+/// [`crate::kernel::cone::orthonormal_basis`].
 #[inline(always)]
 pub fn orthogonal<T: Real>(n: V3<T>) -> V3<T> {
-    let one = T::one();
-    let sign = T::select(n.z.lt(T::zero()), -one, one);
-    let a = -one / (sign + n.z);
-    let b = n.x * n.y * a;
-    V3::new(one + sign * n.x * n.x * a, sign * b, -sign * n.x)
+    orthonormal_basis(n).0
 }
 
 impl<T: Real> Obb<T> {
@@ -67,13 +80,6 @@ impl<T: Real> Obb<T> {
         let z = unit(x.cross(y0));
         let y = z.cross(x);
         Self::with_axes(tube, [x, y, z])
-    }
-
-    /// The axis-aligned box, by the same extent computation.
-    #[inline(always)]
-    pub fn aabb(tube: &QuadTube<T>) -> Self {
-        let (o, l) = (T::zero(), T::one());
-        Self::with_axes(tube, [V3::new(l, o, o), V3::new(o, l, o), V3::new(o, o, l)])
     }
 
     /// The tightest box of the segment in a given orthonormal frame.

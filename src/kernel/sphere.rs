@@ -5,36 +5,24 @@
 //! vector of length ≈ distance(line, centre) rather than from `|o − c|²`: far origins lose only
 //! what representing `o` itself loses.
 
-use crate::ray::{in_range, Interval, Ray};
+use crate::math::quadric::{sphere_chord, Chord};
+use crate::ray::{Interval, Ray};
 use crate::real::Real;
 use crate::vec::V3;
 
-/// Interval of the ray's line with the ball `|x − c| ≤ r`, with unit outward normals.
+/// Interval of the ray's **line** with the ball `|x − c| ≤ r`, with unit outward normals
+/// ([`crate::Sphere`] clips it to the ray): `hit` only says the line meets the ball, the
+/// building block for unions of convex pieces, which must be formed before clipping.
 ///
 /// `u_in`/`u_out` are set to `u` (the caller's curve parameter for this sphere, e.g. 0 or 1
 /// for a link's end spheres). Lanes with `r ≤ 0` miss. Never NaN for finite input with `d ≠ 0`.
-#[inline(always)]
-pub fn intersect_sphere<T: Real>(ray: &Ray<T>, c: V3<T>, r: T, u: T) -> Interval<T> {
-    let iv = sphere_line(ray, c, r, u);
-    iv.masked(in_range(ray, iv.t_in, iv.t_out))
-}
-
-/// Like [`intersect_sphere`] but `hit` only says the line meets the ball (no range test):
-/// the building block for unions of convex pieces, which must be formed before clipping.
 #[inline(always)]
 pub(crate) fn sphere_line<T: Real>(ray: &Ray<T>, c: V3<T>, r: T, u: T) -> Interval<T> {
     // Unit direction: the closest-point parameter and the half chord are formed in units of
     // length (τ), so nothing over/underflows because |d| is far from 1; t = τ/|d|.
     let dl = ray.d.length();
     let dn = ray.d * (T::one() / dl);
-    let f = ray.o - c;
-    // τ of the closest point of the line to c.
-    let tc = -f.dot(dn);
-    // Perpendicular from c to the line (accurate: no |f|² − (f·d)² cancellation).
-    let l = f + dn * tc;
-    let disc = r * r - l.length2();
-    let ok = disc.ge(T::zero()) & r.gt(T::zero());
-    let h = disc.max(T::zero()).sqrt();
+    let Chord { tc, h, l, ok } = sphere_chord(ray.o, dn, c, r);
     let inv_dl = T::one() / dl;
     let t_in = (tc - h) * inv_dl;
     let t_out = (tc + h) * inv_dl;

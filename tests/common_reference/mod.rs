@@ -5,10 +5,10 @@
 #![allow(dead_code)]
 
 use serde_json::Value;
-use tubecast::kernel::csg::{union, Boundary, Tagged};
-use tubecast::kernel::roots::Solver;
-use tubecast::kernel::spline::QuadTube;
-use tubecast::{HanLink, Ray, RoundCone, V3};
+use tubecast::csg::{union, Boundary, Tagged};
+use tubecast::QuadTube;
+use tubecast::Solver;
+use tubecast::{HanLink, Primitive, Ray, RoundCone, V3};
 
 pub type V = V3<f64>;
 

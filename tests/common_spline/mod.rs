@@ -3,8 +3,8 @@
 #![allow(dead_code)]
 
 use proptest::prelude::*;
-use tubecast::kernel::roots::Solver;
-use tubecast::kernel::spline::QuadTube;
+use tubecast::QuadTube;
+use tubecast::Solver;
 use tubecast::V3;
 pub use tubecast_oracle::QuadCrossing;
 use tubecast_oracle::{quad_crossing, quad_hit_measure, Line, Quad, Vec3};

@@ -1,17 +1,9 @@
 //! The `tubecast` binary end to end: generate → info → intersect → render, and errors.
 
-use std::process::Command;
+mod common;
+
+use common::{bin, tmp};
 use tubecast_render::io::npy::{read, write, Array2};
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_tubecast"))
-}
-
-fn tmp(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("tubecast-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
-}
 
 #[test]
 fn generate_info_intersect_render() {

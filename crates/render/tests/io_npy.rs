@@ -66,3 +66,16 @@ fn malformed_files_are_errors() {
     let e = read(&build(1, ok, &body), "bad.npy", Some(6)).unwrap_err();
     assert!(e.to_string().contains("3 columns, expected 6"), "{e}");
 }
+
+#[test]
+fn rays_from_rows() {
+    // Rows are origin, direction; each ray is validated.
+    let a = Array2::from_rows(&[[1.0, 2.0, 3.0, 0.0, 0.0, -2.0], [0.0; 6]]);
+    assert_eq!((a.rows, a.cols, a.row(0)), (2, 6, &[1.0, 2.0, 3.0, 0.0, 0.0, -2.0][..]));
+    let e = a.rays("r.npy").unwrap_err().to_string();
+    assert!(e.starts_with("r.npy: row 1: ") && e.contains("zero"), "{e}");
+    let one = Array2::from_rows(&[[1.0, 2.0, 3.0, 0.0, 0.0, -2.0]]).rays("r.npy").unwrap();
+    assert_eq!((one[0].o.to_array(), one[0].d.to_array()), ([1.0, 2.0, 3.0], [0.0, 0.0, -2.0]));
+    let e = arr().rays("r.npy").unwrap_err().to_string();
+    assert!(e.contains("3 columns, expected 6"), "{e}");
+}

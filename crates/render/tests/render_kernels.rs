@@ -2,58 +2,37 @@
 //! kernels, BVH queries against brute force (including grazing rays), and transparent
 //! compositing of two crossing tubes against an analytic expectation (no interior surfaces).
 
-use tubecast::{Ray, V3};
+mod common;
+
+use common::{compare_depth, flat, render_links};
+use tubecast::{Primitive, Ray, V3};
 use tubecast_render::accel::Bvh;
 use tubecast_render::io::Polyline;
-use tubecast_render::render::{render, Camera, ColorBy, Options, Shading};
+use tubecast_render::render::{render, Camera, ColorBy, Options};
 use tubecast_render::scene::{generate, Scene};
-
-fn flat(color: ColorBy, opacity: f64) -> Options {
-    Options { color, shading: Shading::Flat, opacity, ..Options::default() }
-}
 
 #[test]
 fn depth_buffer_equals_direct_f64_kernel_calls() {
-    let scene = Scene::from_polylines(&generate::helix(24), 1.0, "helix").unwrap();
-    let bvh = Bvh::build(scene.primitives());
-    let st = scene.stats();
-    let cam = Camera::fit(st.bounds.0, st.bounds.1, 40.0, 32, 32).unwrap();
-    let img = render(&scene, &bvh, &cam, &flat(ColorBy::Direction, 1.0)).unwrap();
-    let (mut hits, mut grazing) = (0, 0);
-    for y in 0..32 {
-        for x in 0..32 {
-            let ray = cam.ray(x, y);
-            // Reference: every link through the f64 stable kernel, no BVH, no f32.
-            let mut best: Option<(f64, V3<f64>)> = None;
-            for k in 0..scene.links.len() {
-                if let Some((t, n, _)) = scene.link(k).intersect(&ray).first_hit(0.0, f64::INFINITY) {
-                    if best.map_or(true, |b| t < b.0) {
-                        best = Some((t, n));
-                    }
-                }
-            }
-            let depth = img.depth[(y * 32 + x) as usize];
-            // Near a silhouette (|n·d̂| small) hit/miss and t are ill-conditioned: a position
-            // error δ moves t by δ/|n·d̂|, and a ray within δ of the outline may hit or miss.
-            let cos = best.map(|(_, n)| n.dot(ray.d.normalize_or_zero()).abs());
-            if cos.is_some_and(|c| c < 0.02) {
-                grazing += 1;
-                continue;
-            }
-            match best {
-                None => assert!(depth.is_infinite(), "pixel ({x},{y}): render hit at {depth}, kernels miss"),
-                Some((t, _)) => {
-                    hits += 1;
-                    // The renderer's f32 kernel works on offsets ≤ s ≈ 1 (half a link plus a
-                    // radius ≤ 0.6) from the link midpoint: a few ulps, δ ≲ 8·2⁻²⁴·s ≈ 5e-7,
-                    // in position; with |n·d̂| ≥ 0.02 that is ≤ 2.5e-5 in t (|d| ≥ 1 here).
-                    assert!((depth - t).abs() <= 5e-5, "pixel ({x},{y}): depth {depth} vs kernel {t}");
+    let (scene, _, cam, img) = render_links(&generate::helix(24), 32, &flat(ColorBy::Direction, 1.0));
+    // Reference: every link through the f64 stable kernel, no BVH, no f32.
+    let reference = |_, _, ray: &Ray<f64>| {
+        let mut best: Option<(f64, V3<f64>)> = None;
+        for k in 0..scene.links.len() {
+            if let Some((t, n, _)) = scene.link(k).intersect(ray).first_hit(0.0, f64::INFINITY) {
+                if best.map_or(true, |b| t < b.0) {
+                    best = Some((t, n));
                 }
             }
         }
-    }
-    assert!(hits > 100, "the helix must cover part of the image ({hits} hit pixels)");
-    assert!(grazing * 10 < hits, "too many grazing pixels skipped ({grazing} of {hits})");
+        best
+    };
+    // Near a silhouette (|n·d̂| small) hit/miss and t are ill-conditioned: a position error δ
+    // moves t by δ/|n·d̂|, and a ray within δ of the outline may hit or miss; |n·d̂| < 0.02
+    // is skipped. The renderer's f32 kernel works on offsets ≤ s ≈ 1 (half a link plus a
+    // radius ≤ 0.6) from the link midpoint: a few ulps, δ ≲ 8·2⁻²⁴·s ≈ 5e-7, in position;
+    // with |n·d̂| ≥ 0.02 that is ≤ 2.5e-5 in t (|d| ≥ 1 here).
+    let tol = 5e-5;
+    compare_depth(&img, &cam, 0.02, tol, reference).assert_covers("the helix", tol, 100, 10);
 }
 
 #[test]
@@ -61,17 +40,18 @@ fn bvh_closest_and_any_hit_equal_brute_force_including_grazing_rays() {
     let nodes = generate::neurons(1, &[generate::base_neuron(3)], 5);
     let scene = Scene::from_swc(&nodes, "n").unwrap();
     let bvh = Bvh::build(scene.primitives());
-    let mut rng = generate::Rng(42);
+    let mut rng = generate::Rng::new(42);
     let mut checked = 0;
     for i in 0..400 {
         // Aim at a random link: half of the rays graze it, passing at 0.999999·radius from a
         // point of its axis, perpendicular to the axis.
         let p = &bvh.prims[(rng.uniform() * bvh.prims.len() as f64) as usize];
-        let a = V3::from(p.origin) + p.a.cast::<f64>();
-        let b = V3::from(p.origin) + p.b.cast::<f64>();
+        let cone = p.round_cone().expect("the link model has no spline primitives");
+        let a = V3::from(p.origin) + cone.a.cast::<f64>();
+        let b = V3::from(p.origin) + cone.b.cast::<f64>();
         let u = rng.uniform();
         let c = a + (b - a) * u;
-        let r = p.ra as f64 + (p.rb as f64 - p.ra as f64) * u;
+        let r = cone.ra as f64 + (cone.rb as f64 - cone.ra as f64) * u;
         let axis = (b - a).normalize_or_zero();
         let mut side = V3::from(rng.unit());
         side = (side - axis * side.dot(axis)).normalize_or_zero();
@@ -159,8 +139,8 @@ fn transparent_crossing_tubes_composite_only_exterior_boundaries() {
                 }
                 tr *= 1.0 - alpha;
             }
-            for c in 0..3 {
-                exp[c] += tr * 1.0;
+            for e in &mut exp {
+                *e += tr * 1.0;
             }
             let got = img.at(x, y);
             for c in 0..3 {
@@ -201,11 +181,7 @@ fn bad_options_and_cameras_are_errors() {
 
 #[test]
 fn shading_options_render_without_nan() {
-    let scene = Scene::from_polylines(&generate::helix(16), 1.0, "h").unwrap();
-    let bvh = Bvh::build(scene.primitives());
-    let st = scene.stats();
-    let cam = Camera::fit(st.bounds.0, st.bounds.1, 40.0, 16, 16).unwrap();
-    let plain = render(&scene, &bvh, &cam, &Options::default()).unwrap();
+    let (scene, bvh, cam, plain) = render_links(&generate::helix(16), 16, &Options::default());
     for o in [
         Options { ao: 4, shadows: true, color: ColorBy::Radius, ..Options::default() },
         Options { opacity: 0.3, color: ColorBy::Type, ..Options::default() },
@@ -231,13 +207,14 @@ fn shading_options_render_without_nan() {
 fn bvh_queries_on_dense_links_equal_brute_force_bitwise() {
     let scene = Scene::from_polylines(&generate::furball(40, 20, 7), 0.05, "furball").unwrap();
     let bvh = Bvh::build(scene.primitives());
-    let mut rng = generate::Rng(11);
+    let mut rng = generate::Rng::new(11);
     let (mut hits, mut intervals) = (0, 0);
     for i in 0..300 {
         // Aim near a random link's axis (within two radii), so most rays hit.
         let p = &bvh.prims[(rng.uniform() * bvh.prims.len() as f64) as usize];
         let u = rng.uniform();
-        let c = V3::from(p.origin) + (p.a.cast::<f64>() * (1.0 - u) + p.b.cast::<f64>() * u);
+        let cone = p.round_cone().expect("the link model has no spline primitives");
+        let c = V3::from(p.origin) + (cone.a.cast::<f64>() * (1.0 - u) + cone.b.cast::<f64>() * u);
         let target = c + V3::from(rng.unit()) * (2.0 * p.max_radius() as f64 * rng.uniform());
         let dir = V3::from(rng.unit());
         // Some rays start inside the scene (shadow-ray-like), some far outside.

@@ -2,17 +2,16 @@
 //! spline-kernel calls on independently built Hermite segments, a straight polyline against
 //! its link rendering, and transparent compositing without interior surfaces at joints.
 
-use tubecast::kernel::csg::{union, Tagged};
-use tubecast::kernel::HermiteSegment;
-use tubecast::{Ray, V3};
+mod common;
+
+use common::{compare_depth, flat};
+use tubecast::csg::{union, Tagged};
+use tubecast::HermiteSegment;
+use tubecast::{Primitive, Ray, V3};
 use tubecast_render::accel::{first_component, Bvh};
 use tubecast_render::io::Polyline;
-use tubecast_render::render::{render, Camera, ColorBy, Image, Options, Shading};
+use tubecast_render::render::{render, Camera, ColorBy};
 use tubecast_render::scene::{generate, PrimKind, Scene};
-
-fn flat(color: ColorBy, opacity: f64) -> Options {
-    Options { color, shading: Shading::Flat, opacity, ..Options::default() }
-}
 
 /// Hermite segments of one open polyline, written out here from the documented rule (not
 /// the scene code): uniform Catmull–Rom central differences inside, one-sided at the ends,
@@ -66,46 +65,13 @@ fn depth_tol(s: f64, r_min: f64, c: f64) -> f64 {
     64.0 * eps * s * s / (2.0 * r_min * c) + 12.0 * eps * s
 }
 
-/// Compare a render's depth buffer with reference first hits `(t, normal)`; pixels whose
-/// reference hit is grazing (`|n·d̂| < c`) are skipped. Returns `(hits, grazing, worst)`.
-fn compare_depth(
-    img: &Image,
-    cam: &Camera,
-    c: f64,
-    tol: f64,
-    reference: impl Fn(u32, u32, &Ray<f64>) -> Option<(f64, V3<f64>)>,
-) -> (usize, usize, f64) {
-    let (mut hits, mut grazing, mut worst) = (0, 0, 0.0f64);
-    for y in 0..cam.height {
-        for x in 0..cam.width {
-            let ray = cam.ray(x, y);
-            let best = reference(x, y, &ray);
-            let depth = img.depth[(y * cam.width + x) as usize];
-            // Near a silhouette hit/miss and t are ill-conditioned (t moves by δ/|n·d̂|).
-            if best.is_some_and(|(_, n)| n.dot(ray.d.normalize_or_zero()).abs() < c) {
-                grazing += 1;
-                continue;
-            }
-            match best {
-                None => assert!(depth.is_infinite(), "pixel ({x},{y}): render hit at {depth}, reference misses"),
-                Some((t, _)) => {
-                    hits += 1;
-                    worst = worst.max((depth - t).abs());
-                    assert!((depth - t).abs() <= tol, "pixel ({x},{y}): depth {depth} vs reference {t} (tol {tol:e})");
-                }
-            }
-        }
-    }
-    (hits, grazing, worst)
-}
-
 #[test]
 fn spline_depth_buffer_equals_direct_f64_spline_kernel_calls() {
     let lines = generate::helix(24);
     let scene = Scene::from_polylines(&lines, 1.0, "helix").unwrap();
     let prims = scene.spline_primitives().unwrap();
     // Every helix segment is curved: 2 strands × 24 segments × 2 sub-segments.
-    assert_eq!(prims.iter().filter(|p| p.kind == PrimKind::Spline).count(), 96);
+    assert_eq!(prims.iter().filter(|p| p.kind() == PrimKind::Spline).count(), 96);
     let st = scene.stats_of(&prims);
     assert_eq!(st.splines, 48);
     let bvh = Bvh::build(prims);
@@ -116,10 +82,8 @@ fn spline_depth_buffer_equals_direct_f64_spline_kernel_calls() {
     // ≤ 1.6 long and lies within 0.8 of its midpoint; plus the radius ≤ 0.6: s = 1.4. Radii
     // ≥ 0.25; non-grazing means |n·d̂| ≥ 0.1.
     let tol = depth_tol(1.4, 0.25, 0.1);
-    let (hits, grazing, worst) = compare_depth(&img, &cam, 0.1, tol, |_, _, r| reference_hit(&segs, r));
-    eprintln!("helix splines: {hits} hits, {grazing} grazing skipped, worst |Δt| {worst:e} (tol {tol:e})");
-    assert!(hits > 100, "the helix must cover part of the image ({hits} hit pixels)");
-    assert!(grazing * 4 < hits, "too many grazing pixels skipped ({grazing} of {hits})");
+    let depth = compare_depth(&img, &cam, 0.1, tol, |_, _, r| reference_hit(&segs, r));
+    depth.assert_covers("helix splines", tol, 100, 4);
 }
 
 #[test]
@@ -159,10 +123,8 @@ fn bifurcation_splits_chains_and_matches_per_branch_splines() {
     let img = render(&scene, &bvh, &cam, &flat(ColorBy::Type, 1.0)).unwrap();
     // Half segments ≤ 1.3 from their midpoints plus radius ≤ 0.9: s = 2.2; radii ≥ 0.35.
     let tol = depth_tol(2.2, 0.35, 0.1);
-    let (hits, grazing, worst) = compare_depth(&img, &cam, 0.1, tol, |_, _, r| reference_hit(&segs, r));
-    eprintln!("bifurcation: {hits} hits, {grazing} grazing skipped, worst |Δt| {worst:e} (tol {tol:e})");
-    assert!(hits > 60, "the tree must cover part of the image ({hits})");
-    assert!(grazing * 4 < hits, "too many grazing pixels skipped ({grazing} of {hits})");
+    let depth = compare_depth(&img, &cam, 0.1, tol, |_, _, r| reference_hit(&segs, r));
+    depth.assert_covers("bifurcation", tol, 60, 4);
 }
 
 #[test]
@@ -184,7 +146,7 @@ fn straight_polyline_with_splines_matches_links() {
     let kept = scene.spline_primitives().unwrap();
     assert_eq!(kept, links, "straight segments stay links");
     let forced = scene.spline_primitives_with(false).unwrap();
-    assert_eq!(forced.iter().filter(|p| p.kind == PrimKind::Spline).count(), 12);
+    assert_eq!(forced.iter().filter(|p| p.kind() == PrimKind::Spline).count(), 12);
 
     let side = V3::new(2.0, -1.0, 0.0).normalize_or_zero();
     let cam = Camera::look_at(c + u * 3.5 + side * 4.5, c + u * 3.5, V3::new(0.0, 0.0, 1.0), 50.0, 48, 32).unwrap();
@@ -203,7 +165,7 @@ fn straight_polyline_with_splines_matches_links() {
     // ≤ 1/c times that; the spline path by `depth_tol` with r_min = 0.3, c = 0.1.
     let tol = depth_tol(1.4, 0.3, 0.1) + 8.0 * f32::EPSILON as f64 * 1.4 / 0.1;
     let w = cam.width;
-    let (hits, grazing, worst) = compare_depth(&spline_img, &cam, 0.1, tol, |x, y, r| {
+    let common::DepthCheck { hits, grazing, worst } = compare_depth(&spline_img, &cam, 0.1, tol, |x, y, r| {
         link_ref(r).map(|(_, n)| (link_img.depth[(y * w + x) as usize], n))
     });
     eprintln!("straight: {hits} hits, {grazing} grazing skipped, worst |Δt| spline vs link {worst:e} (tol {tol:e})");
@@ -250,7 +212,7 @@ fn transparent_splines_show_no_interior_surfaces_at_joints() {
             crossing_joints += (ivs.len() >= 2) as usize;
             let mut b = Vec::new();
             union(&mut ivs, 0.0, f64::INFINITY, |x| b.push(x));
-            assert!(b.len() == 0 || b.len() == 2, "ray at ({x}, {y}): {} boundaries: {b:?}", b.len());
+            assert!(b.is_empty() || b.len() == 2, "ray at ({x}, {y}): {} boundaries: {b:?}", b.len());
             if b.len() == 2 {
                 hit_rays += 1;
                 assert!(b[0].entering && !b[1].entering);
@@ -317,7 +279,7 @@ fn far_from_origin_spline_render_keeps_its_depth() {
     let segs: Vec<_> = generate::helix(24).iter().flat_map(catmull_rom).collect();
     let tol = 2.0 * depth_tol(1.4, 0.25, 0.1) + 1e-9;
     let w = cam.width;
-    let (hits, _, worst) = compare_depth(&far, &cam, 0.1, tol, |x, y, r| {
+    let common::DepthCheck { hits, worst, .. } = compare_depth(&far, &cam, 0.1, tol, |x, y, r| {
         reference_hit(&segs, r).map(|(_, n)| (near.depth[(y * w + x) as usize], n))
     });
     eprintln!("far: {hits} hits, worst |Δt| far vs near {worst:e} (tol {tol:e})");

@@ -1,10 +1,10 @@
 //! Scene building: primitive selection, and far-from-origin precision of the local-origin
 //! f32 primitives versus a naive absolute-f32 path.
 
-use tubecast::{Ray, RoundCone, V3};
+use tubecast::{Primitive, Ray, RoundCone, V3};
 use tubecast_render::accel::Bvh;
 use tubecast_render::io::Polyline;
-use tubecast_render::scene::{PrimKind, Scene};
+use tubecast_render::scene::{PrimKind, Scene, Shape};
 
 #[test]
 fn primitive_selection_models_no_more_than_needed() {
@@ -18,7 +18,7 @@ fn primitive_selection_models_no_more_than_needed() {
         Polyline { points: vec![[9.0, 9.0, 9.0]], radii: vec![] },
     ];
     let s = Scene::from_polylines(&lines, 0.7, "t").unwrap();
-    let kinds: Vec<PrimKind> = s.primitives().iter().map(|p| p.kind).collect();
+    let kinds: Vec<PrimKind> = s.primitives().iter().map(|p| p.kind()).collect();
     assert_eq!(kinds, vec![PrimKind::Cylinder, PrimKind::Cone, PrimKind::Sphere, PrimKind::Sphere]);
     let st = s.stats();
     assert_eq!((st.nodes, st.links, st.cylinders, st.cones, st.spheres), (5, 4, 1, 1, 2));
@@ -27,7 +27,7 @@ fn primitive_selection_models_no_more_than_needed() {
     assert_eq!(st.bounds.1[0], 9.7);
     // The contained link is modelled by its larger sphere: centre (4, 0, 0), radius 0.3.
     let p = s.primitives()[2];
-    assert_eq!((p.origin, p.ra), ([4.0, 0.0, 0.0], 0.3));
+    assert_eq!((p.origin, p.shape), ([4.0, 0.0, 0.0], Shape::Sphere { r: 0.3 }));
 }
 
 #[test]
@@ -96,4 +96,12 @@ fn far_from_origin_keeps_precision_and_naive_f32_does_not() {
     // Naive f32 at 1e6: coordinates move by up to 1/32 (f32 spacing there is 1/16), i.e.
     // by more than the radius; it must be visibly worse (misses count as infinite error).
     assert!(worst_naive > 1e-3, "naive f32 error {worst_naive:e} unexpectedly small");
+}
+
+/// Memory per primitive: the `f64` origin (24 bytes), the link index and the largest shape, a
+/// spline sub-segment's three `f32` control points and radii (48 bytes) plus its half and the
+/// tag, padded to 8: 80 bytes, as before `Prim` held its shape as an enum.
+#[test]
+fn primitive_size_does_not_grow() {
+    assert_eq!(std::mem::size_of::<tubecast_render::scene::Prim>(), 80);
 }

@@ -1,8 +1,8 @@
 //! The spline model of a scene: chains, finite-difference derivatives (checked against hand
 //! computations), the radius-derivative limit, the straight-run rule, counts and errors.
 
-use tubecast::kernel::HermiteSegment;
-use tubecast::kernel::QuadTube;
+use tubecast::HermiteSegment;
+use tubecast::QuadTube;
 use tubecast::{GeometryError, V3};
 use tubecast_render::io::swc::SwcNode;
 use tubecast_render::io::Polyline;
@@ -100,7 +100,7 @@ fn radius_derivative_limit_keeps_every_sub_segment_valid() {
     assert_eq!((g[1].seg.dr0, g[1].seg.dr1), (-0.1, 0.0));
     let prims = s.spline_primitives().unwrap();
     assert_eq!(prims.len(), 4);
-    for q in prims.iter().map(|p| p.quad()) {
+    for q in prims.iter().map(|p| p.quad().expect("both links are curved: four spline sub-segments")) {
         assert!(q.min_radius() >= 0.0 && q.r.iter().any(|&r| r > 0.0), "{q:?}");
     }
 }
@@ -140,7 +140,7 @@ fn link_model_counts_match_and_f32_storage_is_guarded() {
     .unwrap();
     let (a, b) = (s.stats(), s.stats_of(&s.primitives()));
     assert_eq!((a.cylinders, a.cones, a.spheres, a.splines), (b.cylinders, b.cones, b.spheres, b.splines));
-    assert!(s.primitives().iter().all(|p| p.kind != PrimKind::Spline));
+    assert!(s.primitives().iter().all(|p| p.kind() != PrimKind::Spline));
 
     // Far and huge (extents 1e9, radius 1): a valid f32 spline model, every box finite.
     let big =

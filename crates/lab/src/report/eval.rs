@@ -4,9 +4,9 @@
 use super::oracle::{self, link_bound, LinkCase, LinkTruth, SplineCase, SplineTruth};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
-use tubecast::kernel::roots::Solver;
-use tubecast::kernel::spline::QuadTube;
-use tubecast::{HanLink, Interval, Ray, Real, RoundCone, Scalar};
+use tubecast::QuadTube;
+use tubecast::Solver;
+use tubecast::{HanLink, Interval, Primitive, Ray, Real, RoundCone, Scalar};
 
 /// Lane type of a method.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -310,9 +310,9 @@ fn run_at(prec: Precision, job: &impl LaneRun) -> MethodRun {
         Precision::F32 => job.run::<f32>(),
         Precision::F64 => job.run::<f64>(),
         #[cfg(feature = "wide")]
-        Precision::F32x8 => job.run::<tubecast::real::WideF32x8>(),
+        Precision::F32x8 => job.run::<tubecast::WideF32x8>(),
         #[cfg(feature = "wide")]
-        Precision::F64x4 => job.run::<tubecast::real::WideF64x4>(),
+        Precision::F64x4 => job.run::<tubecast::WideF64x4>(),
         #[cfg(not(feature = "wide"))]
         _ => MethodRun { outcomes: Vec::new(), ns: f64::NAN },
     }

@@ -2,7 +2,7 @@
 //! [`tubecast_oracle`] (which shares no code with the kernels measured), and the conversions of
 //! its plain cases into tubecast's types.
 
-use tubecast::kernel::spline::QuadTube;
+use tubecast::QuadTube;
 use tubecast::{Ray, RoundCone, V3};
 pub use tubecast_oracle::{
     link_bound, link_case, link_truth, spline_case, spline_truth, LinkCase, LinkRegion, LinkTruth, SplineCase,

@@ -43,7 +43,7 @@ fn kernel_color(k: LinkKernel) -> usize {
     }
 }
 
-fn solver_color(s: tubecast::kernel::roots::Solver) -> usize {
+fn solver_color(s: tubecast::Solver) -> usize {
     eval::solvers().iter().position(|x| *x == s).unwrap_or(0)
 }
 

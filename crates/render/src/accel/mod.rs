@@ -26,8 +26,8 @@ use crate::scene::Prim;
 use glam::Vec3A;
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::Bvh2;
-use tubecast::kernel::csg::Tagged;
-use tubecast::ray::Ray;
+use tubecast::csg::Tagged;
+use tubecast::Ray;
 use tubecast::V3;
 
 #[cfg(feature = "wide")]
@@ -44,7 +44,7 @@ enum Test {
     /// Link `id` was tested in a lane packet: its interval (a hit), as [`Prim::intersect`]
     /// gives it.
     #[cfg_attr(not(feature = "wide"), allow(dead_code))]
-    Link(usize, tubecast::ray::Interval<f64>),
+    Link(usize, tubecast::Interval<f64>),
 }
 
 /// The first surface crossing along a ray.
@@ -65,6 +65,22 @@ pub struct Hit {
 }
 
 /// A BVH over primitives.
+///
+/// ```
+/// use tubecast::{Ray, V3};
+/// use tubecast_render::accel::Bvh;
+/// use tubecast_render::io::Polyline;
+/// use tubecast_render::scene::Scene;
+///
+/// // One tube of radius 0.5 along x from 0 to 4.
+/// let line = Polyline { points: vec![[0.0; 3], [4.0, 0.0, 0.0]], radii: vec![] };
+/// let scene = Scene::from_polylines(&[line], 0.5, "tube").unwrap();
+/// let bvh = Bvh::build(scene.primitives());
+/// let down = Ray::new(V3::new(2.0, 3.0, 0.0), V3::new(0.0, -1.0, 0.0));
+/// let hit = bvh.closest_hit(&down).unwrap();
+/// assert_eq!((hit.t, hit.link, hit.entering), (2.5, 0, true));
+/// assert!(!bvh.any_hit(&Ray::new(V3::new(2.0, 3.0, 0.0), V3::new(0.0, 1.0, 0.0))));
+/// ```
 pub struct Bvh {
     bvh: Bvh2,
     /// The primitives, in BVH leaf order.
@@ -105,10 +121,8 @@ impl Bvh {
         let mut hi = [f64::NEG_INFINITY; 3];
         let boxes: Vec<_> = prims.iter().map(|p| p.aabb()).collect();
         for (a, b) in &boxes {
-            for i in 0..3 {
-                lo[i] = lo[i].min(a[i]);
-                hi[i] = hi[i].max(b[i]);
-            }
+            lo = std::array::from_fn(|i| lo[i].min(a[i]));
+            hi = std::array::from_fn(|i| hi[i].max(b[i]));
         }
         if prims.is_empty() {
             lo = [0.0; 3];
@@ -158,8 +172,8 @@ impl Bvh {
     /// gather them into lane packets of up to [`packet::LANES`]; a lone link stays scalar.
     #[cfg(feature = "wide")]
     fn pack(bvh: &Bvh2, prims: &mut [Prim]) -> (Vec<packet::Packet>, Vec<u32>) {
-        use crate::scene::PrimKind;
-        let is_link = |p: &Prim| matches!(p.kind, PrimKind::Cylinder | PrimKind::Cone);
+        use crate::scene::Shape;
+        let is_link = |p: &Prim| matches!(p.shape, Shape::Cylinder(_) | Shape::Cone(_));
         let mut packs = Vec::new();
         let mut pack_at = vec![NO_PACK; prims.len()];
         for node in bvh.nodes.iter().filter(|n| n.is_leaf() && n.prim_count > 0) {
@@ -173,7 +187,8 @@ impl Bvh {
             while k - j >= 2 {
                 let n = (k - j).min(packet::LANES);
                 pack_at[s + j] = packs.len() as u32;
-                packs.push(packet::Packet::new(&leaf[j..j + n]));
+                let cones: Vec<_> = leaf[j..j + n].iter().filter_map(Prim::round_cone).collect();
+                packs.push(packet::Packet::new(&cones));
                 j += n;
             }
         }
@@ -185,6 +200,7 @@ impl Bvh {
     /// rest one by one, handing each test to `f`; stops and returns false as soon as `f`
     /// returns false.
     #[inline(always)]
+    #[cfg_attr(not(feature = "wide"), allow(unused_variables))]
     fn visit(
         &self,
         first: usize,
@@ -194,7 +210,6 @@ impl Bvh {
         len: f64,
         mut f: impl FnMut(Test) -> bool,
     ) -> bool {
-        let _ = (ray, dn, len);
         let end = first + count;
         let mut j = first;
         while j < end {
@@ -276,7 +291,8 @@ impl Bvh {
                 b = b.min(t1.max(t2));
             }
         }
-        if !(a <= b) {
+        // Also rejects NaN bounds (a ray the validators let through never has them).
+        if a.is_nan() || b.is_nan() || a > b {
             return None;
         }
         // Start a little before the box so the entry is at t ≥ 0 despite rounding.
@@ -360,7 +376,7 @@ impl Bvh {
 
     /// Every primitive's interval with the ray's whole **line** (not only `[t_min, t_max]`),
     /// appended to `out` tagged with the primitive index — the input of
-    /// [`tubecast::kernel::csg::union`]. A spline sub-segment contributes one interval per
+    /// [`tubecast::csg::union`]. A spline sub-segment contributes one interval per
     /// connected piece ([`Prim::pieces`]), so the union is exact for bent segments too.
     pub fn line_intervals(&self, ray: &Ray<f64>, out: &mut Vec<Tagged<f64>>) {
         let Some(c) = self.clip(ray, f64::NEG_INFINITY, f64::INFINITY) else {
@@ -384,16 +400,32 @@ impl Bvh {
     }
 }
 
+/// The `tubecast intersect` table of `rays` (one row of [`HIT_COLUMNS`] columns per ray):
+/// `t_in`, `t_out` of the first component of the union ([`first_component`]), the entry
+/// normal (x, y, z), the entry's scene link, its curve parameter `u`, and 1; a miss is
+/// `+∞, +∞, 0, 0, 0, −1, 0, 0`.
+pub fn hit_table(bvh: &Bvh, rays: &[Ray<f64>]) -> Vec<[f64; HIT_COLUMNS]> {
+    rays.iter()
+        .map(|ray| match first_component(bvh, ray) {
+            Some((e, x)) => [e.t, x.t, e.n.x, e.n.y, e.n.z, bvh.prims[e.id as usize].link as f64, e.u, 1.0],
+            None => [f64::INFINITY, f64::INFINITY, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0],
+        })
+        .collect()
+}
+
+/// Columns of a [`hit_table`] row.
+pub const HIT_COLUMNS: usize = 8;
+
 /// The part of the scene's surface union that a ray meets first: the entry and exit
 /// boundaries of the first component of the union (over the whole line) that overlaps
 /// `[t_min, t_max]`. The entry lies before `t_min` when the ray starts inside.
 pub fn first_component(
     bvh: &Bvh,
     ray: &Ray<f64>,
-) -> Option<(tubecast::kernel::csg::Boundary<f64>, tubecast::kernel::csg::Boundary<f64>)> {
+) -> Option<(tubecast::csg::Boundary<f64>, tubecast::csg::Boundary<f64>)> {
     let mut ivs = Vec::new();
     bvh.line_intervals(ray, &mut ivs);
     let mut b = Vec::new();
-    tubecast::kernel::csg::union(&mut ivs, f64::NEG_INFINITY, f64::INFINITY, |x| b.push(x));
+    tubecast::csg::union(&mut ivs, f64::NEG_INFINITY, f64::INFINITY, |x| b.push(x));
     b.chunks_exact(2).find(|p| p[1].t >= ray.t_min && p[0].t <= ray.t_max).map(|p| (p[0], p[1]))
 }

@@ -13,8 +13,8 @@
 //! link, so no lane computes on garbage) and their results are never read.
 
 use crate::scene::Prim;
-use tubecast::ray::{Interval, Ray};
-use tubecast::real::{Mask, Real, WideF32x8};
+use tubecast::{Interval, Primitive, Ray};
+use tubecast::{Mask, Real, WideF32x8};
 use tubecast::{RoundCone, V3};
 
 /// Links per packet.
@@ -28,14 +28,11 @@ pub(crate) struct Packet {
 }
 
 impl Packet {
-    /// A packet of `links` (`1..=LANES` link primitives, in order).
-    pub fn new(links: &[Prim]) -> Self {
-        debug_assert!(!links.is_empty() && links.len() <= LANES);
-        let cone = RoundCone::from_lanes(|i| {
-            let p = &links[if i < links.len() { i } else { 0 }];
-            RoundCone { a: p.a, ra: p.ra, b: p.b, rb: p.rb }
-        });
-        Self { cone, n: links.len() }
+    /// A packet of the round cones of `1..=LANES` link primitives, in order.
+    pub fn new(cones: &[RoundCone<f32>]) -> Self {
+        debug_assert!(!cones.is_empty() && cones.len() <= LANES);
+        let cone = RoundCone::from_lanes(|i| cones[if i < cones.len() { i } else { 0 }]);
+        Self { cone, n: cones.len() }
     }
 
     /// Each link's interval with `ray`'s line, hit mask clipped to its range, exactly as
@@ -56,9 +53,9 @@ impl Packet {
         for (i, p) in links.iter().enumerate().take(self.n) {
             (o[i], tc[i]) = p.local_origin(ray.o, dn);
         }
-        for i in self.n..LANES {
-            (o[i], tc[i]) = (o[0], tc[0]);
-        }
+        let (o0, tc0) = (o[0], tc[0]);
+        o[self.n..].fill(o0);
+        tc[self.n..].fill(tc0);
         let inf = WideF32x8::splat(f32::INFINITY);
         let rl = Ray::with_range(V3::from_fn(|i| o[i]), V3::splat(dn.cast::<f32>()), -inf, inf);
         let iv = self.cone.intersect(&rl);

@@ -136,3 +136,20 @@ impl<'a> Cursor<'a> {
         Ok(if self.big { i16::from_be_bytes(b) } else { i16::from_le_bytes(b) })
     }
 }
+
+/// Write polylines to `path` in the format its extension names: `.swc` (each polyline a chain
+/// of type-0 nodes; points without a radius get 0.2), `.tck`, `.obj` or `.trk` (default header).
+pub fn write_polylines(path: &Path, lines: &[Polyline]) -> Result<(), IoError> {
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let bytes = match ext.as_str() {
+        "swc" => swc::write(&swc::from_polylines(lines, 0.2)).into_bytes(),
+        "tck" => tck::write(lines, false),
+        "obj" => obj::write(lines).into_bytes(),
+        "trk" => trk::write(&trk::TrkHeader::default(), lines, false),
+        _ => {
+            let problem = format!("unknown extension {ext:?} (use .swc, .tck, .obj or .trk)");
+            return Err(IoError::file(&path.display().to_string(), problem));
+        }
+    };
+    write_bytes(path, &bytes)
+}

@@ -2,6 +2,7 @@
 //! Fortran order) — rays in (N×6: origin, direction), hits out (N×8).
 
 use super::IoError;
+use tubecast::{Ray, V3};
 
 /// A row-major 2-D array of `f64`.
 #[derive(Clone, Debug, PartialEq)]
@@ -18,6 +19,27 @@ impl Array2 {
     /// Row `i`.
     pub fn row(&self, i: usize) -> &[f64] {
         &self.data[i * self.cols..(i + 1) * self.cols]
+    }
+
+    /// An array of `N`-column rows.
+    pub fn from_rows<const N: usize>(rows: &[[f64; N]]) -> Self {
+        Self { rows: rows.len(), cols: N, data: rows.concat() }
+    }
+
+    /// The rays of an N×6 array (origin x, y, z, direction x, y, z per row), each checked by
+    /// [`Ray::validate`]; `name` names the array in errors.
+    pub fn rays(&self, name: &str) -> Result<Vec<Ray<f64>>, IoError> {
+        if self.cols != 6 {
+            return Err(IoError::file(name, format!("has {} columns, expected 6", self.cols)));
+        }
+        (0..self.rows)
+            .map(|i| {
+                let r = self.row(i);
+                let ray = Ray::new(V3::new(r[0], r[1], r[2]), V3::new(r[3], r[4], r[5]));
+                ray.validate().map_err(|e| IoError::file(name, format!("row {i}: {e}")))?;
+                Ok(ray)
+            })
+            .collect()
     }
 }
 

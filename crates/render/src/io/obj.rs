@@ -1,7 +1,7 @@
 //! Wavefront OBJ polylines: `v x y z [radius]` vertices and `l i j k ...` line elements
 //! (1-based indices, negative ones relative to the last vertex, `i/t` forms accepted).
 //!
-//! The optional fourth `v` value is read as the vertex **radius** (this is what [`write`]
+//! The optional fourth `v` value is read as the vertex **radius** (this is what [`write()`]
 //! writes; the OBJ specification calls it a weight `w`, which line geometry does not use).
 //! Faces, normals, texture coordinates, groups and materials are ignored; `v` and `l` lines
 //! must be well formed.

@@ -3,7 +3,7 @@
 //! of `-1` marks a root and there may be several roots. Coordinates and radii are kept in the
 //! file's units.
 
-use super::{parse_finite, IoError};
+use super::{parse_finite, IoError, Polyline};
 use std::collections::HashMap;
 
 /// One SWC row.
@@ -92,7 +92,13 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<SwcNode>, IoError> {
     if nodes.is_empty() {
         return Err(IoError::file(name, "no nodes (empty or only comments)"));
     }
-    // Parents exist, and following parents always reaches a root (no cycles).
+    check_parents(&nodes, &lines, &index, name)?;
+    Ok(nodes)
+}
+
+/// Parents exist, and following parents always reaches a root (no cycles). `lines`: the line
+/// of each node; `index`: node index by id.
+fn check_parents(nodes: &[SwcNode], lines: &[usize], index: &HashMap<i64, usize>, name: &str) -> Result<(), IoError> {
     let mut state = vec![0u8; nodes.len()]; // 0 unknown, 1 on current path, 2 reaches a root
     for start in 0..nodes.len() {
         let mut path = Vec::new();
@@ -130,7 +136,7 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<SwcNode>, IoError> {
             state[k] = 2;
         }
     }
-    Ok(nodes)
+    Ok(())
 }
 
 /// Write nodes as SWC text (shortest round-trip formatting of every number).
@@ -143,4 +149,27 @@ pub fn write(nodes: &[SwcNode]) -> String {
         ));
     }
     s
+}
+
+/// SWC rows for polylines: each polyline a chain (first point a root), types 0.
+pub fn from_polylines(lines: &[Polyline], default_radius: f64) -> Vec<SwcNode> {
+    let mut out = Vec::new();
+    for l in lines {
+        for (k, p) in l.points.iter().enumerate() {
+            let id = out.len() as i64 + 1;
+            out.push(SwcNode {
+                id,
+                kind: 0,
+                pos: *p,
+                radius: l.radii.get(k).copied().unwrap_or(default_radius),
+                parent: if k == 0 { -1 } else { id - 1 },
+            });
+        }
+    }
+    out
+}
+
+/// Read the SWC file at `path` ([`read`], named by its path in errors).
+pub fn load(path: &std::path::Path) -> Result<Vec<SwcNode>, IoError> {
+    read(&super::read_bytes(path)?, &path.display().to_string())
 }

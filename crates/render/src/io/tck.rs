@@ -6,12 +6,8 @@
 
 use super::{Cursor, IoError, Polyline};
 
-/// Parse a `.tck` file into streamlines (no radii).
-///
-/// Errors: missing magic line, header without `END`, missing or unknown `datatype`, missing or
-/// bad `file:` entry, an offset beyond the end or inside the header, a triplet cut short, a
-/// triplet mixing finite and non-finite values, or no Inf end marker (truncated file).
-pub fn read(data: &[u8], name: &str) -> Result<Vec<Polyline>, IoError> {
+/// The header of a `.tck` file: the data's byte order (`true`: big endian) and offset.
+fn read_header(data: &[u8], name: &str) -> Result<(bool, usize), IoError> {
     const MAGIC: &[u8] = b"mrtrix tracks\n";
     if data.is_empty() {
         return Err(IoError::file(name, "empty file"));
@@ -97,6 +93,16 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<Polyline>, IoError> {
             format!("data offset {off} is beyond the end of the file ({} bytes)", data.len()),
         ));
     }
+    Ok((big, off))
+}
+
+/// Parse a `.tck` file into streamlines (no radii).
+///
+/// Errors: missing magic line, header without `END`, missing or unknown `datatype`, missing or
+/// bad `file:` entry, an offset beyond the end or inside the header, a triplet cut short, a
+/// triplet mixing finite and non-finite values, or no Inf end marker (truncated file).
+pub fn read(data: &[u8], name: &str) -> Result<Vec<Polyline>, IoError> {
+    let (big, off) = read_header(data, name)?;
     let mut c = Cursor::new(data, name, big);
     c.pos = off;
     let mut out = Vec::new();

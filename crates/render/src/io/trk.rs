@@ -11,6 +11,7 @@
 //! reports an error instead of guessing.
 
 use super::{Cursor, IoError, Polyline};
+use std::cmp::Ordering;
 
 /// The header fields the reader uses (and the writer writes).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -52,9 +53,9 @@ fn axcodes(m: &[[f32; 4]; 4]) -> [u8; 3] {
     let mut out = [0u8; 3];
     for (j, o) in out.iter_mut().enumerate() {
         let (mut best, mut bi) = (-1.0f32, 0);
-        for i in 0..3 {
-            if m[i][j].abs() > best {
-                best = m[i][j].abs();
+        for (i, row) in m.iter().enumerate().take(3) {
+            if row[j].abs() > best {
+                best = row[j].abs();
                 bi = i;
             }
         }
@@ -71,13 +72,9 @@ fn axcodes(m: &[[f32; 4]; 4]) -> [u8; 3] {
     out
 }
 
-/// Parse a `.trk` file into streamlines in RAS+ mm (no radii), with its header.
-///
-/// Errors: short header, bad magic, `hdr_size` ≠ 1000 in both byte orders, non-positive or
-/// non-finite voxel size, negative or too many scalars/properties, a singular or non-finite
-/// `vox_to_ras`, a `voxel_order` that disagrees with it, a negative point count, a truncated
-/// streamline, non-finite coordinates, fewer streamlines than `n_count`, or trailing bytes.
-pub fn read(data: &[u8], name: &str) -> Result<(TrkHeader, Vec<Polyline>), IoError> {
+/// The validated header of a TrackVis file, its byte order (`true`: big endian) and
+/// `n_count` (0: unknown).
+fn read_header(data: &[u8], name: &str) -> Result<(TrkHeader, bool, i32), IoError> {
     if data.is_empty() {
         return Err(IoError::file(name, "empty file"));
     }
@@ -139,7 +136,7 @@ pub fn read(data: &[u8], name: &str) -> Result<(TrkHeader, Vec<Polyline>), IoErr
     let m = h.vox_to_ras.map(|r| r.map(|v| v as f64));
     let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
         + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-    if !(det.abs() > 0.0) || !det.is_finite() {
+    if det.abs().partial_cmp(&0.0) != Some(Ordering::Greater) || !det.is_finite() {
         return Err(IoError::offset(name, 440, "vox_to_ras is singular"));
     }
     h.voxel_order.copy_from_slice(&data[948..951]);
@@ -160,6 +157,19 @@ pub fn read(data: &[u8], name: &str) -> Result<(TrkHeader, Vec<Polyline>), IoErr
     if n_count < 0 {
         return Err(IoError::offset(name, 988, format!("n_count {n_count} is negative")));
     }
+    Ok((h, big, n_count))
+}
+
+/// Parse a `.trk` file into streamlines in RAS+ mm (no radii), with its header.
+///
+/// Errors: short header, bad magic, `hdr_size` ≠ 1000 in both byte orders, non-positive or
+/// non-finite voxel size, negative or too many scalars/properties, a singular or non-finite
+/// `vox_to_ras`, a `voxel_order` that disagrees with it, a negative point count, a truncated
+/// streamline, non-finite coordinates, fewer streamlines than `n_count`, or trailing bytes.
+pub fn read(data: &[u8], name: &str) -> Result<(TrkHeader, Vec<Polyline>), IoError> {
+    let (h, big, n_count) = read_header(data, name)?;
+    let m = h.vox_to_ras.map(|r| r.map(|v| v as f64));
+    let mut c = Cursor::new(data, name, big);
     c.pos = 1000;
     let per_point = 3 + h.n_scalars as usize;
     let vs = h.voxel_size.map(|v| v as f64);
@@ -256,8 +266,8 @@ pub fn write(h: &TrkHeader, lines: &[Polyline], big: bool) -> Vec<u8> {
         out.extend_from_slice(&put_i32(l.points.len() as i32));
         for p in &l.points {
             let q = [p[0] - m[0][3], p[1] - m[1][3], p[2] - m[2][3]];
-            for k in 0..3 {
-                let v = (adj[k][0] * q[0] + adj[k][1] * q[1] + adj[k][2] * q[2]) / det;
+            for (k, a) in adj.iter().enumerate() {
+                let v = (a[0] * q[0] + a[1] * q[1] + a[2] * q[2]) / det;
                 out.extend_from_slice(&put_f32(((v + 0.5) * h.voxel_size[k] as f64) as f32));
             }
             for _ in 0..h.n_scalars {

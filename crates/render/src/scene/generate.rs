@@ -15,20 +15,31 @@
 
 use crate::io::swc::SwcNode;
 use crate::io::Polyline;
+use rand_xoshiro::rand_core::{RngCore, SeedableRng};
+use rand_xoshiro::SplitMix64;
 
-/// A splitmix64 generator (small, deterministic, no dependency).
+/// The seeded generator of the scenes and of the renderer's ambient-occlusion directions:
+/// [`SplitMix64`] (Steele, Lea & Flood 2014; `rand_xoshiro`) with the float draws the
+/// generators need. Deterministic for a seed on every platform.
+///
+/// ```
+/// use tubecast_render::scene::generate::Rng;
+/// let mut rng = Rng::new(7);
+/// let x = rng.uniform();
+/// assert!((0.0..1.0).contains(&x));
+/// assert_eq!(Rng::new(7).uniform(), x);
+/// ```
 #[derive(Clone, Debug)]
-pub struct Rng(pub u64);
+pub struct Rng(SplitMix64);
 
 impl Rng {
-    /// Next value in `[0, 1)`.
+    /// The generator whose state starts at `seed`.
+    pub fn new(seed: u64) -> Self {
+        Self(SplitMix64::seed_from_u64(seed))
+    }
+    /// Next value in `[0, 1)`: the top 53 bits of the next output, times `2⁻⁵³`.
     pub fn uniform(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+        (self.0.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
     }
     /// Uniform in `[a, b)`.
     pub fn range(&mut self, a: f64, b: f64) -> f64 {
@@ -55,7 +66,7 @@ fn norm(v: [f64; 3]) -> [f64; 3] {
 /// Russig's *Bundle*: `tubes` fibres of `segments` links each, along x over 100 units, in a
 /// disc of radius 8 that twists half a turn and bends; radius 0.12.
 pub fn bundle(tubes: usize, segments: usize, seed: u64) -> Vec<Polyline> {
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     let segments = segments.max(1);
     (0..tubes)
         .map(|_| {
@@ -83,7 +94,7 @@ pub fn bundle(tubes: usize, segments: usize, seed: u64) -> Vec<Polyline> {
 /// 10, growing outward as a smoothed random walk with step 0.2, tapering from radius 0.06 to
 /// 0.015.
 pub fn furball(tubes: usize, segments: usize, seed: u64) -> Vec<Polyline> {
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     let segments = segments.max(1);
     (0..tubes)
         .map(|_| {
@@ -124,13 +135,30 @@ pub fn helix(segments: usize) -> Vec<Polyline> {
         .collect()
 }
 
+/// A branch of [`base_neuron`] waiting to grow.
+struct Branch {
+    /// SWC id of the node it starts from.
+    parent: i64,
+    /// Start position.
+    pos: [f64; 3],
+    /// Start direction.
+    dir: [f64; 3],
+    /// Start radius.
+    radius: f64,
+    /// SWC structure type.
+    kind: i32,
+    /// Steps left.
+    steps: usize,
+    /// Branching depth.
+    depth: u32,
+}
+
 /// A procedural base neuron: a soma (type 1, radius 6) with four basal dendrites (type 3), an
 /// apical dendrite (type 4) and an axon (type 2), each a tapering random walk that branches.
 pub fn base_neuron(seed: u64) -> Vec<SwcNode> {
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     let mut nodes = vec![SwcNode { id: 1, kind: 1, pos: [0.0; 3], radius: 6.0, parent: -1 }];
-    // (parent id, position, direction, radius, kind, steps left, depth)
-    let mut stack: Vec<(i64, [f64; 3], [f64; 3], f64, i32, usize, u32)> = Vec::new();
+    let mut stack: Vec<Branch> = Vec::new();
     let kinds = [3, 3, 3, 3, 4, 2];
     for (i, &kind) in kinds.iter().enumerate() {
         let d = if kind == 4 {
@@ -143,9 +171,9 @@ pub fn base_neuron(seed: u64) -> Vec<SwcNode> {
         };
         let r0 = if kind == 2 { 0.8 } else { 1.6 };
         let steps = if kind == 2 { 70 } else { 35 };
-        stack.push((1, d.map(|v| 5.5 * v), d, r0, kind, steps, 0));
+        stack.push(Branch { parent: 1, pos: d.map(|v| 5.5 * v), dir: d, radius: r0, kind, steps, depth: 0 });
     }
-    while let Some((parent, mut p, mut d, mut r, kind, steps, depth)) = stack.pop() {
+    while let Some(Branch { parent, pos: mut p, dir: mut d, radius: mut r, kind, steps, depth }) = stack.pop() {
         let mut par = parent;
         for s in 0..steps {
             let j = rng.unit();
@@ -161,7 +189,8 @@ pub fn base_neuron(seed: u64) -> Vec<SwcNode> {
             if depth < 3 && s + 5 < steps && rng.uniform() < 0.07 {
                 let b = rng.unit();
                 let bd = norm([0, 1, 2].map(|i| d[i] + 0.9 * b[i]));
-                stack.push((id, p, bd, r * 0.8, kind, (steps - s) * 2 / 3, depth + 1));
+                let steps = (steps - s) * 2 / 3;
+                stack.push(Branch { parent: id, pos: p, dir: bd, radius: r * 0.8, kind, steps, depth: depth + 1 });
             }
         }
     }
@@ -172,7 +201,7 @@ pub fn base_neuron(seed: u64) -> Vec<SwcNode> {
 /// random angle and about x/z by up to ±0.3 rad, placed at uniformly random positions in a
 /// box of side `60·n` (so density stays constant as `n` grows). Ids are renumbered.
 pub fn neurons(n: usize, bases: &[Vec<SwcNode>], seed: u64) -> Vec<SwcNode> {
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     let side = 60.0 * n as f64;
     let mut out = Vec::new();
     if bases.is_empty() {
@@ -180,6 +209,8 @@ pub fn neurons(n: usize, bases: &[Vec<SwcNode>], seed: u64) -> Vec<SwcNode> {
     }
     for k in 0..n * n * n {
         let base = &bases[k % bases.len()];
+        // 6.283, not τ: the pinned scenes (and the README render) were generated with it.
+        #[allow(clippy::approx_constant)]
         let (ay, ax, az) = (rng.range(0.0, 6.283), rng.range(-0.3, 0.3), rng.range(-0.3, 0.3));
         let t = [rng.range(0.0, side), rng.range(0.0, side), rng.range(0.0, side)];
         let rot = |p: [f64; 3]| {
@@ -203,24 +234,6 @@ pub fn neurons(n: usize, bases: &[Vec<SwcNode>], seed: u64) -> Vec<SwcNode> {
                 pos: [p[0] + t[0], p[1] + t[1], p[2] + t[2]],
                 radius: b.radius,
                 parent: if b.parent < 0 { -1 } else { *map.get(&b.parent).unwrap_or(&-1) },
-            });
-        }
-    }
-    out
-}
-
-/// SWC rows for polylines: each polyline a chain (first point a root), types 0.
-pub fn polylines_to_swc(lines: &[Polyline], default_radius: f64) -> Vec<SwcNode> {
-    let mut out = Vec::new();
-    for l in lines {
-        for (k, p) in l.points.iter().enumerate() {
-            let id = out.len() as i64 + 1;
-            out.push(SwcNode {
-                id,
-                kind: 0,
-                pos: *p,
-                radius: l.radii.get(k).copied().unwrap_or(default_radius),
-                parent: if k == 0 { -1 } else { id - 1 },
             });
         }
     }

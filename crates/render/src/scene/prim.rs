@@ -1,92 +1,96 @@
 //! Renderer primitives: `f32` geometry relative to an `f64` local origin.
 
-use tubecast::kernel::link::RoundCone;
-use tubecast::kernel::obb::Obb;
-use tubecast::kernel::roots::Solver;
-use tubecast::kernel::sphere::intersect_sphere;
-use tubecast::kernel::spline::QuadTube;
-use tubecast::ray::{Interval, Ray};
-use tubecast::{GeometryError, LinkShape, V3};
+use tubecast::QuadTube;
+use tubecast::RoundCone;
+use tubecast::Solver;
+use tubecast::{GeometryError, LinkShape, Primitive, Sphere, V3};
+use tubecast::{Interval, Ray};
 
-/// Which exact shape a primitive is.
+/// Which exact shape a primitive is (the tag of [`Shape`], for counting and comparing).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PrimKind {
-    /// A sphere (centre `a`, radius `ra`).
+    /// A sphere ([`Shape::Sphere`]).
     Sphere,
     /// A cylinder link (equal radii).
     Cylinder,
     /// A tangent-cone link (different radii).
     Cone,
-    /// A quadratic sphere-swept spline sub-segment (control points `a`, `m`, `b`, control
-    /// radii `ra`, `rm`, `rb`): one half of a cubic Hermite segment
-    /// ([`tubecast::kernel::HermiteSegment::split`]).
+    /// A quadratic sphere-swept spline sub-segment ([`Shape::Spline`]).
     Spline,
 }
 
-/// A link stored for rendering: centres in `f32` relative to the `f64` local origin
-/// (the link's midpoint), radii in `f32`.
+/// The geometry of a primitive, in `f32` relative to its [`Prim::origin`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// A sphere centred at the local origin.
+    Sphere {
+        /// Radius.
+        r: f32,
+    },
+    /// A cylinder link (equal radii), centres relative to the local origin.
+    Cylinder(RoundCone<f32>),
+    /// A tangent-cone link (different radii), centres relative to the local origin.
+    Cone(RoundCone<f32>),
+    /// A quadratic sphere-swept spline sub-segment: one half of a cubic Hermite segment
+    /// ([`tubecast::kernel::HermiteSegment::split`]). Its middle control radius may be
+    /// negative as long as the radius curve is not ([`QuadTube`]).
+    Spline {
+        /// Control points relative to the local origin, and control radii.
+        quad: QuadTube<f32>,
+        /// Which half of its link's Hermite segment it is (0: from the link's first node,
+        /// 1: to its second).
+        half: u8,
+    },
+}
+
+/// A primitive stored for rendering: its [`Shape`] in `f32` relative to an `f64` local origin
+/// (a link's or a spline sub-segment's midpoint, a sphere's centre).
 ///
 /// Why: a coordinate near `1e6` has an `f32` spacing of `0.0625`, so storing world
 /// coordinates in `f32` moves a thin tube by a good fraction of its radius. Relative to the
 /// midpoint, the stored offsets are at most half the link length, so their rounding error is
 /// `2⁻²⁴` of the link's own size wherever the link is. Rays are moved the same way in `f64`
 /// (to the point of the line nearest the origin) before the `f32` kernel runs.
+///
+/// ```
+/// use tubecast::{RoundCone, V3};
+/// use tubecast_render::scene::{Prim, PrimKind};
+///
+/// let link = RoundCone::new(V3::new(1e6, 0.0, 0.0), 0.5, V3::new(1e6 + 4.0, 0.0, 0.0), 0.5).unwrap();
+/// let p = Prim::from_link(&link, 0);
+/// assert_eq!((p.kind(), p.origin), (PrimKind::Cylinder, [1e6 + 2.0, 0.0, 0.0]));
+/// let ray = tubecast::Ray::new(V3::new(1e6 + 2.0, 0.0, -10.0), V3::new(0.0, 0.0, 1.0));
+/// assert_eq!(p.first_hit(&ray).map(|h| h.0), Some(9.5));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Prim {
     /// Local origin (world coordinates).
     pub origin: [f64; 3],
-    /// First centre relative to `origin`.
-    pub a: V3<f32>,
-    /// First radius.
-    pub ra: f32,
-    /// Second centre relative to `origin` (equal to `a` for a sphere).
-    pub b: V3<f32>,
-    /// Second radius.
-    pub rb: f32,
-    /// Middle control point of a spline sub-segment relative to `origin` (links: the
-    /// midpoint of `a` and `b`, unused).
-    pub m: V3<f32>,
-    /// Middle control radius of a spline sub-segment (links: the mean radius, unused). May
-    /// be negative as long as the radius curve is not ([`QuadTube`]).
-    pub rm: f32,
-    /// The shape.
-    pub kind: PrimKind,
     /// Index of the scene link this primitive models (a spline sub-segment: the link whose
     /// Hermite segment it is half of).
     pub link: u32,
-    /// Which half of its link's Hermite segment a spline sub-segment is (0: from the link's
-    /// first node, 1: to its second); 0 for links.
-    pub half: u8,
+    /// The geometry relative to `origin`.
+    pub shape: Shape,
+}
+
+/// A sphere of radius `r` at the local origin as a (degenerate) round cone.
+fn sphere_cone(r: f32) -> RoundCone<f32> {
+    RoundCone { a: V3::zero(), ra: r, b: V3::zero(), rb: r }
 }
 
 impl Prim {
     /// The cheapest exact primitive for a validated link.
     pub fn from_link(l: &RoundCone<f64>, link: u32) -> Self {
-        let kind = match l.shape() {
-            LinkShape::Sphere => PrimKind::Sphere,
-            LinkShape::Cylinder => PrimKind::Cylinder,
-            LinkShape::Cone => PrimKind::Cone,
-        };
-        if kind == PrimKind::Sphere {
+        let shape = l.shape();
+        if shape == LinkShape::Sphere {
             // The larger sphere contains the link.
             let (c, r) = if l.ra >= l.rb { (l.a, l.ra) } else { (l.b, l.rb) };
-            return Self {
-                origin: c.to_array(),
-                a: V3::zero(),
-                ra: r as f32,
-                b: V3::zero(),
-                rb: r as f32,
-                m: V3::zero(),
-                rm: r as f32,
-                kind,
-                link,
-                half: 0,
-            };
+            return Self { origin: c.to_array(), link, shape: Shape::Sphere { r: r as f32 } };
         }
         let mid = (l.a + l.b) * 0.5;
-        let (a, b): (V3<f32>, V3<f32>) = ((l.a - mid).cast(), (l.b - mid).cast());
-        let (ra, rb) = (l.ra as f32, l.rb as f32);
-        Self { origin: mid.to_array(), a, ra, b, rb, m: (a + b) * 0.5, rm: 0.5 * (ra + rb), kind, link, half: 0 }
+        let cone = RoundCone { a: (l.a - mid).cast(), ra: l.ra as f32, b: (l.b - mid).cast(), rb: l.rb as f32 };
+        let shape = if shape == LinkShape::Cylinder { Shape::Cylinder(cone) } else { Shape::Cone(cone) };
+        Self { origin: mid.to_array(), link, shape }
     }
 
     /// A spline sub-segment primitive from a validated `f64` quadratic segment: control
@@ -98,47 +102,73 @@ impl Prim {
         let mid = q.point(0.5);
         let [b0, b1, b2] = q.b;
         let c: [V3<f32>; 3] = [(b0 - mid).cast(), (b1 - mid).cast(), (b2 - mid).cast()];
-        let r = q.r.map(|x| x as f32);
-        QuadTube::new(c, r)?;
-        Ok(Self {
-            origin: mid.to_array(),
-            a: c[0],
-            ra: r[0],
-            b: c[2],
-            rb: r[2],
-            m: c[1],
-            rm: r[1],
-            kind: PrimKind::Spline,
-            link,
-            half,
-        })
+        let quad = QuadTube::new(c, q.r.map(|x| x as f32))?;
+        Ok(Self { origin: mid.to_array(), link, shape: Shape::Spline { quad, half } })
     }
 
-    /// The stored spline sub-segment (relative to `origin`); meaningful for
-    /// [`PrimKind::Spline`] (for a link it is the straight segment with the same sweep).
+    /// Which exact shape the primitive is.
+    pub fn kind(&self) -> PrimKind {
+        match self.shape {
+            Shape::Sphere { .. } => PrimKind::Sphere,
+            Shape::Cylinder(_) => PrimKind::Cylinder,
+            Shape::Cone(_) => PrimKind::Cone,
+            Shape::Spline { .. } => PrimKind::Spline,
+        }
+    }
+
+    /// Which half of its link's Hermite segment a spline sub-segment is; 0 for the others.
+    pub fn half(&self) -> u8 {
+        match self.shape {
+            Shape::Spline { half, .. } => half,
+            _ => 0,
+        }
+    }
+
+    /// The round cone of a link or sphere primitive relative to `origin` (a sphere: both
+    /// ends at the origin with its radius); `None` for a spline sub-segment.
     #[inline]
-    pub fn quad(&self) -> QuadTube<f32> {
-        QuadTube { b: [self.a, self.m, self.b], r: [self.ra, self.rm, self.rb] }
+    pub fn round_cone(&self) -> Option<RoundCone<f32>> {
+        match self.shape {
+            Shape::Sphere { r } => Some(sphere_cone(r)),
+            Shape::Cylinder(c) | Shape::Cone(c) => Some(c),
+            Shape::Spline { .. } => None,
+        }
+    }
+
+    /// The stored spline sub-segment relative to `origin`; `None` for links and spheres.
+    #[inline]
+    pub fn quad(&self) -> Option<QuadTube<f32>> {
+        match self.shape {
+            Shape::Spline { quad, .. } => Some(quad),
+            _ => None,
+        }
     }
 
     /// Largest control radius (the size of the primitive's cross-section).
     pub fn max_radius(&self) -> f32 {
-        self.ra.max(self.rb).max(self.rm)
+        match self.shape {
+            Shape::Sphere { r } => r,
+            Shape::Cylinder(c) | Shape::Cone(c) => c.ra.max(c.rb),
+            Shape::Spline { quad: QuadTube { r, .. }, .. } => r[0].max(r[2]).max(r[1]),
+        }
     }
 
     /// World-space bounding box `(min, max)` of the stored (rounded) primitive, in `f64`.
     ///
-    /// For a spline sub-segment this is [`Obb::aabb`] of the stored control data evaluated
+    /// For a spline sub-segment this is [`QuadTube`]'s [`Primitive::aabb`] of the stored control data evaluated
     /// in `f64` (exact extents up to a few `f64` roundings, far below the BVH's padding).
     pub fn aabb(&self) -> ([f64; 3], [f64; 3]) {
-        let (lo, hi) = if self.kind == PrimKind::Spline {
-            let q = self.quad().cast::<f64>();
-            let b = Obb::aabb(&q);
-            ((b.origin + b.lo).to_array(), (b.origin + b.hi).to_array())
-        } else {
-            let rc = RoundCone { a: self.a, ra: self.ra, b: self.b, rb: self.rb };
-            let (lo, hi) = rc.aabb();
-            (lo.cast::<f64>().to_array(), hi.cast::<f64>().to_array())
+        let cone_box = |rc: RoundCone<f32>| {
+            let b = rc.aabb();
+            (b.min.cast::<f64>().to_array(), b.max.cast::<f64>().to_array())
+        };
+        let (lo, hi) = match self.shape {
+            Shape::Sphere { r } => cone_box(sphere_cone(r)),
+            Shape::Cylinder(c) | Shape::Cone(c) => cone_box(c),
+            Shape::Spline { quad, .. } => {
+                let b = quad.cast::<f64>().aabb();
+                (b.min.to_array(), b.max.to_array())
+            }
         };
         (std::array::from_fn(|i| self.origin[i] + lo[i]), std::array::from_fn(|i| self.origin[i] + hi[i]))
     }
@@ -147,20 +177,20 @@ impl Prim {
     /// with the hit mask set when it is non-empty and overlaps `[t_min, t_max]`.
     ///
     /// The ray is moved in `f64` to the point of its line nearest the local origin and its
-    /// direction normalised, then the `f32` kernel runs ([`RoundCone::intersect`], stable, or
-    /// [`intersect_sphere`]) and `t` is mapped back in `f64`.
+    /// direction normalised, then the `f32` kernel runs ([`Primitive::intersect`] of [`RoundCone`], stable, or
+    /// of [`Sphere`]) and `t` is mapped back in `f64`.
     ///
     /// A spline sub-segment returns the **hull** `[first entry, last exit]` of its line
-    /// pieces ([`QuadTube::intersect`], [`Solver::Polynomial`]): its entry is the exact first
+    /// pieces ([`QuadTube::intersect_with`], [`Solver::Polynomial`]): its entry is the exact first
     /// entry, but a strongly bent segment may be crossed more than once, so the hull can
     /// cover gaps; [`Self::pieces`] gives the exact pieces.
     #[inline]
     pub fn intersect(&self, ray: &Ray<f64>) -> Interval<f64> {
         let (rl, tc, len) = self.local_ray(ray);
-        let iv = match self.kind {
-            PrimKind::Sphere => intersect_sphere(&rl, self.a, self.ra, 0.0),
-            PrimKind::Spline => self.quad().intersect_with(&rl, Solver::Polynomial),
-            _ => RoundCone { a: self.a, ra: self.ra, b: self.b, rb: self.rb }.intersect(&rl),
+        let iv = match &self.shape {
+            Shape::Sphere { r } => Sphere { c: V3::zero(), r: *r }.intersect(&rl),
+            Shape::Cylinder(c) | Shape::Cone(c) => c.intersect(&rl),
+            Shape::Spline { quad, .. } => quad.intersect_with(&rl, Solver::Polynomial),
         };
         Self::to_world(&iv, tc, len, ray)
     }
@@ -171,15 +201,15 @@ impl Prim {
     /// order. Spline pieces come from [`QuadTube::intersect_pieces`] ([`Solver::Polynomial`]).
     #[inline]
     pub fn pieces(&self, ray: &Ray<f64>, mut emit: impl FnMut(Interval<f64>)) {
-        if self.kind != PrimKind::Spline {
+        let Shape::Spline { quad, .. } = &self.shape else {
             let iv = self.intersect(ray);
             if iv.hit {
                 emit(iv);
             }
             return;
-        }
+        };
         let (rl, tc, len) = self.local_ray(ray);
-        for iv in self.quad().intersect_pieces(&rl, Solver::Polynomial) {
+        for iv in quad.intersect_pieces(&rl, Solver::Polynomial) {
             let iv = Self::to_world(&iv, tc, len, ray);
             if iv.hit {
                 emit(iv);
@@ -197,7 +227,7 @@ impl Prim {
         if !iv.hit {
             return None;
         }
-        if self.kind != PrimKind::Spline || (iv.t_in >= ray.t_min && iv.t_in <= ray.t_max) {
+        if self.kind() != PrimKind::Spline || (iv.t_in >= ray.t_min && iv.t_in <= ray.t_max) {
             let (t, n, u) = iv.first_hit(ray.t_min, ray.t_max)?;
             return Some((t, n, u, t == iv.t_in));
         }
@@ -219,7 +249,7 @@ impl Prim {
         if !iv.hit {
             return false;
         }
-        if self.kind != PrimKind::Spline || iv.t_in >= ray.t_min {
+        if self.kind() != PrimKind::Spline || iv.t_in >= ray.t_min {
             return true;
         }
         let mut any = false;

@@ -1,0 +1,168 @@
+//! The pinhole camera and how a view is chosen.
+
+use super::RenderError;
+use std::cmp::Ordering;
+use tubecast::Ray;
+use tubecast::V3;
+
+/// A perspective pinhole camera.
+///
+/// ```
+/// use tubecast::V3;
+/// use tubecast_render::render::Camera;
+///
+/// let (eye, target, up) = (V3::new(0.0, 0.0, 10.0), V3::zero(), V3::new(0.0, 1.0, 0.0));
+/// let cam = Camera::look_at(eye, target, up, 40.0, 64, 64).unwrap();
+/// assert_eq!(cam.forward, V3::new(0.0, 0.0, -1.0));
+/// // Pixel centres straddle the view axis of an even-sized image.
+/// let (a, b) = (cam.ray(31, 31).d, cam.ray(32, 32).d);
+/// assert_eq!((a.x, a.y), (-b.x, -b.y));
+/// assert!(Camera::look_at(eye, eye, up, 40.0, 64, 64).is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// Eye position.
+    pub eye: V3<f64>,
+    /// Unit forward direction.
+    pub forward: V3<f64>,
+    /// Unit right direction (image +x).
+    pub right: V3<f64>,
+    /// Unit up direction (image +y).
+    pub up: V3<f64>,
+    /// Vertical field of view, degrees.
+    pub fov_deg: f64,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+}
+
+fn finite3(v: V3<f64>) -> bool {
+    v.x.is_finite() && v.y.is_finite() && v.z.is_finite()
+}
+
+impl Camera {
+    /// A camera at `eye` looking at `target` with `up` roughly up and vertical field of view
+    /// `fov_deg` (in `(0, 180)`). Errors: non-finite input, `eye == target`, `up` parallel to
+    /// the view direction, a bad field of view, or a zero-sized image.
+    pub fn look_at(
+        eye: V3<f64>,
+        target: V3<f64>,
+        up: V3<f64>,
+        fov_deg: f64,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, RenderError> {
+        if !finite3(eye) || !finite3(target) || !finite3(up) {
+            return Err(RenderError::NonFiniteCamera);
+        }
+        if !(fov_deg > 0.0 && fov_deg < 180.0) {
+            return Err(RenderError::FieldOfView(fov_deg));
+        }
+        if width == 0 || height == 0 || width > 1 << 15 || height > 1 << 15 {
+            return Err(RenderError::ImageSize { width, height });
+        }
+        let f = target - eye;
+        if f.length().partial_cmp(&0.0) != Some(Ordering::Greater) {
+            return Err(RenderError::EyeAtTarget);
+        }
+        let forward = f.normalize_or_zero();
+        let right = forward.cross(up);
+        if right.length().partial_cmp(&(1e-9 * up.length())) != Some(Ordering::Greater) {
+            return Err(RenderError::UpParallel);
+        }
+        let right = right.normalize_or_zero();
+        let up = right.cross(forward);
+        Ok(Self { eye, forward, right, up, fov_deg, width, height })
+    }
+
+    /// A camera that frames the box `(lo, hi)`: looking at its centre from the direction
+    /// `(0.25, 0.35, 1)` (a three-quarter view from +z), just far enough (plus 5%) that all
+    /// eight corners of the box project inside both the vertical and horizontal field of view.
+    pub fn fit(lo: [f64; 3], hi: [f64; 3], fov_deg: f64, width: u32, height: u32) -> Result<Self, RenderError> {
+        let c = V3::new(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2]));
+        let r = 0.5 * (V3::from(hi) - V3::from(lo)).length();
+        if !(r.is_finite() && r > 0.0) {
+            return Err(RenderError::EmptyBounds);
+        }
+        let aspect = width.max(1) as f64 / height.max(1) as f64;
+        let half_v = (fov_deg.clamp(1e-3, 179.0) * 0.5).to_radians();
+        let half_h = (half_v.tan() * aspect).atan();
+        let dir = V3::new(0.25, 0.35, 1.0).normalize_or_zero();
+        // Orientation only (eye distance 1), to measure the corners in the camera frame.
+        let probe = Self::look_at(c + dir, c, V3::new(0.0, 1.0, 0.0), fov_deg, width, height)?;
+        let (tv, th) = (half_v.tan(), half_h.tan());
+        let mut dist: f64 = 0.0;
+        for k in 0..8 {
+            let q = V3::new(
+                if k & 1 == 0 { lo[0] } else { hi[0] },
+                if k & 2 == 0 { lo[1] } else { hi[1] },
+                if k & 4 == 0 { lo[2] } else { hi[2] },
+            ) - c;
+            // A corner at depth (dist + z) is inside when |x| ≤ th·(dist + z) and |y| ≤ tv·(dist + z).
+            let z = q.dot(probe.forward);
+            dist = dist.max(q.dot(probe.right).abs() / th - z).max(q.dot(probe.up).abs() / tv - z);
+        }
+        // Keep the eye outside the box's bounding sphere as well.
+        let dist = (1.05 * dist).max(1.05 * r);
+        Self::look_at(c + dir * dist, c, V3::new(0.0, 1.0, 0.0), fov_deg, width, height)
+    }
+
+    /// The primary ray through the centre of pixel `(x, y)` (`y = 0` is the top row). Its
+    /// direction is `forward + sx·right + sy·up` (not unit length); `t` is measured in it.
+    pub fn ray(&self, x: u32, y: u32) -> Ray<f64> {
+        let th = (self.fov_deg * 0.5).to_radians().tan();
+        let aspect = self.width as f64 / self.height as f64;
+        let sx = ((x as f64 + 0.5) / self.width as f64 * 2.0 - 1.0) * th * aspect;
+        let sy = (1.0 - (y as f64 + 0.5) / self.height as f64 * 2.0) * th;
+        Ray::new(self.eye, self.forward + self.right * sx + self.up * sy)
+    }
+}
+
+/// How to place the camera for a scene: fitted to its bounds ([`Camera::fit`]) unless an eye
+/// or a look-at point is given; a missing eye is the fitted one, a missing look-at point the
+/// centre of the bounds.
+///
+/// ```
+/// use tubecast_render::render::View;
+/// let view = View { eye: None, look_at: Some([0.0, 0.0, 0.0]), ..View::default() };
+/// let cam = view.camera(([-1.0; 3], [1.0; 3])).unwrap();
+/// assert_eq!((cam.width, cam.height), (800, 600));
+/// assert!(cam.forward.dot(-cam.eye).abs() > 0.999 * cam.eye.length());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    /// Eye position (default: fitted).
+    pub eye: Option<[f64; 3]>,
+    /// Point looked at (default: the centre of the bounds).
+    pub look_at: Option<[f64; 3]>,
+    /// Up direction, used with an eye or look-at point.
+    pub up: [f64; 3],
+    /// Vertical field of view, degrees.
+    pub fov_deg: f64,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+}
+
+impl Default for View {
+    /// The `tubecast render` defaults: fitted, up `+y`, 40°, 800×600.
+    fn default() -> Self {
+        Self { eye: None, look_at: None, up: [0.0, 1.0, 0.0], fov_deg: 40.0, width: 800, height: 600 }
+    }
+}
+
+impl View {
+    /// The camera for a scene whose primitives have the bounds `(lo, hi)`.
+    pub fn camera(&self, (lo, hi): ([f64; 3], [f64; 3])) -> Result<Camera, RenderError> {
+        let fit = Camera::fit(lo, hi, self.fov_deg, self.width, self.height)?;
+        if self.eye.is_none() && self.look_at.is_none() {
+            return Ok(fit);
+        }
+        let eye = self.eye.map(V3::from).unwrap_or(fit.eye);
+        let centre = std::array::from_fn(|i| 0.5 * (lo[i] + hi[i]));
+        let at = V3::from(self.look_at.unwrap_or(centre));
+        Camera::look_at(eye, at, V3::from(self.up), self.fov_deg, self.width, self.height)
+    }
+}

@@ -1,0 +1,76 @@
+//! Surface colours: by direction, radius, SWC type or one colour.
+
+use super::ColorBy;
+use crate::scene::{Prim, Scene};
+
+/// Per-scene colour lookups.
+pub(super) struct Palette {
+    r_lo: f64,
+    r_hi: f64,
+}
+
+fn colormap(x: f64) -> [f32; 3] {
+    // Blue → teal → yellow, piecewise linear in three stops.
+    let stops = [[0.15, 0.2, 0.75], [0.1, 0.7, 0.6], [0.98, 0.85, 0.15]];
+    let x = x.clamp(0.0, 1.0) * 2.0;
+    let i = (x as usize).min(1);
+    let f = (x - i as f64) as f32;
+    std::array::from_fn(|k| stops[i][k] * (1.0 - f) + stops[i + 1][k] * f)
+}
+
+fn type_color(t: i32) -> [f32; 3] {
+    match t {
+        1 => [0.9, 0.9, 0.9],
+        2 => [0.25, 0.45, 0.95],
+        3 => [0.9, 0.25, 0.2],
+        4 => [0.85, 0.25, 0.85],
+        _ => {
+            let pal = [[0.3, 0.75, 0.3], [0.95, 0.6, 0.1], [0.4, 0.8, 0.85], [0.6, 0.5, 0.3]];
+            pal[t.unsigned_abs() as usize % pal.len()]
+        }
+    }
+}
+
+impl Palette {
+    pub(super) fn new(scene: &Scene) -> Self {
+        let (mut r_lo, mut r_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for n in &scene.nodes {
+            r_lo = r_lo.min(n.radius);
+            r_hi = r_hi.max(n.radius);
+        }
+        Self { r_lo, r_hi }
+    }
+    /// Colour of primitive `prim` at its curve parameter `u`.
+    pub(super) fn color(&self, scene: &Scene, by: ColorBy, prim: &Prim, u: f64) -> [f32; 3] {
+        let link = prim.link;
+        let l = scene.links[link as usize];
+        let spline = prim.quad().map(|q| q.cast::<f64>());
+        match by {
+            ColorBy::Solid(c) => c,
+            ColorBy::Direction => {
+                // Spline: the curve's tangent at u; link: the link's direction.
+                let d = if let Some(q) = spline {
+                    q.tangent(u).normalize_or_zero().to_array()
+                } else {
+                    scene.link_direction(link as usize)
+                };
+                if d == [0.0; 3] {
+                    [0.6, 0.6, 0.6]
+                } else {
+                    d.map(|v| v.abs() as f32)
+                }
+            }
+            ColorBy::Radius => {
+                let r = if let Some(q) = spline {
+                    q.radius(u)
+                } else {
+                    let (a, b) = (scene.nodes[l[0] as usize].radius, scene.nodes[l[1] as usize].radius);
+                    a + (b - a) * u
+                };
+                let span = self.r_hi - self.r_lo;
+                colormap(if span > 0.0 { (r - self.r_lo) / span } else { 0.5 })
+            }
+            ColorBy::Type => type_color(scene.nodes[l[1] as usize].kind),
+        }
+    }
+}

@@ -1,0 +1,100 @@
+//! Building a [`Scene`] from reader output, with validation.
+
+use super::{Node, Scene, SceneError, MAX_COORD};
+use crate::io::{self, IoError, Polyline};
+use std::path::Path;
+
+impl Scene {
+    /// A scene from SWC rows (links child → parent; ids mapped to indices).
+    pub fn from_swc(rows: &[io::swc::SwcNode], name: &str) -> Result<Self, SceneError> {
+        let mut index = std::collections::HashMap::new();
+        for (i, r) in rows.iter().enumerate() {
+            index.insert(r.id, i as u32);
+        }
+        let nodes = rows.iter().map(|r| Node { pos: r.pos, radius: r.radius, kind: r.kind }).collect();
+        let mut links = Vec::new();
+        for (i, r) in rows.iter().enumerate() {
+            if r.parent >= 0 {
+                let p = *index.get(&r.parent).ok_or_else(|| SceneError::MissingParent {
+                    file: name.to_string(),
+                    parent: r.parent,
+                    node: r.id,
+                })?;
+                links.push([p, i as u32]);
+            }
+        }
+        Self::finish(nodes, links, name)
+    }
+
+    /// A scene from polylines; points without a radius get `default_radius`.
+    pub fn from_polylines(lines: &[Polyline], default_radius: f64, name: &str) -> Result<Self, SceneError> {
+        if !(default_radius.is_finite() && default_radius > 0.0) {
+            return Err(SceneError::DefaultRadius(default_radius));
+        }
+        let mut nodes = Vec::new();
+        let mut links = Vec::new();
+        for l in lines {
+            let base = nodes.len() as u32;
+            for (k, p) in l.points.iter().enumerate() {
+                let radius = l.radii.get(k).copied().unwrap_or(default_radius);
+                nodes.push(Node { pos: *p, radius, kind: 0 });
+                if k > 0 {
+                    links.push([base + k as u32 - 1, base + k as u32]);
+                }
+            }
+        }
+        Self::finish(nodes, links, name)
+    }
+
+    fn finish(nodes: Vec<Node>, mut links: Vec<[u32; 2]>, name: &str) -> Result<Self, SceneError> {
+        if nodes.is_empty() {
+            return Err(SceneError::NoNodes { file: name.to_string() });
+        }
+        if nodes.len() > u32::MAX as usize - 1 {
+            return Err(SceneError::TooManyNodes { file: name.to_string() });
+        }
+        for (i, n) in nodes.iter().enumerate() {
+            if n.pos.iter().chain([&n.radius]).any(|v| !v.is_finite() || v.abs() > MAX_COORD) {
+                return Err(SceneError::OutOfRange { file: name.to_string(), node: i });
+            }
+            if n.radius < 0.0 {
+                return Err(SceneError::NegativeRadius { file: name.to_string(), node: i, radius: n.radius });
+            }
+        }
+        let mut used = vec![false; nodes.len()];
+        for l in &links {
+            used[l[0] as usize] = true;
+            used[l[1] as usize] = true;
+        }
+        for (i, u) in used.iter().enumerate() {
+            if !u {
+                links.push([i as u32, i as u32]);
+            }
+        }
+        let s = Self { nodes, links };
+        for (k, l) in s.links.iter().enumerate() {
+            if s.nodes[l[0] as usize].radius == 0.0 && s.nodes[l[1] as usize].radius == 0.0 {
+                return Err(SceneError::NoVolume { file: name.to_string(), link: k, nodes: *l });
+            }
+        }
+        Ok(s)
+    }
+
+    /// Load a scene from a file, by extension: `.swc`, `.trk`, `.tck`, `.obj`. Formats without
+    /// radii (and OBJ vertices without one) use `default_radius`.
+    pub fn load(path: &Path, default_radius: f64) -> Result<Self, SceneError> {
+        let name = path.display().to_string();
+        let data = io::read_bytes(path)?;
+        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+        match ext.as_str() {
+            "swc" => Self::from_swc(&io::swc::read(&data, &name)?, &name),
+            "trk" => Self::from_polylines(&io::trk::read(&data, &name)?.1, default_radius, &name),
+            "tck" => Self::from_polylines(&io::tck::read(&data, &name)?, default_radius, &name),
+            "obj" => Self::from_polylines(&io::obj::read(&data, &name)?, default_radius, &name),
+            _ => Err(SceneError::Io(IoError::file(
+                &name,
+                format!("unknown extension {ext:?} (expected .swc, .trk, .tck or .obj)"),
+            ))),
+        }
+    }
+}

@@ -1,0 +1,183 @@
+//! Chains of links and the spline model along them (see the [module docs](super)).
+
+use super::{Prim, Scene, SceneError};
+use std::cmp::Ordering;
+use tubecast::HermiteSegment;
+use tubecast::V3;
+
+/// A chain of links: a maximal path whose interior nodes have exactly two links.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Chain {
+    /// Nodes along the chain (`links.len() + 1` of them; a closed chain repeats its first
+    /// node at the end).
+    pub nodes: Vec<u32>,
+    /// Links along the chain: `links[i]` joins `nodes[i]` and `nodes[i + 1]`.
+    pub links: Vec<u32>,
+    /// A periodic loop (every node has two links).
+    pub closed: bool,
+}
+
+/// One cubic Hermite segment of a spline tube, modelling scene link `link`, oriented along
+/// its chain (`p0` is the node that comes first in the chain).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SplineSegment {
+    /// Scene link index.
+    pub link: u32,
+    /// The segment (finite-difference derivatives, see the module docs).
+    pub seg: HermiteSegment<f64>,
+}
+
+impl SplineSegment {
+    /// Greatest defect `Dₖ` of the five control points of the split from the link's straight
+    /// round cone (see the module docs): an upper bound on the Hausdorff distance between the
+    /// two sweeps; `+∞` when a control point projects outside the chord or the chord is empty.
+    pub fn chord_defect(&self) -> f64 {
+        let s = &self.seg;
+        let v = s.p1 - s.p0;
+        let len2 = v.length2();
+        if len2.partial_cmp(&0.0) != Some(Ordering::Greater) {
+            return f64::INFINITY;
+        }
+        let ((pa, ra), (pb, rb)) = s.quad_controls();
+        let mut worst: f64 = 0.0;
+        for (x, rho) in pa.iter().zip(ra).chain(pb.iter().zip(rb)) {
+            let w = *x - s.p0;
+            let t = w.dot(v) / len2;
+            if !(0.0..=1.0).contains(&t) {
+                return f64::INFINITY;
+            }
+            let d = (w - v * t).length() + (rho - (s.r0 + (s.r1 - s.r0) * t)).abs();
+            worst = worst.max(d);
+        }
+        worst
+    }
+
+    /// The threshold below which the segment is modelled by its link:
+    /// `2⁻²²·(½|p₁ − p₀| + max(r₀, r₁))`.
+    pub fn straight_tolerance(&self) -> f64 {
+        let s = &self.seg;
+        2f64.powi(-22) * (0.5 * (s.p1 - s.p0).length() + s.r0.max(s.r1))
+    }
+
+    /// True when the segment is modelled by its link (see the module docs).
+    pub fn is_straight(&self) -> bool {
+        self.chord_defect() <= self.straight_tolerance()
+    }
+}
+
+impl Scene {
+    /// The link chains (see the module docs): every link except the zero-length links of
+    /// isolated nodes belongs to exactly one chain. Open chains run from a node without
+    /// exactly two links to the next such node; the remaining links form closed loops.
+    pub fn chains(&self) -> Vec<Chain> {
+        let n = self.nodes.len();
+        let mut adj: Vec<Vec<(u32, u32)>> = vec![Vec::new(); n];
+        for (k, &[a, b]) in self.links.iter().enumerate() {
+            if a != b {
+                adj[a as usize].push((k as u32, b));
+                adj[b as usize].push((k as u32, a));
+            }
+        }
+        let mut seen = vec![false; self.links.len()];
+        let walk = |seen: &mut Vec<bool>, s: u32, first: (u32, u32)| {
+            let (mut l, mut nxt) = first;
+            let mut c = Chain { nodes: vec![s], links: Vec::new(), closed: false };
+            loop {
+                seen[l as usize] = true;
+                c.links.push(l);
+                c.nodes.push(nxt);
+                let a = &adj[nxt as usize];
+                if a.len() != 2 {
+                    break;
+                }
+                let next = if a[0].0 == l { a[1] } else { a[0] };
+                if seen[next.0 as usize] {
+                    break;
+                }
+                (l, nxt) = next;
+            }
+            c
+        };
+        let mut out = Vec::new();
+        for (s, es) in adj.iter().enumerate() {
+            if es.len() == 2 {
+                continue;
+            }
+            for &e in es {
+                if !seen[e.0 as usize] {
+                    out.push(walk(&mut seen, s as u32, e));
+                }
+            }
+        }
+        for k in 0..self.links.len() {
+            let [a, b] = self.links[k];
+            if a != b && !seen[k] {
+                // Every node here has two links: a loop.
+                let mut c = walk(&mut seen, a, (k as u32, b));
+                c.closed = c.nodes.first() == c.nodes.last();
+                out.push(c);
+            }
+        }
+        out
+    }
+
+    /// The cubic Hermite segment of every chain link (see the module docs for the
+    /// derivatives), in chain order.
+    pub fn spline_segments(&self) -> Vec<SplineSegment> {
+        let mut out = Vec::with_capacity(self.links.len());
+        for c in self.chains() {
+            let nn = c.links.len(); // segments; nodes 0..=nn
+            let p = |i: usize| V3::from(self.nodes[c.nodes[i] as usize].pos);
+            let r = |i: usize| self.nodes[c.nodes[i] as usize].radius;
+            // Central differences in the interior (wrapping around a closed chain, whose node
+            // nn is node 0), one-sided at the ends of an open chain.
+            let deriv = |i: usize| {
+                let (a, b) =
+                    if c.closed { ((i + nn - 1) % nn, (i + 1) % nn) } else { (i.saturating_sub(1), (i + 1).min(nn)) };
+                let w = if c.closed { 2.0 } else { (b - a) as f64 };
+                let m = (p(b) - p(a)) * (1.0 / w);
+                let lim = 2.0 * r(i);
+                (m, ((r(b) - r(a)) / w).clamp(-lim, lim))
+            };
+            let d: Vec<(V3<f64>, f64)> = (0..=nn).map(deriv).collect();
+            for j in 0..nn {
+                let seg = HermiteSegment::new(p(j), d[j].0, r(j), d[j].1, p(j + 1), d[j + 1].0, r(j + 1), d[j + 1].1);
+                out.push(SplineSegment { link: c.links[j], seg });
+            }
+        }
+        out
+    }
+
+    /// Primitives of the spline model (see the module docs): two [`super::PrimKind::Spline`]
+    /// sub-segments per curved chain link, the link's own primitive for straight ones and for
+    /// isolated nodes. Errors (a guard; see [`Prim::from_quad`]) when a segment cannot be stored
+    /// as an `f32` spline primitive.
+    pub fn spline_primitives(&self) -> Result<Vec<Prim>, SceneError> {
+        self.spline_primitives_with(true)
+    }
+
+    /// [`Self::spline_primitives`], optionally keeping straight segments as splines too
+    /// (`straight_as_links = false`; for comparing the two models on the same surface).
+    pub fn spline_primitives_with(&self, straight_as_links: bool) -> Result<Vec<Prim>, SceneError> {
+        let mut done = vec![false; self.links.len()];
+        let mut out = Vec::with_capacity(2 * self.links.len());
+        for s in self.spline_segments() {
+            done[s.link as usize] = true;
+            if straight_as_links && s.is_straight() {
+                out.push(Prim::from_link(&self.link(s.link as usize), s.link));
+                continue;
+            }
+            let [a, b] = self.links[s.link as usize];
+            let err = |cause| SceneError::Spline { link: s.link, nodes: [a, b], cause };
+            let [q0, q1] = s.seg.split().map_err(err)?;
+            out.push(Prim::from_quad(&q0, s.link, 0).map_err(err)?);
+            out.push(Prim::from_quad(&q1, s.link, 1).map_err(err)?);
+        }
+        for (k, d) in done.iter().enumerate() {
+            if !d {
+                out.push(Prim::from_link(&self.link(k), k as u32));
+            }
+        }
+        Ok(out)
+    }
+}

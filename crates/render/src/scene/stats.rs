@@ -1,0 +1,73 @@
+//! Counts and bounds of a scene and of its primitives (what `tubecast info` prints).
+
+use super::{Prim, PrimKind, Scene};
+use tubecast::LinkShape;
+use tubecast::Primitive;
+
+/// Counts and extents of a scene's primitives (what `tubecast info` prints).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Stats {
+    /// Nodes.
+    pub nodes: usize,
+    /// Links (including zero-length links of isolated nodes).
+    pub links: usize,
+    /// Cylinder links (equal radii).
+    pub cylinders: usize,
+    /// Tangent-cone links (different radii).
+    pub cones: usize,
+    /// Links that are a sphere (one end inside the other, or an isolated node).
+    pub spheres: usize,
+    /// Spline segments: cubic Hermite segments, each two [`PrimKind::Spline`] primitives
+    /// (zero for the link model, [`Scene::stats`]).
+    pub splines: usize,
+    /// Axis-aligned bounds of the surface `(min, max)`.
+    pub bounds: ([f64; 3], [f64; 3]),
+}
+
+impl Scene {
+    /// Counts and bounds of a primitive list built from this scene ([`Self::primitives`] or
+    /// [`Self::spline_primitives`]): link primitives by kind, spline segments (pairs of
+    /// sub-segments), and the union of the primitives' boxes.
+    pub fn stats_of(&self, prims: &[Prim]) -> Stats {
+        let mut s = Stats { nodes: self.nodes.len(), links: self.links.len(), ..Default::default() };
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for p in prims {
+            match p.kind() {
+                PrimKind::Cylinder => s.cylinders += 1,
+                PrimKind::Cone => s.cones += 1,
+                PrimKind::Sphere => s.spheres += 1,
+                PrimKind::Spline => s.splines += (p.half() == 0) as usize,
+            }
+            let (a, b) = p.aabb();
+            for i in 0..3 {
+                lo[i] = lo[i].min(a[i]);
+                hi[i] = hi[i].max(b[i]);
+            }
+        }
+        s.bounds = (lo, hi);
+        s
+    }
+
+    /// Counts and bounds.
+    pub fn stats(&self) -> Stats {
+        let mut s = Stats { nodes: self.nodes.len(), links: self.links.len(), ..Default::default() };
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for k in 0..self.links.len() {
+            let l = self.link(k);
+            match l.shape() {
+                LinkShape::Cylinder => s.cylinders += 1,
+                LinkShape::Cone => s.cones += 1,
+                LinkShape::Sphere => s.spheres += 1,
+            }
+            let b = l.aabb();
+            for (i, (x, y)) in b.min.to_array().iter().zip(b.max.to_array()).enumerate() {
+                lo[i] = lo[i].min(*x);
+                hi[i] = hi[i].max(y);
+            }
+        }
+        s.bounds = (lo, hi);
+        s
+    }
+}

@@ -1,0 +1,362 @@
+//! Ray space of one ray–segment query (Russig §3.2, Salm §3.2): the polynomials `h` and `g`,
+//! the candidates for the entry and exit, and their polish (see the parent module's docs).
+
+use super::QuadTube;
+use crate::math::bezier::bernstein2;
+use crate::math::roots::{cascade_level, default_tol, horner, itp, opposite, poly_breakpoints, poly_mul, Bracket};
+use crate::ray::{in_range, Interval, Ray};
+use crate::real::{Mask, Real};
+use crate::vec::V3;
+
+/// Entry and exit of the sweep in ray space: distances along `d̂` from the re-centred origin
+/// (in units of the bounding radius) and the curve parameters where they are attained.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Crossings<T> {
+    /// Entry distance `min (h − √g)`.
+    s_in: T,
+    /// Curve parameter of the entry.
+    u_in: T,
+    /// Exit distance `max (h + √g)`.
+    s_out: T,
+    /// Curve parameter of the exit.
+    u_out: T,
+}
+
+/// The best entry and exit among candidate parameters ([`RaySpace::best_of_candidates`]).
+struct Candidates<T: Real> {
+    /// Least entry and greatest exit seen.
+    at: Crossings<T>,
+    /// Lanes with at least one real candidate.
+    any: T::Mask,
+    /// The entry's neighbouring candidates: a bracket for [`RaySpace::polish`].
+    in_bracket: [T; 2],
+    /// The exit's neighbouring candidates.
+    out_bracket: [T; 2],
+}
+
+/// Working data of one ray–segment query in ray space.
+pub(super) struct RaySpace<T: Real> {
+    /// `h` coefficients, ascending powers of `t`.
+    h: [T; 3],
+    /// `g` coefficients.
+    pub(super) g: [T; 5],
+    /// Power-basis position relative to the re-centred origin, in units of the bounding
+    /// radius: `q = qa t² + qb t + qc`.
+    qa: V3<T>,
+    qb: V3<T>,
+    qc: V3<T>,
+    dhat: V3<T>,
+    /// Ray parameter of the re-centred origin.
+    tc: T,
+    /// Bounding radius / |d|: converts a ray-space distance to a ray parameter step.
+    inv_dlen: T,
+    /// Lanes whose line comes within the bounding sphere.
+    pub(super) near: T::Mask,
+    /// `h` and `g` re-expanded about `tv` (coefficients of powers of `t − tv`), for `P`.
+    hv: [T; 3],
+    gv: [T; 5],
+    /// Expansion point of `hv`, `gv`: the vertex of the centre line (least `|p'|`), in `[0, 1]`.
+    tv: T,
+    /// `g(1) = r₂² − |c₂ × d̂|²` formed directly from the end (not as `Σ gᵢ`, which carries
+    /// the rounding of every coefficient): exactly 0 for a zero-radius end on the line.
+    g_end: T,
+}
+
+/// `h` and `g` (ascending powers of the parameter) from the power-basis position
+/// `q = qa x² + qb x + qc` and radius `ra x² + rb x + rc` (`q = [qa, qb, qc]`, `r = [ra, rb, rc]`).
+#[inline(always)]
+fn ray_polys<T: Real>(q: [V3<T>; 3], r: [T; 3], dhat: V3<T>) -> ([T; 3], [T; 5]) {
+    let ([qa, qb, qc], [ra, rb, rc]) = (q, r);
+    let two = T::cst(2.0);
+    let h = [qc.dot(dhat), qb.dot(dhat), qa.dot(dhat)];
+    let (wa, wb, wc) = (qa.cross(dhat), qb.cross(dhat), qc.cross(dhat));
+    let w2 = [wc.dot(wc), two * wc.dot(wb), wb.dot(wb) + two * wc.dot(wa), two * wb.dot(wa), wa.dot(wa)];
+    let r2 = [rc * rc, two * rc * rb, rb * rb + two * rc * ra, two * rb * ra, ra * ra];
+    let g = [r2[0] - w2[0], r2[1] - w2[1], r2[2] - w2[2], r2[3] - w2[3], r2[4] - w2[4]];
+    (h, g)
+}
+
+/// `P = 4h'²g − g'²` from `h`, `g` in powers of one variable.
+#[inline(always)]
+fn p_of<T: Real>(h: &[T; 3], g: &[T; 5]) -> [T; 7] {
+    let two = T::cst(2.0);
+    let h1 = [h[1], two * h[2]];
+    let g1 = [g[1], two * g[2], T::cst(3.0) * g[3], T::cst(4.0) * g[4]];
+    let h1s: [T; 3] = poly_mul(&h1, &h1);
+    let a: [T; 7] = poly_mul(&h1s, g);
+    let b: [T; 7] = poly_mul(&g1, &g1);
+    let mut p = [T::zero(); 7];
+    for i in 0..7 {
+        p[i] = T::cst(4.0) * a[i] - b[i];
+    }
+    p
+}
+
+impl<T: Real> RaySpace<T> {
+    /// Set up the query of `ray` against `tube`.
+    #[inline(always)]
+    pub(super) fn new(tube: &QuadTube<T>, ray: &Ray<T>) -> Self {
+        let two = T::cst(2.0);
+        let quarter = T::cst(0.25);
+        let [b0, b1, b2] = tube.b;
+        let m = (b0 + b1 * two + b2) * quarter; // p(½)
+        let d2 = ray.d.length2();
+        let dlen = d2.sqrt();
+        let inv_dlen = T::one() / dlen;
+        let dhat = ray.d * inv_dlen;
+        let tc = (m - ray.o).dot(ray.d) / d2;
+        // l = o' − m, o' the closest point of the line to m.
+        let l = (ray.o - m) + ray.d * tc;
+        let rmax = tube.r[0].abs().max(tube.r[1].abs()).max(tube.r[2].abs());
+        let big = (b0 - m).length().max((b1 - m).length()).max((b2 - m).length()) + rmax;
+        let near = l.length2().le(big * big);
+        // Work in units of the bounding radius: g, P and the sign functions are products of up
+        // to six coordinates, which would over/underflow for large or tiny tubes. (One
+        // rounding per coordinate: a relative change of ε, inside the error model.)
+        let big_s = T::select(big.gt(T::zero()) & big.is_finite(), big, T::one());
+        let inv = T::one() / big_s;
+        let (c0, c1, c2) = ((b0 - m - l) * inv, (b1 - m - l) * inv, (b2 - m - l) * inv);
+        let qa = c0 - c1 * two + c2;
+        let qb = (c1 - c0) * two;
+        let qc = c0;
+        let [r0, r1, r2] = [tube.r[0] * inv, tube.r[1] * inv, tube.r[2] * inv];
+        let (ra, rb, rc) = (r0 - r1 * two + r2, (r1 - r0) * two, r0);
+        let (h, g) = ray_polys([qa, qb, qc], [ra, rb, rc], dhat);
+        // The same about the vertex tv of the centre line (|p'|² = |qb + 2qa·t|² least), from
+        // the control points (de Casteljau: each coefficient to ε of the local sizes). Where
+        // the curve is slow (p' ≈ 0, e.g. b₁ = b₂) the ray meets the tube over a wide range
+        // of t around tv, and h' ≈ 0 there: P = 4h'²g − g'² is tiny there, far below the
+        // rounding of its t-power coefficients (fuzz finding regression-pinched-slow-end:
+        // a 46-long tube with p'(1) = 0; P's roots near t = 1 were noise). About tv the
+        // coefficients of q, and so of h, g and P, carry no such cancellation.
+        let qq = qa.dot(qa);
+        let tv0 = -qb.dot(qa) / (two * T::select(qq.gt(T::zero()), qq, T::one()));
+        let tv = T::select(qq.gt(T::zero()) & tv0.is_finite(), tv0, T::zero()).clamp(T::zero(), T::one());
+        let sv = T::one() - tv;
+        let [wv0, wv1, wv2] = bernstein2(tv);
+        let qcv = c0 * wv0 + c1 * wv1 + c2 * wv2;
+        let qbv = ((c1 - c0) * sv + (c2 - c1) * tv) * two;
+        let rcv = r0 * wv0 + r1 * wv1 + r2 * wv2;
+        let rbv = ((r1 - r0) * sv + (r2 - r1) * tv) * two;
+        let (hv, gv) = ray_polys([qa, qbv, qcv], [ra, rbv, rcv], dhat);
+        // g at t = 1 from the end itself (fuzz finding regression-tip-on-ray: r(1) = 0 with
+        // p(1) on the ray, g = c(1 − t)⁴; Σ gᵢ came out −2.2e-16, below the tolerance 16ε·Σ|gᵢ|,
+        // which bounds the evaluation of g's coefficients but not their own rounding, and the
+        // tip — the true entry — was dropped). At t = 0 Horner gives g₀ = rc² − |wc|², the
+        // same formula.
+        let w_end = c2.cross(dhat);
+        let g_end = r2 * r2 - w_end.dot(w_end);
+        // Ray-space distances are in units of `big`: t = tc + s·big/|d|.
+        Self { h, g, qa, qb, qc, dhat, tc, inv_dlen: inv_dlen * big_s, near, hv, gv, tv, g_end }
+    }
+
+    #[inline(always)]
+    fn q(&self, t: T) -> V3<T> {
+        self.qa * (t * t) + self.qb * t + self.qc
+    }
+
+    /// `σh(t) − √max(g(t), 0)`: the entry (σ = 1) or minus the exit (σ = −1).
+    #[inline(always)]
+    fn val(&self, t: T, sigma: T) -> T {
+        sigma * horner(&self.h, t) - horner(&self.g, t).max(T::zero()).sqrt()
+    }
+
+    /// Entry and exit over `[lo, hi]` by Russig's cascade ([`Self::russig_min`] for `σ = ±1`).
+    #[inline(always)]
+    pub(super) fn russig(&self, lo: T, hi: T, m: Bracket) -> Crossings<T> {
+        let (vi, ui) = self.russig_min(lo, hi, T::one(), m);
+        let (vo, uo) = self.russig_min(lo, hi, -T::one(), m);
+        Crossings { s_in: vi, u_in: ui, s_out: -vo, u_out: uo }
+    }
+
+    /// Minimum of `σh − √g` over the critical points in `[lo, hi]` (Russig's cascade) and the
+    /// ends. Returns `(value, t)`.
+    #[inline(always)]
+    fn russig_min(&self, lo: T, hi: T, sigma: T, m: Bracket) -> (T, T) {
+        let two = T::cst(2.0);
+        let g = self.g;
+        let g1 = [g[1], two * g[2], T::cst(3.0) * g[3], T::cst(4.0) * g[4]];
+        let g2 = [two * g[2], T::cst(6.0) * g[3], T::cst(12.0) * g[4]];
+        let g3 = [T::cst(6.0) * g[3], T::cst(24.0) * g[4]];
+        let hs = [self.h[0] * sigma, self.h[1] * sigma, self.h[2] * sigma];
+        let h1 = [hs[1], two * hs[2]];
+        let h2 = two * hs[2];
+        let gg = move |t: T| horner(&g, t).max(T::zero());
+        let f3 = move |t: T| {
+            let (gv, d1, d2, d3) = (gg(t), horner(&g1, t), horner(&g2, t), horner(&g3, t));
+            -T::cst(4.0) * d3 * gv * gv + T::cst(6.0) * d1 * d2 * gv - T::cst(3.0) * d1 * d1 * d1
+        };
+        let f2 = move |t: T| {
+            let (gv, d1, d2) = (gg(t), horner(&g1, t), horner(&g2, t));
+            T::cst(4.0) * h2 * gv * gv.sqrt() - two * d2 * gv + d1 * d1
+        };
+        let f1 = move |t: T| two * horner(&h1, t) * gg(t).sqrt() - horner(&g1, t);
+        let df1 = move |t: T| {
+            let sg = gg(t).sqrt();
+            two * h2 * sg + horner(&h1, t) * horner(&g1, t) / sg - horner(&g2, t)
+        };
+        let none = |_: T| T::zero();
+        let (m3, m1) = match m {
+            Bracket::Newton => (Bracket::Itp, Bracket::Newton),
+            other => (other, other),
+        };
+        let mut bp = [hi; 8];
+        bp[0] = lo;
+        bp[1] = hi;
+        let bp = cascade_level(&bp, 2, f3, none, m3);
+        let bp = cascade_level(&bp, 3, f2, none, m3);
+        let bp = cascade_level(&bp, 4, f1, df1, m1);
+        let mut best = self.val(bp[0], sigma);
+        let mut bt = bp[0];
+        for &t in bp.iter().take(5).skip(1) {
+            let v = self.val(t, sigma);
+            let better = v.lt(best);
+            best = T::select(better, v, best);
+            bt = T::select(better, t, bt);
+        }
+        (best, bt)
+    }
+
+    /// Polishes a critical point of `σh − √g` found as a root of `P` (whose coefficients carry
+    /// the cancellation of `4h'²g − g'²`, so its roots can be off for thin, long tubes): ITP on
+    /// `F₁ = 2σh'√g − g'` (evaluated from `g` directly) in the bracket `[a, b]` of the
+    /// neighbouring breakpoints, kept where it lowers the value. Returns `(value, t)`.
+    #[inline(always)]
+    fn polish(&self, t: T, v: T, sigma: T, a: T, b: T) -> (T, T) {
+        let two = T::cst(2.0);
+        let g = self.g;
+        let g1 = [g[1], two * g[2], T::cst(3.0) * g[3], T::cst(4.0) * g[4]];
+        let h1 = [self.h[1] * sigma, two * self.h[2] * sigma];
+        let f1 = move |x: T| two * horner(&h1, x) * horner(&g, x).max(T::zero()).sqrt() - horner(&g1, x);
+        let (fa, fb) = (f1(a), f1(b));
+        let valid = opposite(fa, fb);
+        if valid.none() {
+            return (v, t);
+        }
+        let x = itp(f1, a, b, fa, fb, valid, default_tol::<T>());
+        let vx = self.val(x, sigma);
+        let better = valid & vx.lt(v) & horner(&g, x).ge(T::zero());
+        (T::select(better, vx, v), T::select(better, x, t))
+    }
+
+    /// All roots of `P` in `[0, 1]` as sorted breakpoints (`buf[0] = 0`, `buf[n−1] = 1`):
+    /// the union of those found in powers of `t` and in powers of `t − tv` (shifted back),
+    /// merged by a fixed compare-exchange network (`select` on `<`: every lane bit-equal to
+    /// the scalar). Each expansion can be the noisy one: about `tv` for a slow end
+    /// (regression-pinched-slow-end), in powers of `t` elsewhere; a spare candidate costs
+    /// nothing (every candidate is a point of the sweep), a lost one can lose the entry.
+    #[inline(always)]
+    pub(super) fn p_breakpoints(&self) -> ([T; 16], usize) {
+        let (lo, hi) = (-self.tv, T::one() - self.tv);
+        let (bv, nv) = poly_breakpoints(&self.p_poly(), lo, hi, Bracket::Newton);
+        let (bt, nt) = poly_breakpoints(&self.p_poly_t(), T::zero(), T::one(), Bracket::Newton);
+        debug_assert!(nv == 8 && nt == 8);
+        let mut out = [T::one(); 16];
+        // out = bt ascending, then the shifted bv descending: a bitonic sequence.
+        out[..8].copy_from_slice(&bt);
+        for i in 0..8 {
+            let t = (self.tv + bv[i]).clamp(T::zero(), T::one());
+            out[15 - i] = T::select(bv[i].le(lo), T::zero(), T::select(bv[i].ge(hi), T::one(), t));
+        }
+        let mut stride = 8;
+        while stride > 0 {
+            for i in 0..16 {
+                if i & stride == 0 {
+                    let (a, b) = (out[i], out[i + stride]);
+                    let sw = b.lt(a);
+                    out[i] = T::select(sw, b, a);
+                    out[i + stride] = T::select(sw, a, b);
+                }
+            }
+            stride /= 2;
+        }
+        (out, 16)
+    }
+
+    /// `P = 4h'²g − g'²` (degree 6) in powers of `t`.
+    #[inline(always)]
+    fn p_poly_t(&self) -> [T; 7] {
+        p_of(&self.h, &self.g)
+    }
+
+    /// `P = 4h'²g − g'²` (degree 6) in powers of `t − tv`.
+    #[inline(always)]
+    fn p_poly(&self) -> [T; 7] {
+        p_of(&self.hv, &self.gv)
+    }
+
+    /// Entry and exit from candidate parameters ([`Self::best_of_candidates`]), each polished
+    /// ([`Self::polish`]) between its neighbouring candidates. Also returns the lanes with a
+    /// real candidate.
+    #[inline(always)]
+    pub(super) fn polished_candidates(&self, c: &[T], lo: T, hi: T, all_real: bool) -> (Crossings<T>, T::Mask) {
+        let best = self.best_of_candidates(c, lo, hi, all_real);
+        let (vi, ui) = self.polish(best.at.u_in, best.at.s_in, T::one(), best.in_bracket[0], best.in_bracket[1]);
+        let (vo, uo) = self.polish(best.at.u_out, -best.at.s_out, -T::one(), best.out_bracket[0], best.out_bracket[1]);
+        (Crossings { s_in: vi, u_in: ui, s_out: -vo, u_out: uo }, best.any)
+    }
+
+    /// Entry/exit from candidate parameters (clamped to `[lo, hi]`), keeping only those with
+    /// `g ≥ 0` unless `all_real`.
+    #[inline(always)]
+    fn best_of_candidates(&self, c: &[T], lo: T, hi: T, all_real: bool) -> Candidates<T> {
+        let inf = T::infinity();
+        let (mut bi, mut ti, mut bo, mut to) = (inf, lo, inf, lo);
+        // Neighbouring candidates of the best ones: brackets for `polish`.
+        let mut nb = [lo, hi, lo, hi];
+        let mut any = T::Mask::splat(false);
+        let n = c.len();
+        // g within its own rounding of 0 counts as real (e.g. r = 0 at an end on the ray:
+        // g = 0 exactly, computed as −1e-18): 16ε·Σ|gᵢ| bounds g's evaluation error on [0, 1].
+        let g = self.g;
+        let gtol = T::epsilon() * T::cst(16.0) * (g[0].abs() + g[1].abs() + g[2].abs() + g[3].abs() + g[4].abs());
+        for (k, &t) in c.iter().enumerate() {
+            let t = t.clamp(lo, hi);
+            let left = c[k.saturating_sub(1)].clamp(lo, hi);
+            let right = c[(k + 1).min(n - 1)].clamp(lo, hi);
+            let gv = T::select(t.ge(T::one()), self.g_end, horner(&self.g, t));
+            let ok = if all_real { T::Mask::splat(true) } else { gv.ge(-gtol) };
+            let hv = horner(&self.h, t);
+            let sq = gv.max(T::zero()).sqrt();
+            let (vi, vo) = (hv - sq, -hv - sq);
+            let bi_ = ok & vi.lt(bi);
+            let bo_ = ok & vo.lt(bo);
+            bi = T::select(bi_, vi, bi);
+            ti = T::select(bi_, t, ti);
+            bo = T::select(bo_, vo, bo);
+            to = T::select(bo_, t, to);
+            nb = [
+                T::select(bi_, left, nb[0]),
+                T::select(bi_, right, nb[1]),
+                T::select(bo_, left, nb[2]),
+                T::select(bo_, right, nb[3]),
+            ];
+            any = any | ok;
+        }
+        Candidates {
+            at: Crossings { s_in: bi, u_in: ti, s_out: -bo, u_out: to },
+            any,
+            in_bracket: [nb[0], nb[1]],
+            out_bracket: [nb[2], nb[3]],
+        }
+    }
+
+    /// Assemble the interval from ray-space entry/exit distances and curve parameters.
+    #[inline(always)]
+    pub(super) fn interval(&self, ray: &Ray<T>, x: Crossings<T>, found: T::Mask, clip: bool) -> Interval<T> {
+        let Crossings { s_in, u_in, s_out, u_out } = x;
+        let normal = |s: T, u: T, fallback: V3<T>| {
+            let v = self.dhat * s - self.q(u);
+            let n = v.normalize_or_zero();
+            V3::select(n.length2().gt(T::zero()), n, fallback)
+        };
+        let t_in = self.tc + s_in * self.inv_dlen;
+        let t_out = self.tc + s_out * self.inv_dlen;
+        let n_in = normal(s_in, u_in, -self.dhat);
+        let n_out = normal(s_out, u_out, self.dhat);
+        // `clip = false`: hit means only "the line meets it" (for hulls clipped later).
+        let range = if clip { in_range(ray, t_in, t_out) } else { t_in.le(t_out) };
+        let hit = found & self.near & range;
+        Interval { t_in, t_out, n_in, n_out, u_in, u_out, hit }.masked(hit)
+    }
+}

@@ -1,0 +1,352 @@
+//! Polynomial root isolation by the derivative cascade, and bracketed root solvers.
+//!
+//! Everything here is generic over [`Real`] and branch-free in the data (lanes use masks and
+//! `select`); loops whose trip count depends on the data (ITP, Newton) run until **every**
+//! lane has converged and freeze the lanes that already have, so a lane's result is the same
+//! as the scalar call's for the same input (the arithmetic is the same sequence of IEEE
+//! operations; no fused multiply-add is used).
+//!
+//! # Derivative cascade (Russig §3.2, Salm §3.2)
+//! If `u` is monotone between consecutive *breakpoints* `x₀ < x₁ < … < x_k`, each piece holds
+//! at most one root, found by a bracketed solver where the end values differ in sign. The
+//! roots of `u` are then the breakpoints of its antiderivative's level. [`cascade_level`] does
+//! one level with fixed-size arrays: a piece without a sign change yields a *placeholder*
+//! (its right end, or its left end when `u` is exactly zero there) so the output stays sorted
+//! and has a fixed length — extra breakpoints only split monotone pieces further, which is
+//! harmless, and placeholders are extrema of `u`'s antiderivative's derivative (so double roots
+//! without a sign change still appear among the breakpoints).
+//!
+//! # Solvers
+//! * [`bisection`]: fixed iteration count (Russig and Salm use 10 on the GPU).
+//! * [`itp`]: Oliveira & Takahashi's ITP method (interpolate, truncate, project) — never
+//!   slower than bisection in the worst case, superlinear on smooth roots.
+//! * [`newton`]: safeguarded Newton (`rtsafe`): a Newton step where it stays inside the
+//!   bracket and shrinks fast enough, bisection otherwise.
+
+use super::quadric::quadratic_roots_in;
+use crate::real::{Mask, Real};
+
+/// How one bracket is solved (the per-bracket part of a [`crate::kernel::roots::Solver`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Bracket {
+    /// Fixed-iteration bisection.
+    Bisection(u32),
+    /// ITP to the default tolerance.
+    Itp,
+    /// Safeguarded Newton to the default tolerance (needs the derivative).
+    Newton,
+}
+
+/// Horner evaluation of `c[0] + c[1]·x + … + c[N−1]·x^(N−1)`.
+#[inline(always)]
+pub fn horner<T: Real, const N: usize>(c: &[T; N], x: T) -> T {
+    horner_slice(c, x)
+}
+
+/// Horner evaluation of `c[0] + c[1]·x + … + c[len−1]·x^(len−1)` (`c` non-empty).
+#[inline(always)]
+fn horner_slice<T: Real>(c: &[T], x: T) -> T {
+    let mut i = c.len() - 1;
+    let mut acc = c[i];
+    while i > 0 {
+        i -= 1;
+        acc = acc * x + c[i];
+    }
+    acc
+}
+
+/// Product of two polynomials (`K = N + M − 1`).
+#[inline(always)]
+pub fn poly_mul<T: Real, const N: usize, const M: usize, const K: usize>(a: &[T; N], b: &[T; M]) -> [T; K] {
+    debug_assert!(K + 1 == N + M);
+    let mut c = [T::zero(); K];
+    for i in 0..N {
+        for j in 0..M {
+            c[i + j] += a[i] * b[j];
+        }
+    }
+    c
+}
+
+/// Lane-wise "strictly opposite signs".
+#[inline(always)]
+pub fn opposite<T: Real>(fa: T, fb: T) -> T::Mask {
+    let z = T::zero();
+    (fa.lt(z) & fb.gt(z)) | (fa.gt(z) & fb.lt(z))
+}
+
+/// Fixed-iteration bisection of `f` on `[a, b]` (`f(a) = fa`); returns the midpoint of the last
+/// bracket. Where `f(a)`, `f(b)` do not differ in sign the result is some point of `[a, b]`.
+#[inline(always)]
+pub fn bisection<T: Real>(f: impl Fn(T) -> T, a: T, b: T, fa: T, iters: u32) -> T {
+    let half = T::cst(0.5);
+    let neg_a = fa.lt(T::zero());
+    let (mut a, mut b) = (a, b);
+    for _ in 0..iters {
+        let m = (a + b) * half;
+        let neg_m = f(m).lt(T::zero());
+        // Same sign as at a: the root is in [m, b].
+        let same = (neg_m & neg_a) | (!neg_m & !neg_a);
+        a = T::select(same, m, a);
+        b = T::select(same, b, m);
+    }
+    (a + b) * half
+}
+
+/// Default absolute tolerance on a root in `[0, 1]`: 4 ulps of 1.
+#[inline(always)]
+pub fn default_tol<T: Real>() -> T {
+    T::epsilon() * T::cst(4.0)
+}
+
+/// Iteration cap of ITP and Newton: more than bisection needs to reach [`default_tol`] from a
+/// unit bracket in either precision (≤ 51 halvings for f64), so the cap never binds on a
+/// valid bracket; it bounds the work on pathological input.
+pub const MAX_ITER: u32 = 64;
+
+/// ITP (Oliveira & Takahashi 2020) with `κ₁ = 0.2/(b − a)`, `κ₂ = 2`, `n₀ = 1`, on a valid
+/// bracket (`valid`: `fa`, `fb` of strictly opposite signs; other lanes return the midpoint).
+/// Stops when the bracket is at most `2·tol` wide (returning its midpoint) or when two
+/// successive ITP points are within `tol` (returning the last one: the interpolation
+/// converges superlinearly while one bracket end may stay put, as in regula falsi).
+#[inline(always)]
+pub fn itp<T: Real>(f: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask, tol: T) -> T {
+    let zero = T::zero();
+    let half = T::cst(0.5);
+    let one = T::one();
+    // Orient: y = s·f with y(a) < 0 < y(b).
+    let s = T::select(fa.gt(zero), -one, one);
+    let (mut a, mut b, mut ya, mut yb) = (a, b, fa * s, fb * s);
+    let w0 = b - a;
+    let k1 = T::cst(0.2) / T::select(w0.gt(zero), w0, one);
+    // ε·2^(n_max − j) with n_max = log2(w0/2ε) + n₀ (real-valued): starts at w0.
+    let mut rmax = w0;
+    let two_tol = tol * T::cst(2.0);
+    let mut done = !valid | w0.le(two_tol);
+    let mut stepped = T::Mask::splat(false);
+    let mut xprev = (a + b) * half;
+    let mut xlast = xprev;
+    let mut it = 0;
+    while !done.all() && it < MAX_ITER {
+        it += 1;
+        let w = b - a;
+        let xh = (a + b) * half;
+        let r = rmax - w * half;
+        let delta = k1 * w * w;
+        let den = yb - ya;
+        let xf = (yb * a - ya * b) / T::select(den.gt(zero), den, one);
+        let sigma = T::select(xh.ge(xf), one, -one);
+        let xt = T::select(delta.le((xh - xf).abs()), xf + sigma * delta, xh);
+        let x = T::select((xt - xh).abs().le(r), xt, xh - sigma * r);
+        let x = x.clamp(a, b);
+        let y = f(x) * s;
+        let act = !done;
+        let lo = act & y.lt(zero);
+        let hi = act & y.gt(zero);
+        let ex = act & y.eq(zero);
+        a = T::select(lo | ex, x, a);
+        ya = T::select(lo, y, ya);
+        b = T::select(hi | ex, x, b);
+        yb = T::select(hi, y, yb);
+        rmax = T::select(act, rmax * half, rmax);
+        let st = act & (x - xprev).abs().le(tol) & T::Mask::splat(it > 1);
+        stepped = stepped | st | (act & ex);
+        xlast = T::select(act, x, xlast);
+        xprev = T::select(act, x, xprev);
+        done = done | (b - a).le(two_tol) | ex | st;
+    }
+    T::select(stepped, xlast, (a + b) * half)
+}
+
+/// Safeguarded Newton (`rtsafe`) on a valid bracket: a Newton step of `f/df` where it falls
+/// strictly inside the current bracket, bisection otherwise; stops when a step is at most
+/// `tol` or the bracket is at most `tol` wide.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn newton<T: Real>(f: impl Fn(T) -> T, df: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask, tol: T) -> T {
+    let zero = T::zero();
+    let half = T::cst(0.5);
+    let one = T::one();
+    let s = T::select(fa.gt(zero), -one, one);
+    let (mut a, mut b) = (a, b);
+    let (ya, yb) = (fa * s, fb * s);
+    // Start at the regula-falsi point (inside the bracket for a valid one).
+    let den = yb - ya;
+    let x0 = a - ya * (b - a) / T::select(den.gt(zero), den, one);
+    let mut x = T::select(valid, x0.clamp(a, b), (a + b) * half);
+    let mut done = !valid | (b - a).le(tol);
+    let mut it = 0;
+    while !done.all() && it < MAX_ITER {
+        it += 1;
+        let act = !done;
+        let y = f(x) * s;
+        let dy = df(x) * s;
+        let lo = act & y.lt(zero);
+        let hi = act & y.gt(zero);
+        a = T::select(lo, x, a);
+        b = T::select(hi, x, b);
+        let xn = x - y / dy;
+        let inside = xn.gt(a) & xn.lt(b); // false for NaN / ±∞
+        let xm = (a + b) * half;
+        let xnew = T::select(inside, xn, xm);
+        let step = (xnew - x).abs();
+        let conv = y.eq(zero) | step.le(tol) | (b - a).le(tol);
+        x = T::select(act & !y.eq(zero), xnew, x);
+        done = done | (act & conv);
+    }
+    x
+}
+
+/// One level of the derivative cascade on fixed-size buffers.
+///
+/// `bp[..n]` are sorted breakpoints between which `f` is monotone; returns `n + 1` breakpoints
+/// `bp[0], x₁, …, x_{n−1}, bp[n−1]` where `x_i` is the root of `f` in piece `i` (or a
+/// placeholder, see the module docs). `df` is only called by [`Bracket::Newton`].
+#[inline(always)]
+pub fn cascade_level<T: Real>(
+    bp: &[T; 8],
+    n: usize,
+    f: impl Fn(T) -> T + Copy,
+    df: impl Fn(T) -> T + Copy,
+    method: Bracket,
+) -> [T; 8] {
+    debug_assert!((2..8).contains(&n));
+    let mut fv = [T::zero(); 8];
+    for i in 0..n {
+        fv[i] = f(bp[i]);
+    }
+    let mut out = [T::zero(); 8];
+    out[0] = bp[0];
+    out[n] = bp[n - 1];
+    let tol = default_tol::<T>();
+    // A function value of exactly 0 at a piece end carries no sign. For polynomials that is a
+    // root at the end; for the spline's scaled sign functions (`2√g·f'` …) it happens where
+    // g = 0 while f' ≠ 0, so the sign is taken a little inside, at √ε of the piece width
+    // (a root closer than that to the end is represented by the end, a candidate anyway).
+    let nudge = T::epsilon().sqrt();
+    for i in 0..n - 1 {
+        let (mut a, mut b, mut fa, mut fb) = (bp[i], bp[i + 1], fv[i], fv[i + 1]);
+        let (za, zb) = (fa.eq(T::zero()), fb.eq(T::zero()));
+        if (za | zb).any() {
+            let w = (b - a) * nudge;
+            let (a2, b2) = (a + w, b - w);
+            let ok = w.gt(T::zero());
+            let (za, zb) = (za & ok, zb & ok);
+            if za.any() {
+                a = T::select(za, a2, a);
+                fa = T::select(za, f(a2), fa);
+            }
+            if zb.any() {
+                b = T::select(zb, b2, b);
+                fb = T::select(zb, f(b2), fb);
+            }
+        }
+        let valid = opposite(fa, fb);
+        // Placeholder: the left end if f is exactly 0 there, else the right end.
+        let ph = T::select(fv[i].eq(T::zero()), bp[i], bp[i + 1]);
+        let x = if valid.none() {
+            ph
+        } else {
+            let r = match method {
+                Bracket::Bisection(k) => bisection(f, a, b, fa, k),
+                Bracket::Itp => itp(f, a, b, fa, fb, valid, tol),
+                Bracket::Newton => newton(f, df, a, b, fa, fb, valid, tol),
+            };
+            T::select(valid, r, ph)
+        };
+        out[i + 1] = x;
+    }
+    out
+}
+
+/// All real roots of the polynomial `c` (degree `N − 1 ≤ 6`) in `[lo, hi]`, as breakpoints:
+/// returns `(buf, n)` with `buf[..n]` sorted, `buf[0] = lo`, `buf[n−1] = hi`, every root of `c`
+/// in `[lo, hi]` that changes sign among `buf[1..n−1]` (and every root of even multiplicity that
+/// is an extremum found by a lower level), plus placeholders. Uses the derivative cascade
+/// from the quadratic `c^(N−3)` (analytic) upward with the given bracket method.
+#[inline(always)]
+pub fn poly_breakpoints<T: Real, const N: usize>(c: &[T; N], lo: T, hi: T, method: Bracket) -> ([T; 8], usize) {
+    assert!((3..=7).contains(&N), "degree 2..=6");
+    // Derivatives d[k] = c^(k), stored padded to 7 coefficients.
+    let mut ders = [[T::zero(); 7]; 5];
+    ders[0][..N].copy_from_slice(c);
+    for k in 1..N - 2 {
+        for i in 0..N - k {
+            ders[k][i] = ders[k - 1][i + 1] * T::cst((i + 1) as f64);
+        }
+    }
+    let top = N - 3; // ders[top] is quadratic
+    let q = [ders[top][0], ders[top][1], ders[top][2]];
+    let (x1, x2) = quadratic_roots_in(&q, lo, hi);
+    let mut bp = [hi; 8];
+    bp[0] = lo;
+    bp[1] = x1;
+    bp[2] = x2;
+    bp[3] = hi;
+    let mut n = 4;
+    let mut k = top;
+    while k > 0 {
+        k -= 1;
+        let p = ders[k];
+        let deg = N - 1 - k;
+        let f = move |x: T| eval_padded(&p, deg, x);
+        let df = move |x: T| eval_deriv_padded(&p, deg, x);
+        bp = cascade_level(&bp, n, f, df, method);
+        n += 1;
+    }
+    (bp, n)
+}
+
+/// The polynomial `p[..=deg]` (padded to 7 coefficients) at `x`.
+#[inline(always)]
+fn eval_padded<T: Real>(p: &[T; 7], deg: usize, x: T) -> T {
+    horner_slice(&p[..=deg], x)
+}
+
+/// The derivative of the polynomial `p[..=deg]` (padded to 7 coefficients) at `x`.
+#[inline(always)]
+fn eval_deriv_padded<T: Real>(p: &[T; 7], deg: usize, x: T) -> T {
+    if deg == 0 {
+        return T::zero();
+    }
+    let mut acc = p[deg] * T::cst(deg as f64);
+    let mut i = deg - 1;
+    while i > 0 {
+        acc = acc * x + p[i] * T::cst(i as f64);
+        i -= 1;
+    }
+    acc
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sextic_roots_found_by_every_method() {
+        // ∏ (x − k/7), k = 1..6: six simple roots in (0, 1).
+        let mut c = [1.0f64, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+        for k in 1..=6 {
+            let r = k as f64 / 7.0;
+            let mut nc = [0.0; 7];
+            for i in 0..7 {
+                nc[i] -= r * c[i];
+                if i > 0 {
+                    nc[i] += c[i - 1];
+                }
+            }
+            c = nc;
+        }
+        for (m, tol) in [(Bracket::Bisection(40), 1e-11), (Bracket::Itp, 1e-13), (Bracket::Newton, 1e-13)] {
+            let (bp, n) = poly_breakpoints(&c, 0.0, 1.0, m);
+            assert_eq!(n, 8);
+            for k in 1..=6 {
+                let r = k as f64 / 7.0;
+                let best = bp[..n].iter().map(|x| (x - r).abs()).fold(f64::INFINITY, f64::min);
+                // Bisection(40) on a bracket ≤ 1 wide: ≤ 2⁻⁴¹ ≈ 4.5e-13; ITP/Newton: 4 ulps of 1
+                // plus the root's condition (|c'(r)| ≈ 1e-3, |c| rounding ≈ 1e-16 → 1e-13).
+                assert!(best < tol, "{m:?}: root {r} missed, best {best}");
+            }
+        }
+    }
+}
