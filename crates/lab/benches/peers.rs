@@ -9,7 +9,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::hint::black_box;
-use tubecast::{Ray, RoundCone, V3};
+use tubecast::{Primitive, Ray, RoundCone, V3};
 use tubecast_lab::peer::embree::{Device, Scene as EScene};
 use tubecast_lab::peer::{scene_inputs, SceneInputs};
 use tubecast_render::accel::Bvh;

@@ -382,7 +382,7 @@ impl Drop for Scene {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use tubecast::V3;
+    use tubecast::{Primitive, V3};
 
     #[test]
     fn layouts_match_rtcore_headers() {

@@ -9,7 +9,7 @@ use crate::peer::embree::{Device, Scene as EScene};
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
-use tubecast::{Ray, RoundCone};
+use tubecast::{Primitive, Ray, RoundCone};
 
 /// First crossing in `[0, ∞)` of a line interval.
 fn first(t_in: f64, t_out: f64) -> Option<f64> {
