@@ -135,7 +135,7 @@ pub fn run_accuracy(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Rep
     }
     bar.finish_and_clear();
 
-    let mut md = header("Accuracy vs cost", opts, "cargo run --release --example report -- accuracy");
+    let mut md = header("Accuracy vs cost", opts, "cargo run --release -p tubecast-lab -- accuracy");
     md.push_str(
         "Error of the line interval's entry and exit `t` (the larger of the two) against an independent `f64` \
          oracle, on rays that robustly hit (outside the method's error band). `r`: units of the primitive's largest \
@@ -295,7 +295,7 @@ pub fn run_stability(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Re
     );
     bar.finish_and_clear();
 
-    let mut md = header("Stability per failure region", opts, "cargo run --release --example report -- stability");
+    let mut md = header("Stability per failure region", opts, "cargo run --release -p tubecast-lab -- stability");
     md.push_str(
         "Per region and method: cases the oracle says must hit / must miss (outside the method's error band \
          `E` of `tests/link_props.rs` for links, `64·ε·(S + D)` for splines), how many of them were answered \

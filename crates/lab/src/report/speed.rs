@@ -66,7 +66,7 @@ pub fn run_speed(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
     }
     bar.finish_and_clear();
     let px = (opts.image as f64).powi(2);
-    let mut md = header("Speed and scale", opts, "cargo run --release --example report -- speed");
+    let mut md = header("Speed and scale", opts, "cargo run --release -p tubecast-lab -- speed");
     let _ = write!(
         md,
         "Generated *Furball* scenes (tapering hairs of 78 cone links, seed {}), BVH build and one {}×{} frame \
