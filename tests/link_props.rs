@@ -394,6 +394,3 @@ fn kernels_never_nan_on_valid_extremes() {
         }
     }
 }
-
-#[allow(dead_code)]
-fn _real_in_scope<T: Real>() {}
