@@ -44,6 +44,10 @@ pub struct RenderArgs {
     /// Tube radius for formats without radii (.trk, .tck, OBJ without radius).
     #[arg(long, default_value_t = 0.2)]
     pub radius: f64,
+    /// Replace every radius below R (and placeholder radii ≤ 0, which SWC files from the field
+    /// often hold) by R; a warning counts them. Without it such a file is refused.
+    #[arg(long, value_name = "R")]
+    pub min_radius: Option<f64>,
     /// Colouring.
     #[arg(long, value_enum, default_value_t = Color::Direction)]
     pub color: Color,
@@ -86,6 +90,10 @@ pub struct InfoArgs {
     /// Tube radius for formats without radii.
     #[arg(long, default_value_t = 0.2)]
     pub radius: f64,
+    /// Replace every radius below R (and placeholder radii ≤ 0, which SWC files from the field
+    /// often hold) by R; a warning counts them. Without it such a file is refused.
+    #[arg(long, value_name = "R")]
+    pub min_radius: Option<f64>,
     /// Count the primitives of the spline model (as `render --splines` uses them).
     #[arg(long)]
     pub splines: bool,
@@ -105,6 +113,10 @@ pub struct IntersectArgs {
     /// Tube radius for formats without radii.
     #[arg(long, default_value_t = 0.2)]
     pub radius: f64,
+    /// Replace every radius below R (and placeholder radii ≤ 0, which SWC files from the field
+    /// often hold) by R; a warning counts them. Without it such a file is refused.
+    #[arg(long, value_name = "R")]
+    pub min_radius: Option<f64>,
 }
 
 /// `tubecast generate`.

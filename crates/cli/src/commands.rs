@@ -2,12 +2,37 @@
 
 use crate::args::{Color, GenerateArgs, InfoArgs, IntersectArgs, Kind, RenderArgs};
 use crate::error::CliError;
+use std::path::Path;
 use tubecast_render::accel::{hit_table, Bvh};
 use tubecast_render::io::{self, npy::Array2};
 use tubecast_render::render::{self, ColorBy, Options, Shading, View};
-use tubecast_render::scene::{generate, Model, Scene};
+use tubecast_render::scene::{generate, LoadOptions, Model, Scene};
 
 type Res = Result<(), CliError>;
+
+/// Print `tubecast: warning: {msg}` on stderr.
+fn warn(msg: &str) {
+    eprintln!("tubecast: warning: {msg}");
+}
+
+/// Load the scene at `input`; warn about radii raised to `min_radius` and, with `empty`
+/// (what the command does then), about a scene without nodes.
+fn load(input: &Path, radius: f64, min_radius: Option<f64>, empty: &str) -> Result<Scene, CliError> {
+    let (scene, rep) = Scene::load_with(input, &LoadOptions { default_radius: radius, min_radius })?;
+    if let (Some(r), true) = (min_radius, rep.replaced > 0) {
+        warn(&format!(
+            "{}: {} of {} radii were below --min-radius {r} ({} of them ≤ 0) and were set to {r}",
+            input.display(),
+            rep.replaced,
+            scene.nodes.len(),
+            rep.placeholders
+        ));
+    }
+    if scene.nodes.is_empty() {
+        warn(&format!("{}: no streamlines or nodes (empty scene); {empty}", input.display()));
+    }
+    Ok(scene)
+}
 
 fn model(splines: bool) -> Model {
     if splines {
@@ -18,10 +43,12 @@ fn model(splines: bool) -> Model {
 }
 
 pub fn render(a: &RenderArgs) -> Res {
-    let scene = Scene::load(&a.input, a.radius)?;
+    let scene = load(&a.input, a.radius, a.min_radius, "the image shows the background only")?;
     let prims = scene.model_primitives(model(a.splines))?;
-    // Bounds of the primitives in use (a spline can bulge beyond its links' boxes).
-    let bounds = scene.stats_of(&prims).bounds;
+    // Bounds of the primitives in use (a spline can bulge beyond its links' boxes); an empty
+    // scene is viewed as if it were the box [-1, 1]³.
+    let st = scene.stats_of(&prims);
+    let bounds = if st.is_empty() { ([-1.0; 3], [1.0; 3]) } else { st.bounds };
     let bvh = Bvh::build(prims);
     let view = View { eye: a.eye, look_at: a.look_at, up: a.up, fov_deg: a.fov, width: a.width, height: a.height };
     let cam = view.camera(bounds)?;
@@ -42,7 +69,7 @@ pub fn render(a: &RenderArgs) -> Res {
 }
 
 pub fn info(a: &InfoArgs) -> Res {
-    let scene = Scene::load(&a.input, a.radius)?;
+    let scene = load(&a.input, a.radius, a.min_radius, "counts are zero")?;
     let prims = scene.model_primitives(model(a.splines))?;
     let st = if a.splines { scene.stats_of(&prims) } else { scene.stats() };
     let bvh = Bvh::build(prims);
@@ -57,8 +84,12 @@ pub fn info(a: &InfoArgs) -> Res {
     } else {
         println!("splines    {}", st.splines);
     }
-    println!("bounds min {:?}", st.bounds.0);
-    println!("bounds max {:?}", st.bounds.1);
+    if st.is_empty() {
+        println!("bounds     none (empty scene)");
+    } else {
+        println!("bounds min {:?}", st.bounds.0);
+        println!("bounds max {:?}", st.bounds.1);
+    }
     println!(
         "memory     scene {} B, primitives + BVH {} B ({} BVH nodes)",
         scene.memory_bytes(),
@@ -69,7 +100,7 @@ pub fn info(a: &InfoArgs) -> Res {
 }
 
 pub fn intersect(a: &IntersectArgs) -> Res {
-    let scene = Scene::load(&a.input, a.radius)?;
+    let scene = load(&a.input, a.radius, a.min_radius, "every ray misses")?;
     let name = a.rays.display().to_string();
     let rays = io::npy::read(&io::read_bytes(&a.rays)?, &name, Some(6))?.rays(&name)?;
     let bvh = Bvh::build(scene.primitives());

@@ -37,7 +37,6 @@ fn bad_scene_input_is_an_error() {
         (l([1.0, 0.0, 0.0], -1.0), "negative radius"),
         (l([1e19, 0.0, 0.0], 1.0), "exceeds"),
         (l([1.0, 0.0, 0.0], 0.0), "zero radius at both ends"),
-        (vec![], "no nodes"),
     ] {
         let e = Scene::from_polylines(&lines, 0.5, "in.tck").unwrap_err();
         assert!(e.to_string().contains(what), "expected {what:?} in {e}");
@@ -45,6 +44,10 @@ fn bad_scene_input_is_an_error() {
     for r in [0.0, -1.0, f64::NAN] {
         assert!(Scene::from_polylines(&l([1.0; 3], 1.0), r, "x").is_err());
     }
+    // No polylines used to be refused ("no nodes"); it is the empty scene now
+    // (tests/scene_empty.rs), still with the default radius checked.
+    assert_eq!(Scene::from_polylines(&[], 0.5, "in.tck").unwrap(), Scene::default());
+    assert!(Scene::from_polylines(&[], -1.0, "in.tck").is_err());
 }
 
 /// Hand-derived reference: a ray along +y at height z above the axis of the cylinder

@@ -1,7 +1,16 @@
 //! SWC neuron morphologies: one node per line, seven whitespace-separated columns
 //! `id type x y z radius parent`; `#` starts a comment; rows may come in any order; a parent
-//! of `-1` marks a root and there may be several roots. Coordinates and radii are kept in the
-//! file's units.
+//! of `-1` marks a root and there may be several roots; ids need not be contiguous or sorted.
+//! Coordinates and radii are kept in the file's units. A file with no nodes (empty, or only
+//! comments) is a valid empty morphology, as navis and NeuroM read it.
+//!
+//! # Placeholder radii
+//! Files from the field often hold `0` or a negative number where the radius is unknown.
+//! [`read`] keeps a radius of `0` (a tapering tip is legitimate; a link with radius `0` at
+//! both ends is refused later, when a scene is built) and refuses a negative one, naming the
+//! line. [`read_with`] with a minimum radius `R` instead replaces every radius below `R` —
+//! so every placeholder `≤ 0` — by `R`, and counts the replacements (the `--min-radius R`
+//! option of the `tubecast` command line).
 
 use super::{parse_finite, IoError, Polyline};
 use std::collections::HashMap;
@@ -21,6 +30,22 @@ pub struct SwcNode {
     pub parent: i64,
 }
 
+/// What [`read_with`] read.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SwcFile {
+    /// The nodes, in file order.
+    pub nodes: Vec<SwcNode>,
+    /// The 1-based line of each node.
+    pub lines: Vec<usize>,
+    /// Radii replaced by the minimum radius (all of them below it).
+    pub replaced: usize,
+    /// Of those, the radii that were `≤ 0` (placeholders).
+    pub placeholders: usize,
+}
+
+/// The hint every placeholder-radius error carries.
+pub const MIN_RADIUS_HINT: &str = "placeholder radius? `--min-radius R` replaces radii below R (and ≤ 0) by R";
+
 fn parse_int(tok: &str) -> Option<i64> {
     if let Ok(v) = tok.parse::<i64>() {
         return Some(v);
@@ -35,9 +60,22 @@ fn parse_int(tok: &str) -> Option<i64> {
 }
 
 /// Parse an SWC file. Errors name the line: wrong column count, a non-number, a negative or
-/// non-finite value, a duplicate id, a parent that does not exist, a node that is its own
-/// ancestor (cycle), or a file without nodes.
+/// non-finite value, a duplicate id, a parent that does not exist, or a node that is its own
+/// ancestor (cycle). A file without nodes gives no nodes.
 pub fn read(data: &[u8], name: &str) -> Result<Vec<SwcNode>, IoError> {
+    Ok(read_with(data, name, None)?.nodes)
+}
+
+/// [`read`], with each node's line, and with `min_radius: Some(R)` every radius below `R`
+/// (negative placeholders included) replaced by `R` and counted. `R` must be a positive
+/// finite number (an error about the whole file otherwise).
+pub fn read_with(data: &[u8], name: &str, min_radius: Option<f64>) -> Result<SwcFile, IoError> {
+    if let Some(r) = min_radius {
+        if !(r.is_finite() && r > 0.0) {
+            return Err(IoError::file(name, format!("minimum radius {r} must be a positive finite number")));
+        }
+    }
+    let (mut replaced, mut placeholders) = (0, 0);
     let text = std::str::from_utf8(data)
         .map_err(|e| IoError::offset(name, e.valid_up_to() as u64, "not UTF-8 text (is this an SWC file?)"))?;
     let mut nodes = Vec::new();
@@ -71,8 +109,16 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<SwcNode>, IoError> {
             v[k] = parse_finite(cols[2 + k])
                 .ok_or_else(|| IoError::line(name, ln, format!("{what} {:?} is not a finite number", cols[2 + k])))?;
         }
-        if v[3] < 0.0 {
-            return Err(IoError::line(name, ln, format!("radius {} is negative", v[3])));
+        match min_radius {
+            Some(r) if v[3] < r => {
+                replaced += 1;
+                placeholders += (v[3] <= 0.0) as usize;
+                v[3] = r;
+            }
+            None if v[3] < 0.0 => {
+                return Err(IoError::line(name, ln, format!("radius {} is negative ({MIN_RADIUS_HINT})", v[3])));
+            }
+            _ => {}
         }
         let parent = parse_int(cols[6])
             .ok_or_else(|| IoError::line(name, ln, format!("parent {:?} is not an integer", cols[6])))?;
@@ -89,11 +135,8 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<SwcNode>, IoError> {
         lines.push(ln);
         nodes.push(SwcNode { id, kind, pos: [v[0], v[1], v[2]], radius: v[3], parent });
     }
-    if nodes.is_empty() {
-        return Err(IoError::file(name, "no nodes (empty or only comments)"));
-    }
     check_parents(&nodes, &lines, &index, name)?;
-    Ok(nodes)
+    Ok(SwcFile { nodes, lines, replaced, placeholders })
 }
 
 /// Parents exist, and following parents always reaches a root (no cycles). `lines`: the line

@@ -1,12 +1,21 @@
 //! Building a [`Scene`] from reader output, with validation.
 
 use super::{Node, Scene, SceneError, MAX_COORD};
-use crate::io::{self, IoError, Polyline};
-use std::path::Path;
+use crate::io::{self, Polyline};
+
+/// Nodes and links before validation.
+pub(super) type Parts = (Vec<Node>, Vec<[u32; 2]>);
 
 impl Scene {
-    /// A scene from SWC rows (links child → parent; ids mapped to indices).
+    /// A scene from SWC rows (links child → parent; ids mapped to indices). No rows give the
+    /// empty scene.
     pub fn from_swc(rows: &[io::swc::SwcNode], name: &str) -> Result<Self, SceneError> {
+        let (nodes, links) = Self::swc_parts(rows, name)?;
+        Self::finish(nodes, links, name)
+    }
+
+    /// The nodes and links of SWC rows.
+    pub(super) fn swc_parts(rows: &[io::swc::SwcNode], name: &str) -> Result<Parts, SceneError> {
         let mut index = std::collections::HashMap::new();
         for (i, r) in rows.iter().enumerate() {
             index.insert(r.id, i as u32);
@@ -23,11 +32,18 @@ impl Scene {
                 links.push([p, i as u32]);
             }
         }
+        Ok((nodes, links))
+    }
+
+    /// A scene from polylines; points without a radius get `default_radius`. No polylines
+    /// (or only empty ones) give the empty scene.
+    pub fn from_polylines(lines: &[Polyline], default_radius: f64, name: &str) -> Result<Self, SceneError> {
+        let (nodes, links) = Self::polyline_parts(lines, default_radius)?;
         Self::finish(nodes, links, name)
     }
 
-    /// A scene from polylines; points without a radius get `default_radius`.
-    pub fn from_polylines(lines: &[Polyline], default_radius: f64, name: &str) -> Result<Self, SceneError> {
+    /// The nodes and links of polylines.
+    pub(super) fn polyline_parts(lines: &[Polyline], default_radius: f64) -> Result<Parts, SceneError> {
         if !(default_radius.is_finite() && default_radius > 0.0) {
             return Err(SceneError::DefaultRadius(default_radius));
         }
@@ -43,13 +59,11 @@ impl Scene {
                 }
             }
         }
-        Self::finish(nodes, links, name)
+        Ok((nodes, links))
     }
 
-    fn finish(nodes: Vec<Node>, mut links: Vec<[u32; 2]>, name: &str) -> Result<Self, SceneError> {
-        if nodes.is_empty() {
-            return Err(SceneError::NoNodes { file: name.to_string() });
-        }
+    /// Validate nodes and links into a scene (no nodes: the empty scene).
+    pub(super) fn finish(nodes: Vec<Node>, mut links: Vec<[u32; 2]>, name: &str) -> Result<Self, SceneError> {
         if nodes.len() > u32::MAX as usize - 1 {
             return Err(SceneError::TooManyNodes { file: name.to_string() });
         }
@@ -78,23 +92,5 @@ impl Scene {
             }
         }
         Ok(s)
-    }
-
-    /// Load a scene from a file, by extension: `.swc`, `.trk`, `.tck`, `.obj`. Formats without
-    /// radii (and OBJ vertices without one) use `default_radius`.
-    pub fn load(path: &Path, default_radius: f64) -> Result<Self, SceneError> {
-        let name = path.display().to_string();
-        let data = io::read_bytes(path)?;
-        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
-        match ext.as_str() {
-            "swc" => Self::from_swc(&io::swc::read(&data, &name)?, &name),
-            "trk" => Self::from_polylines(&io::trk::read(&data, &name)?.1, default_radius, &name),
-            "tck" => Self::from_polylines(&io::tck::read(&data, &name)?, default_radius, &name),
-            "obj" => Self::from_polylines(&io::obj::read(&data, &name)?, default_radius, &name),
-            _ => Err(SceneError::Io(IoError::file(
-                &name,
-                format!("unknown extension {ext:?} (expected .swc, .trk, .tck or .obj)"),
-            ))),
-        }
     }
 }

@@ -1,6 +1,7 @@
 //! Why a scene could not be built or loaded.
 
 use super::MAX_COORD;
+use crate::io::swc::MIN_RADIUS_HINT;
 use crate::io::IoError;
 use std::fmt;
 use tubecast::GeometryError;
@@ -21,10 +22,19 @@ pub enum SceneError {
     },
     /// The radius for points without one is not a positive number.
     DefaultRadius(f64),
-    /// The input has no nodes.
-    NoNodes {
+    /// The minimum radius is not a positive number.
+    MinRadius(f64),
+    /// An SWC node's radius 0 (a placeholder, most likely) leaves a link without volume: its
+    /// parent's radius is 0 too, or it has no parent and no children.
+    ZeroRadius {
         /// Input name.
         file: String,
+        /// The node's 1-based line.
+        line: usize,
+        /// The node's id.
+        node: i64,
+        /// Its parent's id and line, when the link to the parent is the one without volume.
+        parent: Option<(i64, usize)>,
     },
     /// The input has more nodes than `u32` link indices can address.
     TooManyNodes {
@@ -75,7 +85,16 @@ impl fmt::Display for SceneError {
                 write!(f, "{file}: parent {parent} of node {node} does not exist")
             }
             Self::DefaultRadius(r) => write!(f, "radius {r} must be a positive number"),
-            Self::NoNodes { file } => write!(f, "{file}: no nodes"),
+            Self::MinRadius(r) => write!(f, "minimum radius {r} must be a positive number"),
+            Self::ZeroRadius { file, line, node, parent: Some((p, pl)) } => write!(
+                f,
+                "{file}: line {line}: node {node} and its parent {p} (line {pl}) both have radius 0, so the link \
+                 between them has no volume ({MIN_RADIUS_HINT})"
+            ),
+            Self::ZeroRadius { file, line, node, parent: None } => write!(
+                f,
+                "{file}: line {line}: node {node} has radius 0 and no links, so it has no volume ({MIN_RADIUS_HINT})"
+            ),
             Self::TooManyNodes { file } => write!(f, "{file}: too many nodes"),
             Self::OutOfRange { file, node } => {
                 write!(f, "{file}: node {node} has a coordinate or radius that is not finite or exceeds {MAX_COORD:e}")

@@ -47,11 +47,13 @@ mod build;
 mod chains;
 mod error;
 pub mod generate;
+mod load;
 mod prim;
 mod stats;
 
 pub use chains::{Chain, SplineSegment};
 pub use error::SceneError;
+pub use load::{LoadOptions, LoadReport};
 pub use prim::{Prim, PrimKind, Shape};
 pub use stats::Stats;
 
@@ -75,7 +77,8 @@ pub struct Node {
     pub kind: i32,
 }
 
-/// Nodes and links.
+/// Nodes and links. A scene may be empty (a file without streamlines or nodes): it has no
+/// primitives, every ray misses it, and its [`Stats`] are zeros.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Scene {
     /// Nodes.

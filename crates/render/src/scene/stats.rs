@@ -20,8 +20,25 @@ pub struct Stats {
     /// Spline segments: cubic Hermite segments, each two [`PrimKind::Spline`] primitives
     /// (zero for the link model, [`Scene::stats`]).
     pub splines: usize,
-    /// Axis-aligned bounds of the surface `(min, max)`.
+    /// Axis-aligned bounds of the surface `(min, max)`; `([0; 3], [0; 3])` for a scene
+    /// without primitives (check [`Stats::is_empty`]), so bounds are always finite.
     pub bounds: ([f64; 3], [f64; 3]),
+}
+
+impl Stats {
+    /// True when the scene has no nodes (so no primitives and no bounds).
+    pub fn is_empty(&self) -> bool {
+        self.nodes == 0
+    }
+}
+
+/// `(lo, hi)`, or zeros when nothing was accumulated (`lo > hi`).
+fn finite_bounds(lo: [f64; 3], hi: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+    if lo[0] > hi[0] {
+        ([0.0; 3], [0.0; 3])
+    } else {
+        (lo, hi)
+    }
 }
 
 impl Scene {
@@ -45,7 +62,7 @@ impl Scene {
                 hi[i] = hi[i].max(b[i]);
             }
         }
-        s.bounds = (lo, hi);
+        s.bounds = finite_bounds(lo, hi);
         s
     }
 
@@ -67,7 +84,7 @@ impl Scene {
                 hi[i] = hi[i].max(y);
             }
         }
-        s.bounds = (lo, hi);
+        s.bounds = finite_bounds(lo, hi);
         s
     }
 }
