@@ -383,6 +383,19 @@ pub fn percentile(v: &[f64], p: f64) -> f64 {
 }
 
 impl Score {
+    /// Count one case the oracle decided (`must_hit` / `must_miss`, outside the band) against
+    /// the method's answer `hit`.
+    fn classify(&mut self, must_hit: bool, must_miss: bool, hit: bool) {
+        if must_hit {
+            self.must_hit += 1;
+            self.false_miss += usize::from(!hit);
+        }
+        if must_miss {
+            self.must_miss += 1;
+            self.false_hit += usize::from(hit);
+        }
+    }
+
     /// Largest error (radii).
     pub fn max_r(&self) -> f64 {
         self.err_r.iter().copied().fold(f64::NAN, f64::max)
@@ -429,14 +442,7 @@ pub fn score_links(prec: Precision, cases: &[LinkCase], truth: &[LinkTruth], out
         // The cases' rays start at t = 0.
         let must_hit = tr.gap < -e && tr.iv.is_some_and(|iv| iv.1 > 0.0 + t_tol);
         let must_miss = tr.gap > e || tr.iv.is_some_and(|iv| iv.1 < 0.0 - t_tol);
-        if must_hit {
-            s.must_hit += 1;
-            s.false_miss += usize::from(!o.hit);
-        }
-        if must_miss {
-            s.must_miss += 1;
-            s.false_hit += usize::from(o.hit);
-        }
+        s.classify(must_hit, must_miss, o.hit);
         if let (true, true, Some((ti, to))) = (o.hit, tr.gap < -e, tr.iv) {
             let r = c.link.ra.max(c.link.rb);
             let dl = c.ray.d.length();
@@ -467,14 +473,7 @@ pub fn score_splines(prec: Precision, cases: &[SplineCase], truth: &[SplineTruth
         let dl = c.ray.d.length();
         let must_hit = tr.gap < -band && tr.iv.is_some_and(|iv| iv.1 > band / dl);
         let must_miss = tr.gap > band || tr.iv.is_some_and(|iv| iv.1 < -band / dl);
-        if must_hit {
-            s.must_hit += 1;
-            s.false_miss += usize::from(!o.hit);
-        }
-        if must_miss {
-            s.must_miss += 1;
-            s.false_hit += usize::from(o.hit);
-        }
+        s.classify(must_hit, must_miss, o.hit);
         if let (true, true, Some((ti, to))) = (o.hit, tr.gap < -band, tr.iv) {
             let (ei, eo) = ((o.t_in - ti).abs(), (o.t_out - to).abs());
             s.err_r.push(ei.max(eo) * dl / c.radius);
