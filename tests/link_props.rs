@@ -30,7 +30,7 @@
 mod common;
 use common::*;
 use proptest::prelude::*;
-use tubecast::{HanLink, Interval, LinkShape, Ray, Real, RoundCone, Scalar, V3};
+use tubecast::{HanLink, Interval, LinkShape, Ray, RoundCone, Scalar, V3};
 use tubecast::{Primitive, WideF32x8, WideF64x4};
 
 fn region() -> impl Strategy<Value = Region> {
