@@ -115,15 +115,17 @@ impl<T: Real> RaySpace<T> {
         // ≤ 1, and t = tc + s·(big/|d|) multiplied the rounding of big/|d| — subnormal there,
         // |d| = 4e149: an absolute q/2 = 2⁻¹⁰⁷⁵, relative 1.4e-4 — by s: t was 208q off, the
         // hit 4.3e-172 outside the tube (bound 1.4e-172). So tubes whose largest offset or
-        // radius w is below 2⁻⁴⁸⁰ (f64; 2⁻⁵⁰ in f32) are measured `up` a power of two, 2⁶⁰⁰
-        // (2⁹⁰): w·up ∈ [2⁻⁴⁷⁴, 2¹²⁰] ([2⁻⁵⁹, 2⁴⁰]) for every w down to the least subnormal, so
-        // every square is normal and finite. Scaling by a power of two is exact and sqrt is
+        // radius w is below 2⁻⁴⁰⁰ (f64; 2⁻³⁸ in f32) are measured `up` a power of two, 2⁶⁰⁰
+        // (2⁹⁰): w·up ∈ [2⁻⁴⁷⁴, 2²⁰⁰] ([2⁻⁵⁹, 2⁵²]) for every w down to the least subnormal, so
+        // every square is normal and finite. (At or above the threshold an offset whose square
+        // underflows, < 2⁻⁵¹¹ (2⁻⁶³), is below 2⁻¹¹¹·w (2⁻²⁵·w): beneath big's own rounding.)
+        // Scaling by a power of two is exact and sqrt is
         // correctly rounded, so where the squares did not underflow the result is the same
         // number, and elsewhere `up = 1`: bit for bit unchanged (and still exactly invariant
         // under scaling by 2^k). The coordinates are formed in the same measure, so a tube
         // whose `big` is subnormal (1/big would overflow) works too.
         let w = (b0 - m).max_abs().max((b1 - m).max_abs()).max((b2 - m).max_abs()).max(rmax);
-        let (thr, sup) = if T::Elem::EPS.to_f64() < 1e-10 { (-480, 600) } else { (-50, 90) };
+        let (thr, sup) = if T::Elem::EPS.to_f64() < 1e-10 { (-400, 600) } else { (-38, 90) };
         let tiny = w.lt(T::cst(2f64.powi(thr)));
         let up = T::select(tiny, T::cst(2f64.powi(sup)), T::one());
         let down = T::select(tiny, T::cst(2f64.powi(-sup)), T::one());
