@@ -11,7 +11,7 @@
 //!   so it collapsed to the largest radius (473 times too small), and t = tc + s·(big/|d|)
 //!   multiplied the rounding of the subnormal big/|d| by |s| ≈ 473: 208q off. Fixed in
 //!   src/kernel/spline/ray_space.rs (the lengths are taken 2⁶⁰⁰ up for such tubes): now
-//!   within 3q (`T_QUANTA`). Its entry also had the collapsed radius (by 1.6%).
+//!   within 3q (`T_QUANTA`). (Finding 1's bounding radius had collapsed too, by 1.6%.)
 //! * The other two are not kernel defects: the kernel's t is within 3q of the true value, and
 //!   no f64 t meets the check's bound E = √(64ε)·S + 8εS + 8ε(D + |t·d|), which models the
 //!   rounding of t as relative (8ε|t·d|) and so assumes t is normal (asserted below). The
@@ -20,7 +20,8 @@
 //!   is the ray; only the pair makes t subnormal. The check's bound needs the absolute term
 //!   |d|·4q (the kernel's ≤ 2q, `T_QUANTA`). Until it has it, `BALL` (the default solver,
 //!   two-sided) fails the check and is not in fuzz/corpus/spline; `PINCHED` (Newton, whose
-//!   check is one-sided: "not outside") passes since the kernel's t lie inside.
+//!   check is one-sided: "not outside") passes only because both its t happen to lie inside
+//!   (a mutant of it, campaign seed 1517 in fuzz/README.md, rounds outwards and fails).
 
 // The check is not this file's (clippy's style lints on it are for its owner).
 #[allow(clippy::needless_range_loop)]
