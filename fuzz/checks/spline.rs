@@ -21,7 +21,9 @@ fn val(data: &[u8], i: usize, raw: bool) -> f64 {
     }
 }
 
-pub fn check(data: &[u8]) {
+/// Tube, ray and solver exactly as [`check`] builds them from the bytes; `None` where the
+/// validators (`QuadTube::new`, `Ray::validate`) reject them.
+pub fn input(data: &[u8]) -> Option<(QuadTube<f64>, Ray<f64>, Solver)> {
     let mode = *data.first().unwrap_or(&0);
     let raw = mode & 0x80 != 0;
     let solver = match mode & 7 {
@@ -35,13 +37,14 @@ pub fn check(data: &[u8]) {
     let b = [V3::new(v(0), v(1), v(2)), V3::new(v(3), v(4), v(5)), V3::new(v(6), v(7), v(8))];
     let r = [v(9).abs(), v(10), v(11).abs()];
     let ray = Ray::new(V3::new(v(12), v(13), v(14)), V3::new(v(15), v(16), v(17)));
-    let t = match QuadTube::new(b, r) {
-        Ok(t) => t,
-        Err(_) => return,
-    };
-    if ray.validate().is_err() {
-        return;
-    }
+    let t = QuadTube::new(b, r).ok()?;
+    ray.validate().ok()?;
+    Some((t, ray, solver))
+}
+
+pub fn check(data: &[u8]) {
+    let Some((t, ray, solver)) = input(data) else { return };
+    let (b, r) = (t.b, t.r);
     let iv = t.intersect_with(&ray, solver);
     sane(&iv);
     for p in t.intersect_pieces(&ray, solver) {
@@ -65,6 +68,11 @@ pub fn check(data: &[u8]) {
                 // Plus the rounding of the hit point o + t·d itself (and of t): ≤ 8ε(D + |t·d|)
                 // with D = |o − b₀| (a far origin cancels against t·d).
                 let far = 8.0 * f64::EPSILON * ((ray.o - b[0]).length() + (ray.d * tt).length());
+                // Plus the absolute rounding of a subnormal t (|t| < MIN_POSITIVE: a multiple of
+                // q = 2⁻¹⁰⁷⁴, whatever the kernel does): t = tc + s·(big·(1/|d|)), |s| ≤ 1, is
+                // four roundings of ≤ q/2 each there, 2q in all: |d|·4q covers it (issue 15,
+                // tests/spline_fuzz_findings.rs: tiny tubes hit by rays with |d| ~ 1e149).
+                let far = far + 4.0 * dl * f64::from_bits(1);
                 let mut bound = (64.0 * f64::EPSILON).sqrt() * s + 8.0 * f64::EPSILON * s + far;
                 if let Solver::Bisection { iters } = solver {
                     // A root of g located to δ = 2^-iters (of a bracket ≤ 1) is a sphere missed

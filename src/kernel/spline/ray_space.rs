@@ -5,7 +5,7 @@ use super::QuadTube;
 use crate::math::bezier::bernstein2;
 use crate::math::roots::{cascade_level, default_tol, horner, itp, opposite, poly_breakpoints, poly_mul, Bracket};
 use crate::ray::{in_range, Interval, Ray};
-use crate::real::{Mask, Real};
+use crate::real::{Mask, Real, Scalar};
 use crate::vec::V3;
 
 /// Entry and exit of the sweep in ray space: distances along `d̂` from the re-centred origin
@@ -108,18 +108,40 @@ impl<T: Real> RaySpace<T> {
         // l = o' − m, o' the closest point of the line to m.
         let l = (ray.o - m) + ray.d * tc;
         let rmax = tube.r[0].abs().max(tube.r[1].abs()).max(tube.r[2].abs());
-        let big = (b0 - m).length().max((b1 - m).length()).max((b2 - m).length()) + rmax;
-        let near = l.length2().le(big * big);
+        // The bounding radius is a sum of lengths, which square the offsets: below √MIN_POSITIVE
+        // (1.5e-154 in f64) the squares underflow, a length came out 0 and `big` collapsed to
+        // `rmax` (fuzz finding issue 15, regression-tiny-extent: offsets 3.5e-168, a = 7.4e-171,
+        // big = a, 473 times too small). The ray-space coordinates were then ~473 instead of
+        // ≤ 1, and t = tc + s·(big/|d|) multiplied the rounding of big/|d| — subnormal there,
+        // |d| = 4e149: an absolute q/2 = 2⁻¹⁰⁷⁵, relative 1.4e-4 — by s: t was 208q off, the
+        // hit 4.3e-172 outside the tube (bound 1.4e-172). So tubes whose largest offset or
+        // radius w is below 2⁻⁴⁰⁰ (f64; 2⁻³⁸ in f32) are measured `up` a power of two, 2⁶⁰⁰
+        // (2⁹⁰): w·up ∈ [2⁻⁴⁷⁴, 2²⁰⁰] ([2⁻⁵⁹, 2⁵²]) for every w down to the least subnormal, so
+        // every square is normal and finite. (At or above the threshold an offset whose square
+        // underflows, < 2⁻⁵¹¹ (2⁻⁶³), is below 2⁻¹¹¹·w (2⁻²⁵·w): beneath big's own rounding.)
+        // Scaling by a power of two is exact and sqrt is
+        // correctly rounded, so where the squares did not underflow the result is the same
+        // number, and elsewhere `up = 1`: bit for bit unchanged (and still exactly invariant
+        // under scaling by 2^k). The coordinates are formed in the same measure, so a tube
+        // whose `big` is subnormal (1/big would overflow) works too.
+        let w = (b0 - m).max_abs().max((b1 - m).max_abs()).max((b2 - m).max_abs()).max(rmax);
+        let (thr, sup) = if T::Elem::EPS.to_f64() < 1e-10 { (-400, 600) } else { (-38, 90) };
+        let tiny = w.lt(T::cst(2f64.powi(thr)));
+        let up = T::select(tiny, T::cst(2f64.powi(sup)), T::one());
+        let down = T::select(tiny, T::cst(2f64.powi(-sup)), T::one());
+        let big_up = ((b0 - m) * up).length().max(((b1 - m) * up).length()).max(((b2 - m) * up).length()) + rmax * up;
+        let near = (l * up).length2().le(big_up * big_up);
         // Work in units of the bounding radius: g, P and the sign functions are products of up
         // to six coordinates, which would over/underflow for large or tiny tubes. (One
         // rounding per coordinate: a relative change of ε, inside the error model.)
-        let big_s = T::select(big.gt(T::zero()) & big.is_finite(), big, T::one());
-        let inv = T::one() / big_s;
-        let (c0, c1, c2) = ((b0 - m - l) * inv, (b1 - m - l) * inv, (b2 - m - l) * inv);
+        let ok = big_up.gt(T::zero()) & big_up.is_finite();
+        let big_s = T::select(ok, big_up * down, T::one());
+        let inv = T::one() / T::select(ok, big_up, T::one());
+        let (c0, c1, c2) = (((b0 - m - l) * up) * inv, ((b1 - m - l) * up) * inv, ((b2 - m - l) * up) * inv);
         let qa = c0 - c1 * two + c2;
         let qb = (c1 - c0) * two;
         let qc = c0;
-        let [r0, r1, r2] = [tube.r[0] * inv, tube.r[1] * inv, tube.r[2] * inv];
+        let [r0, r1, r2] = [(tube.r[0] * up) * inv, (tube.r[1] * up) * inv, (tube.r[2] * up) * inv];
         let (ra, rb, rc) = (r0 - r1 * two + r2, (r1 - r0) * two, r0);
         let (h, g) = ray_polys([qa, qb, qc], [ra, rb, rc], dhat);
         // The same about the vertex tv of the centre line (|p'|² = |qb + 2qa·t|² least), from
@@ -350,6 +372,11 @@ impl<T: Real> RaySpace<T> {
             let n = v.normalize_or_zero();
             V3::select(n.length2().gt(T::zero()), n, fallback)
         };
+        // Where big/|d| is subnormal (a tiny tube, a long d: issue 15, tests/spline_fuzz_findings.rs,
+        // a 7e-171 tube with |d| = 4e149) so are these t: multiples of q = 2⁻¹⁰⁷⁴ (f64), which
+        // no formula can beat: the hit o + t·d is then up to |d|·q/2 off along the ray, beyond
+        // the relative error model. Here tc, big·(1/|d|), s·that and the sum each round by
+        // ≤ q/2 absolutely (|s| ≤ 1): |t − t*| ≤ 2q. The ray-space s stays exact (units of big).
         let t_in = self.tc + s_in * self.inv_dlen;
         let t_out = self.tc + s_out * self.inv_dlen;
         let n_in = normal(s_in, u_in, -self.dhat);
