@@ -62,17 +62,10 @@ const Q: f64 = 5e-324; // the literal rounds to the least subnormal, 2⁻¹⁰�
 /// (≤ q/2): in all ≤ 2.6q.
 const T_QUANTA: f64 = 3.0;
 
-/// The check's former, purely relative bound E for a hit at `tt` (fuzz/checks/spline.rs before
-/// its subnormal-t term, restated: S = 4(√3 + 1)·s,
-/// s the largest control-point offset from b₀ or radius; E = √(64ε)·S + 8εS + 8ε(|o − b₀| + |t·d|)).
+/// The check's bound E without its subnormal-t term (`check::surface_bound`): purely relative
+/// in t, E = √(64ε)·S + 8εS + 8ε(|o − b₀| + |t·d|).
 fn relative_bound(t: &QuadTube<f64>, ray: &Ray<f64>, tt: f64) -> f64 {
-    let mut s: f64 = 0.0;
-    for i in 0..3 {
-        s = s.max((t.b[i] - t.b[0]).max_abs()).max(t.r[i].abs());
-    }
-    let s = 4.0 * (s * 3f64.sqrt() + s);
-    let far = 8.0 * f64::EPSILON * ((ray.o - t.b[0]).length() + (ray.d * tt).length());
-    (64.0 * f64::EPSILON).sqrt() * s + 8.0 * f64::EPSILON * s + far
+    check::surface_bound(t, ray, tt, false)
 }
 
 /// Distance along the ray from the exact hit t* (given as a multiple of q, `tq`) to the

@@ -42,6 +42,31 @@ pub fn input(data: &[u8]) -> Option<(QuadTube<f64>, Ray<f64>, Solver)> {
     Some((t, ray, solver))
 }
 
+/// `S`: the spline kernel's error scale. Ray-space coordinates reach the bounding radius
+/// twice: S ≤ 4·(extent + radius), extent and radius bounded by `s`, the largest control-point
+/// offset from b₀ (per axis, so ·√3 for the length) or radius.
+pub fn scale(t: &QuadTube<f64>) -> f64 {
+    let mut s: f64 = 0.0;
+    for i in 0..3 {
+        s = s.max((t.b[i] - t.b[0]).max_abs()).max(t.r[i].abs());
+    }
+    4.0 * (s * 3f64.sqrt() + s)
+}
+
+/// The bound E on the distance of a hit at `tt` from the surface: √(64ε)·S + 8εS
+/// (tests/spline_kernel.rs), plus the rounding of the hit point o + t·d itself (and of t),
+/// ≤ 8ε(D + |t·d|) with D = |o − b₀| (a far origin cancels against t·d), plus, with `subnormal`,
+/// the absolute rounding of a subnormal t (|t| < MIN_POSITIVE: a multiple of q = 2⁻¹⁰⁷⁴,
+/// whatever the kernel does): t = tc + s·(big·(1/|d|)), |s| ≤ 1, is four roundings of ≤ q/2
+/// each there, 2q in all: |d|·4q covers it (issue 15, tests/spline_fuzz_findings.rs: tiny tubes
+/// hit by rays with |d| ~ 1e149; that test calls it without the term to show it is needed).
+pub fn surface_bound(t: &QuadTube<f64>, ray: &Ray<f64>, tt: f64, subnormal: bool) -> f64 {
+    let s = scale(t);
+    let far = 8.0 * f64::EPSILON * ((ray.o - t.b[0]).length() + (ray.d * tt).length());
+    let far = if subnormal { far + 4.0 * ray.d.length() * f64::from_bits(1) } else { far };
+    (64.0 * f64::EPSILON).sqrt() * s + 8.0 * f64::EPSILON * s + far
+}
+
 pub fn check(data: &[u8]) {
     let Some((t, ray, solver)) = input(data) else { return };
     let (b, r) = (t.b, t.r);
@@ -55,25 +80,12 @@ pub fn check(data: &[u8]) {
     // cascade can miss a minimum where the claims fail (tests/spline_claims.rs documents a
     // case) and then reports a point inside.
     if iv.hit {
-        let mut s: f64 = 0.0;
-        for i in 0..3 {
-            s = s.max((b[i] - b[0]).max_abs()).max(r[i].abs());
-        }
-        // Ray-space coordinates reach the bounding radius twice: S ≤ 4·(extent + radius).
-        let s = 4.0 * (s * 3f64.sqrt() + s);
+        let s = scale(&t);
         let dl = ray.d.length();
         if (iv.t_out - iv.t_in) * dl > 1e-6 * s {
             for tt in [iv.t_in, iv.t_out] {
                 let e = t.sdf(ray.at(tt));
-                // Plus the rounding of the hit point o + t·d itself (and of t): ≤ 8ε(D + |t·d|)
-                // with D = |o − b₀| (a far origin cancels against t·d).
-                let far = 8.0 * f64::EPSILON * ((ray.o - b[0]).length() + (ray.d * tt).length());
-                // Plus the absolute rounding of a subnormal t (|t| < MIN_POSITIVE: a multiple of
-                // q = 2⁻¹⁰⁷⁴, whatever the kernel does): t = tc + s·(big·(1/|d|)), |s| ≤ 1, is
-                // four roundings of ≤ q/2 each there, 2q in all: |d|·4q covers it (issue 15,
-                // tests/spline_fuzz_findings.rs: tiny tubes hit by rays with |d| ~ 1e149).
-                let far = far + 4.0 * dl * f64::from_bits(1);
-                let mut bound = (64.0 * f64::EPSILON).sqrt() * s + 8.0 * f64::EPSILON * s + far;
+                let mut bound = surface_bound(&t, &ray, tt, true);
                 if let Solver::Bisection { iters } = solver {
                     // A root of g located to δ = 2^-iters (of a bracket ≤ 1) is a sphere missed
                     // by ≤ (max|p'| + max|r'|)·δ, with |p'| ≤ 2·max|bᵢ − bⱼ|, |r'| ≤ 2·max|rᵢ − rⱼ|.
