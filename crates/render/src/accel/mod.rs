@@ -32,6 +32,9 @@ use tubecast::V3;
 
 #[cfg(feature = "wide")]
 mod packet;
+mod tracer;
+
+pub use tracer::Tracer;
 
 /// `pack_at` entry of a primitive that starts no packet.
 #[cfg(feature = "wide")]
@@ -56,7 +59,7 @@ pub struct Hit {
     pub n: V3<f64>,
     /// Curve parameter on the primitive.
     pub u: f64,
-    /// Index into [`Bvh::prims`].
+    /// Index into [`Tracer::prims`] ([`Bvh::prims`] for the BVH).
     pub prim: u32,
     /// Scene link index.
     pub link: u32,
@@ -404,10 +407,10 @@ impl Bvh {
 /// `t_in`, `t_out` of the first component of the union ([`first_component`]), the entry
 /// normal (x, y, z), the entry's scene link, its curve parameter `u`, and 1; a miss is
 /// `+∞, +∞, 0, 0, 0, −1, 0, 0`.
-pub fn hit_table(bvh: &Bvh, rays: &[Ray<f64>]) -> Vec<[f64; HIT_COLUMNS]> {
+pub fn hit_table(bvh: &dyn Tracer, rays: &[Ray<f64>]) -> Vec<[f64; HIT_COLUMNS]> {
     rays.iter()
         .map(|ray| match first_component(bvh, ray) {
-            Some((e, x)) => [e.t, x.t, e.n.x, e.n.y, e.n.z, bvh.prims[e.id as usize].link as f64, e.u, 1.0],
+            Some((e, x)) => [e.t, x.t, e.n.x, e.n.y, e.n.z, bvh.prims()[e.id as usize].link as f64, e.u, 1.0],
             None => [f64::INFINITY, f64::INFINITY, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0],
         })
         .collect()
@@ -420,7 +423,7 @@ pub const HIT_COLUMNS: usize = 8;
 /// boundaries of the first component of the union (over the whole line) that overlaps
 /// `[t_min, t_max]`. The entry lies before `t_min` when the ray starts inside.
 pub fn first_component(
-    bvh: &Bvh,
+    bvh: &dyn Tracer,
     ray: &Ray<f64>,
 ) -> Option<(tubecast::csg::Boundary<f64>, tubecast::csg::Boundary<f64>)> {
     let mut ivs = Vec::new();

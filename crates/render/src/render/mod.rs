@@ -1,9 +1,9 @@
 //! Camera, shading, opaque and transparent compositing, PNG output.
 //!
-//! * Opaque: one closest-hit query per pixel ([`Bvh::closest_hit`]), Lambert + Blinn-Phong
+//! * Opaque: one closest-hit query per pixel ([`Tracer::closest_hit`]), Lambert + Blinn-Phong
 //!   shading, an optional shadow ray and optional ambient occlusion.
 //! * Transparent (`opacity < 1`): every primitive's interval along the pixel's line
-//!   ([`Bvh::line_intervals`]) goes through the CSG union ([`union`]); only the exterior
+//!   ([`Tracer::line_intervals`]) goes through the CSG union ([`union`]); only the exterior
 //!   boundaries of the union are composited, front to back, each with opacity `α`, so
 //!   surfaces inside other tubes (overlaps at joints and crossings) never show.
 //! * Spline tubes ([`Scene::spline_primitives`]) go through the same paths: the closest hit is
@@ -25,7 +25,9 @@ pub use error::RenderError;
 pub use image::Image;
 pub use options::{ColorBy, Options, Shading};
 
+#[allow(unused_imports)] // documentation links
 use crate::accel::Bvh;
+use crate::accel::Tracer;
 use crate::scene::Scene;
 use rayon::prelude::*;
 use shade::Palette;
@@ -34,10 +36,10 @@ use trace::Ctx;
 use tubecast::csg::union;
 use tubecast::V3;
 
-/// Render `scene` (with its BVH `bvh`, built from [`Scene::primitives`] for links or
+/// Render `scene` through any [`Tracer`] over its primitives (e.g. its BVH `bvh`, built from [`Scene::primitives`] for links or
 /// [`Scene::spline_primitives`] for spline tubes) through `cam`.
 /// Rows run in parallel (rayon); `opts.progress` shows a progress bar on stderr.
-pub fn render(scene: &Scene, bvh: &Bvh, cam: &Camera, opts: &Options) -> Result<Image, RenderError> {
+pub fn render(scene: &Scene, bvh: &dyn Tracer, cam: &Camera, opts: &Options) -> Result<Image, RenderError> {
     opts.validate()?;
     let (w, h) = (cam.width, cam.height);
     // Light from the camera's upper left, slightly behind it.

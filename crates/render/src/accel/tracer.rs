@@ -1,0 +1,58 @@
+//! The one interface the renderer and `tubecast intersect` trace through, so that every
+//! accelerator (the BVH today; a voxel grid, a mesh or a wide BVH beside it) plugs into the
+//! same per-pixel code and the same hit tables.
+
+use super::Hit;
+use crate::scene::Prim;
+use tubecast::csg::Tagged;
+use tubecast::Ray;
+
+/// Ray queries over a scene's primitives, answered with exact kernel results in `f64`.
+///
+/// Every implementation must give the same answers as [`Bvh`](super::Bvh) on the same
+/// primitives (the hit's `prim` indexes [`Tracer::prims`]); only the culling differs.
+///
+/// ```
+/// use tubecast::{Ray, V3};
+/// use tubecast_render::accel::{Bvh, Tracer};
+/// use tubecast_render::io::Polyline;
+/// use tubecast_render::scene::Scene;
+///
+/// let line = Polyline { points: vec![[0.0; 3], [4.0, 0.0, 0.0]], radii: vec![] };
+/// let scene = Scene::from_polylines(&[line], 0.5, "tube").unwrap();
+/// let tracer: Box<dyn Tracer> = Box::new(Bvh::build(scene.primitives()));
+/// let hit = tracer.closest_hit(&Ray::new(V3::new(2.0, 3.0, 0.0), V3::new(0.0, -1.0, 0.0))).unwrap();
+/// assert_eq!(tracer.prims()[hit.prim as usize].link, 0);
+/// ```
+pub trait Tracer: Sync {
+    /// The primitives a [`Hit::prim`] or a [`Tagged::id`] indexes.
+    fn prims(&self) -> &[Prim];
+    /// The closest surface crossing in `[t_min, t_max]` (entry, or exit when the ray starts
+    /// inside a primitive). The ray must be valid ([`Ray::validate`]).
+    fn closest_hit(&self, ray: &Ray<f64>) -> Option<Hit>;
+    /// True when any primitive's surface or interior meets the ray within `[t_min, t_max]`.
+    fn any_hit(&self, ray: &Ray<f64>) -> bool;
+    /// Every primitive's interval (one per connected piece) with the ray's whole line,
+    /// appended to `out`: the input of [`tubecast::csg::union`].
+    fn line_intervals(&self, ray: &Ray<f64>, out: &mut Vec<Tagged<f64>>);
+    /// Bytes held by the structure and its primitives.
+    fn memory_bytes(&self) -> usize;
+}
+
+impl Tracer for super::Bvh {
+    fn prims(&self) -> &[Prim] {
+        &self.prims
+    }
+    fn closest_hit(&self, ray: &Ray<f64>) -> Option<Hit> {
+        super::Bvh::closest_hit(self, ray)
+    }
+    fn any_hit(&self, ray: &Ray<f64>) -> bool {
+        super::Bvh::any_hit(self, ray)
+    }
+    fn line_intervals(&self, ray: &Ray<f64>, out: &mut Vec<Tagged<f64>>) {
+        super::Bvh::line_intervals(self, ray, out)
+    }
+    fn memory_bytes(&self) -> usize {
+        super::Bvh::memory_bytes(self)
+    }
+}
