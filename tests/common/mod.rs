@@ -20,6 +20,8 @@ use tubecast::{Ray, RoundCone, V3};
 use tubecast_oracle as oracle;
 pub use tubecast_oracle::Crossing;
 
+pub mod check;
+
 pub type V = V3<f64>;
 
 /// tubecast's vector as the oracle's, and back.
