@@ -15,6 +15,9 @@ mod spline {
 mod csg {
     include!("../fuzz/checks/csg.rs");
 }
+mod differential {
+    include!("../fuzz/checks/differential.rs");
+}
 
 fn replay(name: &str, check: fn(&[u8])) {
     replay_corpus(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/corpus"), name, check, 10);
@@ -38,6 +41,28 @@ fn replay_spline_corpus() {
 #[test]
 fn replay_csg_corpus() {
     replay("csg", csg::check);
+}
+
+#[test]
+fn replay_differential_corpus() {
+    replay("differential", differential::check);
+}
+
+/// The differential check does fire: a "Han" answer moved by far more than its bound is a
+/// finding (a hand-made disagreement: a cylinder of radius 1 along x, a ray down the y axis
+/// at x = 1; the stable kernel's entry is t = 2, exact).
+#[test]
+fn differential_check_catches_a_disagreement() {
+    use tubecast::{Primitive, Ray, RoundCone, V3};
+    let link = RoundCone::new(V3::new(0.0, 0.0, 0.0), 1.0, V3::new(2.0, 0.0, 0.0), 1.0).unwrap();
+    let ray = Ray::new(V3::new(1.0, 3.0, 0.0), V3::new(0.0, -1.0, 0.0));
+    assert!(differential::agree(&link, &ray).is_ok());
+    let stable = link.intersect(&ray);
+    assert_eq!((stable.hit, stable.t_in), (true, 2.0));
+    let mut moved = stable;
+    moved.t_in += 1e-6;
+    let e = 1e-12; // far above E₆₄ ≈ 64ε·5 ≈ 7e-14 for this case, far below the 1e-6 shift
+    assert!(differential::same_t(&stable, &moved, &link, &ray, e).is_err());
 }
 
 /// The check does fire: a hand-made interval with t_in > t_out is rejected by `sane`.

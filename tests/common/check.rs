@@ -12,19 +12,10 @@ pub fn bound(c: &Case, eps: f64) -> f64 {
     tubecast_oracle::link_error_bound(&olink(&c.link), ov(c.ray.o), c.size, eps)
 }
 
-/// Near a pointed end (radius < E) the solid is a spike thinner than the error bound over an
-/// axial length E/tan θ from the tip: every point there is within E of the surface, so where a
-/// line crosses it is undetermined along the line by up to that length over the incidence,
-/// bounded by E·(1 + 1/|s|)·2 (|s| = sin θ, tan θ ≥ |s|). Zero for links without such an end.
+/// The tip term of a `t` tolerance near a pointed end (derived at
+/// [`tubecast_oracle::link_tip_term`], shared with the differential fuzz check).
 pub fn tip_term(l: &RoundCone<f64>, e: f64) -> f64 {
-    let len = (l.b - l.a).length();
-    let r_min = l.ra.min(l.rb);
-    // (NaN-aware: a NaN radius or length gives no tip term.)
-    if r_min.is_nan() || e.is_nan() || r_min >= e || len.is_nan() || len <= 0.0 {
-        return 0.0;
-    }
-    let s = ((l.ra - l.rb) / len).abs().max(1e-300);
-    2.0 * e * (1.0 + 1.0 / s)
+    tubecast_oracle::link_tip_term(&olink(l), e)
 }
 
 pub fn no_nan<T: Scalar>(iv: &Interval<T>) -> bool {

@@ -33,7 +33,7 @@ mod vec;
 
 pub use link::{line_gap, line_interval, sweep_dist, sweep_normal, Crossing, Link};
 pub use link_cases::{
-    link_bound, link_case, link_error_bound, link_truth, LinkCase, LinkRegion, LinkTruth, LINK_REGIONS,
+    link_bound, link_case, link_error_bound, link_tip_term, link_truth, LinkCase, LinkRegion, LinkTruth, LINK_REGIONS,
 };
 pub use minimise::{convex_argmin, golden_min};
 pub use spline::{quad_crossing, quad_gap, quad_hit_measure, Quad, QuadCrossing};

@@ -215,6 +215,21 @@ pub fn link_error_bound(l: &Link, origin: Vec3, size: f64, eps: f64) -> f64 {
     64.0 * eps * (size + (origin - m).length()) + cone
 }
 
+/// The tip term of a `t` tolerance for a link with a pointed end (radius < `e`, a distance
+/// bound such as [`link_error_bound`]): the solid there is a spike thinner than `e` over an axial
+/// length `e/tan θ` from the tip, every point of which is within `e` of the surface, so where a
+/// line crosses it is undetermined along the line by up to `e·(1 + 1/|s|)·2` (`s = sin θ`,
+/// `tan θ ≥ |s|`). Zero for links without such an end (and for NaN input).
+pub fn link_tip_term(l: &Link, e: f64) -> f64 {
+    let len = (l.b - l.a).length();
+    let r_min = l.ra.min(l.rb);
+    if r_min.is_nan() || e.is_nan() || r_min >= e || len.is_nan() || len <= 0.0 {
+        return 0.0;
+    }
+    let s = ((l.ra - l.rb) / len).abs().max(1e-300);
+    2.0 * e * (1.0 + 1.0 / s)
+}
+
 /// The `t` tolerance of `tests/link_props.rs` for a kernel of unit roundoff `eps`:
 /// the hit-point distance bound `E` ([`link_error_bound`]) plus the same for the `f64` oracle,
 /// converted to `t` through the incidence cosine `γ`: `(E + E₆₄)/(γ·|d|)`. Also returns `E`

@@ -1,0 +1,161 @@
+// Differential check (issue 15), shared by fuzz/fuzz_targets/differential.rs and
+// tests/fuzz_corpus_kernels.rs: every link method on the same input must agree within the
+// bounds derived in tests/link_props.rs (E = tubecast_oracle::link_error_bound):
+// 1. lanes (f32x8, f64x4) equal the scalar calls bit for bit (same IEEE operations, in order);
+// 2. f32 and f64 stable kernels on the same (f32-rounded) problem: the same hit/miss outside
+//    the band |gap| ≤ E₃₂ + E₆₄, and entry/exit t within (E₃₂ + E₆₄)/(γ|d|) + tip term;
+// 3. Han (faithful) and stable in f64 where Han is well conditioned (apex ≤ 100 sizes away,
+//    r_min ≥ 1e-3 r_max, E_Han = 64ε·D·max(1, D/r_min) < 1e-6 S), within E_Han + E₆₄.
+// Any disagreement outside its bound is a finding. Inputs whose lengths span ≥ 1e12 get only
+// check 1 (the bounds are stated below that span, as in checks/link.rs).
+#[allow(unused_imports)]
+use tubecast::{HanLink, Interval, Primitive, Ray, RoundCone, WideF32x8, WideF64x4, V3};
+include!("decode.rs");
+
+fn r32(x: f64) -> f64 {
+    x as f32 as f64
+}
+
+pub fn check(data: &[u8]) {
+    let f = |i: usize| r32(f64_at(data, i * 8));
+    let v = |i| V3::new(f(i), f(i + 1), f(i + 2));
+    let Ok(link) = RoundCone::new(v(0), f(3), v(4), f(7)) else { return };
+    let ray = Ray::new(v(8), v(11));
+    let l32: RoundCone<f32> = link.cast();
+    let ray32 = Ray::new(ray.o.cast::<f32>(), ray.d.cast::<f32>());
+    if ray.validate().is_err() || ray32.validate().is_err() || RoundCone::new(l32.a, l32.ra, l32.b, l32.rb).is_err() {
+        return;
+    }
+    if let Err(m) = agree(&link, &ray) {
+        panic!("differential: {m}\nlink {link:?}\nray {ray:?}");
+    }
+}
+
+/// The three agreements above for an `f32`-representable link and ray, valid in both precisions.
+pub fn agree(link: &RoundCone<f64>, ray: &Ray<f64>) -> Result<(), String> {
+    lanes_equal_scalar(link, ray)?;
+    let lens = [(link.b - link.a).length(), link.ra, link.rb, (ray.o - link.a).length(), ray.d.length()];
+    let hi = lens.iter().cloned().fold(0.0, f64::max);
+    let lo = lens.iter().cloned().filter(|x| *x > 0.0).fold(f64::INFINITY, f64::min);
+    if hi / lo >= 1e12 {
+        return Ok(());
+    }
+    f32_agrees_with_f64(link, ray)?;
+    han_agrees_with_stable(link, ray)
+}
+
+fn lanes_equal_scalar(link: &RoundCone<f64>, ray: &Ray<f64>) -> Result<(), String> {
+    let l: RoundCone<f32> = link.cast();
+    let r = Ray::new(ray.o.cast::<f32>(), ray.d.cast::<f32>());
+    let l8 = RoundCone::<WideF32x8>::from_lanes(|_| l);
+    let r8 = Ray::<WideF32x8>::from_fn(|_| r);
+    let (s8, h8) = (l8.intersect(&r8), HanLink::new(&l8).intersect(&r8));
+    let (s, h) = (l.intersect(&r), HanLink::new(&l).intersect(&r));
+    let l4 = RoundCone::<WideF64x4>::from_lanes(|_| *link);
+    let r4 = Ray::<WideF64x4>::from_fn(|_| *ray);
+    let (s4, h4) = (l4.intersect(&r4), HanLink::new(&l4).intersect(&r4));
+    let (s64, h64) = (link.intersect(ray), HanLink::new(link).intersect(ray));
+    for i in 0..8 {
+        if s8.lane(i) != s || h8.lane(i) != h {
+            return Err(format!("f32x8 lane {i} differs from the scalar call"));
+        }
+    }
+    for i in 0..4 {
+        if s4.lane(i) != s64 || h4.lane(i) != h64 {
+            return Err(format!("f64x4 lane {i} differs from the scalar call"));
+        }
+    }
+    Ok(())
+}
+
+fn olink(l: &RoundCone<f64>) -> tubecast_oracle::Link {
+    let ov = |v: V3<f64>| tubecast_oracle::Vec3::new(v.x, v.y, v.z);
+    tubecast_oracle::Link { a: ov(l.a), ra: l.ra, b: ov(l.b), rb: l.rb }
+}
+
+/// `E` of tests/link_props.rs for precision `eps`, and the oracle's signed line gap.
+fn bound_and_gap(link: &RoundCone<f64>, ray: &Ray<f64>, eps: f64) -> (f64, f64) {
+    let ov = |v: V3<f64>| tubecast_oracle::Vec3::new(v.x, v.y, v.z);
+    let size = (link.b - link.a).length().max(link.ra).max(link.rb);
+    let e = tubecast_oracle::link_error_bound(&olink(link), ov(ray.o), size, eps);
+    let line = tubecast_oracle::Line { o: ov(ray.o), d: ov(ray.d) };
+    (e, tubecast_oracle::line_gap(&olink(link), &line).0)
+}
+
+fn to64(iv: Interval<f32>) -> Interval<f64> {
+    Interval {
+        t_in: iv.t_in as f64,
+        t_out: iv.t_out as f64,
+        n_in: iv.n_in.cast(),
+        n_out: iv.n_out.cast(),
+        u_in: iv.u_in as f64,
+        u_out: iv.u_out as f64,
+        hit: iv.hit,
+    }
+}
+
+/// Entry and exit `t` of two hits within `e/(γ|d|) + tip/|d| + 1e-12|t|` (γ from `a`'s normals).
+pub fn same_t(a: &Interval<f64>, b: &Interval<f64>, link: &RoundCone<f64>, ray: &Ray<f64>, e: f64) -> Result<(), String> {
+    let dl = ray.d.length();
+    let tip = tubecast_oracle::link_tip_term(&olink(link), e) / dl;
+    for (ta, tb, n) in [(a.t_in, b.t_in, a.n_in), (a.t_out, b.t_out, a.n_out)] {
+        let g = n.dot(ray.d).abs() / dl;
+        let tol = e / (g * dl) + tip + 1e-12 * ta.abs();
+        if !((ta - tb).abs() <= tol) {
+            return Err(format!("t {ta} vs {tb} (tol {tol:e})"));
+        }
+    }
+    Ok(())
+}
+
+fn f32_agrees_with_f64(link: &RoundCone<f64>, ray: &Ray<f64>) -> Result<(), String> {
+    let a = link.intersect(ray);
+    let l32: RoundCone<f32> = link.cast();
+    let b = to64(l32.intersect(&Ray::new(ray.o.cast::<f32>(), ray.d.cast::<f32>())));
+    let (e32, gap) = bound_and_gap(link, ray, f32::EPSILON as f64);
+    let e = e32 + bound_and_gap(link, ray, f64::EPSILON).0;
+    if a.hit != b.hit {
+        // (As in tests/link_props.rs: a crossing at the ray's start may round either way.)
+        let t_out = if a.hit { a.t_out } else { b.t_out };
+        let edge = (t_out - ray.t_min).abs() <= e / ray.d.length() * 1e6;
+        if !(gap.abs() <= e || edge) {
+            return Err(format!("f32/f64 disagree on hit outside the band: gap {gap:e}, E {e:e}"));
+        }
+    } else if a.hit && gap < -e {
+        same_t(&a, &b, link, ray, e).map_err(|m| format!("f32 vs f64: {m}"))?;
+    }
+    Ok(())
+}
+
+fn han_agrees_with_stable(link: &RoundCone<f64>, ray: &Ray<f64>) -> Result<(), String> {
+    let len = (link.b - link.a).length();
+    let size = len.max(link.ra).max(link.rb);
+    let dr = (link.ra - link.rb).abs();
+    let k = if dr == 0.0 || dr >= len { 1.0 } else { len * link.ra.max(link.rb) / dr / size };
+    if k > 100.0 || link.ra.min(link.rb) < 1e-3 * link.ra.max(link.rb) {
+        return Ok(());
+    }
+    let m = (link.a + link.b) * 0.5;
+    let d = (ray.o - m).length() + 100.0 * size;
+    let r_min = link.ra.max(link.rb) * 1e-3 + link.ra.min(link.rb);
+    let e_han = 64.0 * f64::EPSILON * d * (d / r_min).max(1.0);
+    if e_han >= 1e-6 * size {
+        return Ok(());
+    }
+    let (a, b) = (link.intersect(ray), HanLink::new(link).intersect(ray));
+    let (e64, gap) = bound_and_gap(link, ray, f64::EPSILON);
+    let e = e_han + e64;
+    if a.hit != b.hit {
+        if !(gap.abs() <= e || a.t_out.max(b.t_out).abs() * ray.d.length() <= e) {
+            return Err(format!("Han and stable disagree on hit: gap {gap:e}, E {e:e}"));
+        }
+    } else if a.hit && gap < -e {
+        let dl = ray.d.length();
+        let g = a.n_in.dot(ray.d).abs() / dl;
+        let tol = e / (g * dl) + 1e-12 * a.t_in.abs();
+        if !((a.t_in - b.t_in).abs() <= tol) {
+            return Err(format!("Han vs stable t_in {} vs {} (tol {tol:e})", b.t_in, a.t_in));
+        }
+    }
+    Ok(())
+}
