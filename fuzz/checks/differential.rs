@@ -101,7 +101,8 @@ pub fn same_t(a: &Interval<f64>, b: &Interval<f64>, link: &RoundCone<f64>, ray: 
     for (ta, tb, n) in [(a.t_in, b.t_in, a.n_in), (a.t_out, b.t_out, a.n_out)] {
         let g = n.dot(ray.d).abs() / dl;
         let tol = e / (g * dl) + tip + 1e-12 * ta.abs();
-        if !((ta - tb).abs() <= tol) {
+        let dt = (ta - tb).abs();
+        if dt.is_nan() || dt > tol {
             return Err(format!("t {ta} vs {tb} (tol {tol:e})"));
         }
     }
@@ -153,7 +154,8 @@ fn han_agrees_with_stable(link: &RoundCone<f64>, ray: &Ray<f64>) -> Result<(), S
         let dl = ray.d.length();
         let g = a.n_in.dot(ray.d).abs() / dl;
         let tol = e / (g * dl) + 1e-12 * a.t_in.abs();
-        if !((a.t_in - b.t_in).abs() <= tol) {
+        let dt = (a.t_in - b.t_in).abs();
+        if dt.is_nan() || dt > tol {
             return Err(format!("Han vs stable t_in {} vs {} (tol {tol:e})", b.t_in, a.t_in));
         }
     }
