@@ -31,6 +31,10 @@
 //! outward by `δ = 32·ε·M` (4× that), so the visited set contains every voxel that the exact
 //! solid of the given (rounded) input meets.
 
+mod occupancy;
+
+pub use occupancy::{clipped_sdf, occupancy, Clip};
+
 use crate::kernel::link::RoundCone;
 use crate::real::Scalar;
 use crate::vec::V3;
