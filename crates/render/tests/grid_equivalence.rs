@@ -4,7 +4,8 @@
 //! reorders its primitives); an exact tie in `t` between two primitives may then be resolved
 //! differently, and is counted, not failed, when `t` is equal. Scenes: helix (cones), bundle
 //! and furball (thin, tapering), a neuron (SWC cones and spheres), the helix as spline tubes,
-//! and the bundle far from the origin. Rays: random through the scene box, grazing a link
+//! the bundle far from the origin, and two clusters with empty space between them (skipped by
+//! the grid's block level). Rays: random through the scene box, grazing a link
 //! (0.999999 r), starting inside a tube (shadow-like), and axis-parallel on voxel planes.
 
 use tubecast::{Ray, V3};
@@ -19,6 +20,12 @@ fn scenes() -> Vec<(&'static str, Vec<Prim>)> {
         .into_iter()
         .map(|p| Polyline { points: p.points.iter().map(|q| q.map(|x| x + 1e5)).collect(), radii: p.radii })
         .collect();
+    // Two helices 200 units apart: most blocks between them are empty (skipped).
+    let mut apart = generate::helix(30);
+    apart.extend(generate::helix(30).into_iter().map(|p| Polyline {
+        points: p.points.iter().map(|q| [q[0] + 200.0, q[1] + 150.0, q[2]]).collect(),
+        radii: p.radii,
+    }));
     let neuron = Scene::from_swc(&generate::neurons(1, &[generate::base_neuron(3)], 5), "n").unwrap();
     vec![
         ("helix", lines(&generate::helix(60), "h").primitives()),
@@ -27,6 +34,7 @@ fn scenes() -> Vec<(&'static str, Vec<Prim>)> {
         ("neuron", neuron.primitives()),
         ("helix splines", lines(&generate::helix(24), "s").spline_primitives().unwrap()),
         ("far bundle", lines(&far, "far").primitives()),
+        ("two clusters", lines(&apart, "apart").primitives()),
     ]
 }
 
@@ -122,6 +130,9 @@ fn grid_answers_equal_the_bvh_on_every_scene() {
         println!("{name}: {} prims, grid {:?}, {hits}/{} rays hit, {ties} ties", prims.len(), grid.dims(), rays.len());
         assert!(hits > rays.len() / 4, "{name}: too few hits ({hits}) to be a test");
         assert!(ties * 100 <= hits, "{name}: {ties} ties in t between different primitives");
+        if name == "two clusters" {
+            assert!(grid.occupied_fraction() < 0.5, "{name}: empty space not marked ({})", grid.occupied_fraction());
+        }
     }
 }
 

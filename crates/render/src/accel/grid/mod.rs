@@ -19,6 +19,13 @@
 //! with its radii grown by `pad = D·2⁻¹⁶` (`D` the scene diagonal), far above both errors, so a
 //! hit point within `pad` of a voxel boundary is listed on both sides of it.
 //!
+//! # Empty-space skipping
+//! A second, coarse level marks which blocks of [`BLOCK`]³ voxels hold any reference. The walk
+//! runs DDA over the blocks and, only inside occupied ones, DDA over their voxels on the
+//! block's `t` range; an empty block is crossed in one step. Blocks abut in `t`, so the fine
+//! walks cover the ray's range outside empty blocks; a voxel revisited at a block boundary
+//! (rounding) is harmless (closest hit takes the minimum, intervals are deduplicated).
+//!
 //! # Resolution
 //! Cubic voxels of side `h = ∛(V/(λ·N))` over the padded scene box of volume `V` (each extent
 //! floored at `D/1000` so flat scenes get a volume), `N` primitives and `λ` cells per primitive
@@ -89,7 +96,14 @@ pub struct Grid {
     /// Per voxel `v`: its list is `ids[offsets[v]..offsets[v + 1]]`.
     offsets: Vec<u32>,
     ids: Vec<u32>,
+    /// Blocks of [`BLOCK`]³ voxels along x, y, z, and whether each holds any reference: the
+    /// coarse level the walk skips empty space on.
+    bdims: [u32; 3],
+    occupied: Vec<bool>,
 }
+
+/// Side of an empty-space-skipping block, in voxels.
+pub const BLOCK: u32 = 4;
 
 impl Grid {
     /// Build with [`GridParams::default`].
@@ -116,6 +130,17 @@ impl Grid {
     /// Total length of the per-voxel lists (primitive references).
     pub fn references(&self) -> usize {
         self.ids.len()
+    }
+
+    /// Linear index of block `b`.
+    #[inline]
+    fn block_index(&self, b: [u32; 3]) -> usize {
+        (b[2] as usize * self.bdims[1] as usize + b[1] as usize) * self.bdims[0] as usize + b[0] as usize
+    }
+
+    /// Fraction of blocks that hold a reference.
+    pub fn occupied_fraction(&self) -> f64 {
+        self.occupied.iter().filter(|&&o| o).count() as f64 / self.occupied.len().max(1) as f64
     }
 
     /// Linear index of voxel `c`.
@@ -146,6 +171,6 @@ impl Tracer for Grid {
         self.intervals(ray, out)
     }
     fn memory_bytes(&self) -> usize {
-        (self.offsets.len() + self.ids.len()) * 4 + self.prims.len() * std::mem::size_of::<Prim>()
+        (self.offsets.len() + self.ids.len()) * 4 + self.occupied.len() + self.prims.len() * std::mem::size_of::<Prim>()
     }
 }

@@ -1,7 +1,7 @@
 //! Ray queries on the grid: the DDA walk with a closest hit accepted inside the current
 //! voxel's `t` range (module docs), any hit, and every line interval for the CSG union.
 
-use super::Grid;
+use super::{Grid, BLOCK};
 use crate::accel::Hit;
 use tubecast::csg::Tagged;
 use tubecast::{voxel, Ray};
@@ -30,8 +30,8 @@ impl Mailbox {
 }
 
 impl Grid {
-    /// Walk the voxels of `ray`'s line over `[t_lo, t_hi]` (ray parameter), handing each
-    /// voxel's list and exit `t` to `f` until it returns false.
+    /// Walk the voxels of `ray`'s line over `[t_lo, t_hi]` (ray parameter), skipping empty
+    /// blocks, handing each voxel's list and exit `t` to `f` until it returns false.
     #[inline]
     fn walk(&self, ray: &Ray<f64>, t_lo: f64, t_hi: f64, mut f: impl FnMut(&[u32], f64) -> bool) {
         if self.prims.is_empty() {
@@ -39,7 +39,18 @@ impl Grid {
         }
         let o = self.to_grid(ray.o);
         let d = ray.d * self.inv_h;
-        voxel::dda(o, d, t_lo, t_hi, self.dims, |c, _, t1| f(self.list(c), t1));
+        let s = 1.0 / BLOCK as f64;
+        voxel::dda(o * s, d * s, t_lo, t_hi, self.bdims, |b, t0, t1| {
+            if !self.occupied[self.block_index(b)] {
+                return true;
+            }
+            let mut go = true;
+            voxel::dda(o, d, t0, t1, self.dims, |c, _, tc| {
+                go = f(self.list(c), tc);
+                go
+            });
+            go
+        });
     }
 
     /// The closest surface crossing in `[t_min, t_max]`; ties in `t` go to the lower index.
