@@ -48,6 +48,22 @@ fn estimate_is_exact_where_the_sdf_decides_the_voxel() {
     assert!(empty > 1000 && full > 100, "{empty} empty, {full} full voxels: too few to be a test");
 }
 
+/// Occupancy of one voxel layer (z centre 20.5) of a straight tube of radius `r` along z,
+/// averaged over `n²` midpoint offsets of its axis in the unit square.
+fn layer_mass(r: f64, r_min: f64, n: usize) -> f64 {
+    let mut mass = 0.0;
+    for i in 0..n * n {
+        let o = [(i % n) as f64 + 0.5, (i / n) as f64 + 0.5].map(|x| x / n as f64);
+        let (a, b) = (V::new(10.0 + o[0], 10.0 + o[1], 0.0), V::new(10.0 + o[0], 10.0 + o[1], 40.0));
+        let l = RoundCone { a, ra: r, b, rb: r };
+        for j in 0..20 * 20 {
+            let c = V::new((j % 20) as f64 + 0.5, (j / 20) as f64 + 0.5, 20.5);
+            mass += occupancy(c, &l, None, None, r_min);
+        }
+    }
+    mass / (n * n) as f64
+}
+
 /// One layer of a straight tube along z, averaged over the tube's position against the
 /// lattice (128² midpoint offsets in the unit square), sums to `π r²(1 + 1/(12 r_c²))` with
 /// PWAA (`r_c = max(r, r_min)`, module docs). Averaging error: the layer sum `F(o)` of the
@@ -59,21 +75,7 @@ fn layer_mass_matches_the_derived_ramp_integral() {
     let n = 128;
     for (r, r_min) in [(0.1, 1.0), (0.3, 1.0), (0.7, 1.0), (1.5, 1.0), (3.0, 1.0), (0.1, 2.0)] {
         let rc: f64 = f64::max(r, r_min);
-        let mut mass = 0.0;
-        for i in 0..n * n {
-            let o = [(i % n) as f64 + 0.5, (i / n) as f64 + 0.5].map(|x| x / n as f64);
-            let l = RoundCone {
-                a: V::new(10.0 + o[0], 10.0 + o[1], 0.0),
-                ra: r,
-                b: V::new(10.0 + o[0], 10.0 + o[1], 40.0),
-                rb: r,
-            };
-            for j in 0..20 * 20 {
-                let c = V::new((j % 20) as f64 + 0.5, (j / 20) as f64 + 0.5, 20.5);
-                mass += occupancy(c, &l, None, None, r_min);
-            }
-        }
-        mass /= (n * n) as f64;
+        let mass = layer_mass(r, r_min, n);
         let pi = std::f64::consts::PI;
         let expected = pi * r * r * (1.0 + 1.0 / (12.0 * rc * rc));
         let bound = (r / rc).powi(2) * pi * 4.0 * rc * (0.5 + 2f64.sqrt() / 2.0) * 0.383 / n as f64;
@@ -88,22 +90,7 @@ fn layer_mass_matches_the_derived_ramp_integral() {
 #[test]
 fn without_pwaa_thin_tubes_are_overestimated() {
     let r = 0.1;
-    let mut mass = 0.0;
-    let n = 64;
-    for i in 0..n * n {
-        let o = [(i % n) as f64 + 0.5, (i / n) as f64 + 0.5].map(|x| x / n as f64);
-        let l = RoundCone {
-            a: V::new(10.0 + o[0], 10.0 + o[1], 0.0),
-            ra: r,
-            b: V::new(10.0 + o[0], 10.0 + o[1], 40.0),
-            rb: r,
-        };
-        for j in 0..400 {
-            let c = V::new((j % 20) as f64 + 0.5, (j / 20) as f64 + 0.5, 20.5);
-            mass += occupancy(c, &l, None, None, 0.0);
-        }
-    }
-    mass /= (n * n) as f64;
+    let mass = layer_mass(r, 0.0, 64);
     let pi = std::f64::consts::PI;
     let expected = pi * (r + 0.5f64).powi(3) / 3.0;
     assert!((mass - expected).abs() < 0.02 * expected, "{mass} vs {expected}");
