@@ -88,8 +88,9 @@ impl Grid {
     /// Every primitive's intervals with the ray's whole line (each primitive once).
     pub(super) fn intervals(&self, ray: &Ray<f64>, out: &mut Vec<Tagged<f64>>) {
         let mut ids = Vec::new();
+        let mut seen = Mailbox::new();
         self.walk(ray, f64::NEG_INFINITY, f64::INFINITY, |list, _| {
-            ids.extend_from_slice(list);
+            ids.extend(list.iter().filter(|&&id| seen.fresh(id)));
             true
         });
         ids.sort_unstable();
