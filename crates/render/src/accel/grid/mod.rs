@@ -33,7 +33,10 @@
 //! most [`GridParams::max_cells`] cells.
 
 mod build;
+mod pyramid;
 mod walk;
+
+pub use pyramid::{Level, Pyramid};
 
 use super::{Hit, Tracer};
 use crate::scene::Prim;
@@ -41,6 +44,18 @@ use tubecast::csg::Tagged;
 use tubecast::Ray;
 
 /// How primitives are assigned to voxels.
+///
+/// ```
+/// use tubecast_render::accel::grid::{Grid, GridParams, Voxelizer};
+/// use tubecast_render::io::Polyline;
+/// use tubecast_render::scene::Scene;
+/// let line = Polyline { points: vec![[0.0; 3], [9.0, 3.0, 1.0]], radii: vec![] };
+/// let prims = Scene::from_polylines(&[line], 0.5, "tube").unwrap().primitives();
+/// let fine = GridParams { cells_per_prim: 64.0, ..GridParams::default() };
+/// let exact = Grid::build_with(prims.clone(), &fine);
+/// let thin = Grid::build_with(prims, &GridParams { voxelizer: Voxelizer::CentreLine, ..fine });
+/// assert!(thin.references() < exact.references()); // the centre line meets fewer voxels
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Voxelizer {
     /// Conservative: every voxel a primitive's (padded) solid meets (the default).
@@ -51,7 +66,7 @@ pub enum Voxelizer {
     CentreLine,
 }
 
-/// Grid build parameters.
+/// Grid build parameters ([`Grid::build_with`]; example at [`Voxelizer`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GridParams {
     /// Target cells per primitive `λ` (the resolution rule in the module docs).
