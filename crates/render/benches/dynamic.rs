@@ -1,5 +1,6 @@
 //! Dynamic line sets: every frame moves the lines, so every frame rebuilds its acceleration
-//! structure. Per frame and structure (grid: `accel::grid::Grid::build`, BVH: `Bvh::build`):
+//! structure. Per frame and structure (grid: `accel::grid::Grid::build` at the default
+//! `λ = 2` cells per link and at `λ = 8`, `32`; BVH: `Bvh::build`):
 //! build time, render time (opaque, and transparent at opacity 0.3: CSG union along each ray)
 //! and their sum, at 10⁴ … 10⁵ links (`TUBECAST_DYNAMIC_SIZES=10000,100000,1000000` for
 //! others). Scene: a bundle (Russig's, radius 0.12) whose fibres sway with the frame number;
@@ -8,7 +9,7 @@
 //!
 //!     cargo bench -p tubecast-render --bench dynamic
 use std::time::Instant;
-use tubecast_render::accel::grid::Grid;
+use tubecast_render::accel::grid::{Grid, GridParams};
 use tubecast_render::accel::{Bvh, Tracer};
 use tubecast_render::io::Polyline;
 use tubecast_render::render::{render, Camera, Options};
@@ -41,7 +42,14 @@ fn main() {
         .ok()
         .map(|s| s.split(',').filter_map(|x| x.trim().parse().ok()).collect())
         .unwrap_or_else(|| vec![10_000, 100_000]);
-    let builders: [(&str, Build); 2] = [("grid", |p| Box::new(Grid::build(p))), ("bvh", |p| Box::new(Bvh::build(p)))];
+    let builders: [(&str, Build); 4] = [
+        ("grid λ=2 (default)", |p| Box::new(Grid::build(p))),
+        ("grid λ=8", |p| Box::new(Grid::build_with(p, &GridParams { cells_per_prim: 8.0, ..GridParams::default() }))),
+        ("grid λ=32", |p| {
+            Box::new(Grid::build_with(p, &GridParams { cells_per_prim: 32.0, ..GridParams::default() }))
+        }),
+        ("bvh", |p| Box::new(Bvh::build(p))),
+    ];
     println!("| links | structure | mode | build ms | render ms | frame ms | frame / BVH frame |");
     println!("|---|---|---|---|---|---|---|");
     for links in sizes {
