@@ -43,6 +43,7 @@ pub use kernel::hermite::HermiteSegment;
 pub use kernel::link::{HanLink, LinkShape, RoundCone};
 pub use kernel::roots::Solver;
 pub use kernel::spline::QuadTube;
+pub use kernel::voxel;
 pub use primitive::{Primitive, Sphere};
 pub use ray::{Interval, Ray};
 pub use real::{Mask, Real, Scalar};

@@ -7,6 +7,7 @@ pub mod csg;
 pub mod link;
 pub mod sdf;
 pub mod sphere;
+pub mod voxel;
 
 pub mod hermite;
 pub mod obb;

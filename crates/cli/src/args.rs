@@ -14,6 +14,15 @@ pub enum Color {
     Type,
 }
 
+/// Acceleration structure (`--accel`).
+#[derive(Clone, Copy, ValueEnum)]
+pub enum Accel {
+    /// Bounding volume hierarchy (obvhs).
+    Bvh,
+    /// Uniform voxel grid, conservatively voxelized (cells ≈ 2 per primitive).
+    Grid,
+}
+
 /// A procedural scene (`generate`).
 #[derive(Clone, Copy, ValueEnum)]
 pub enum Kind {
@@ -80,6 +89,9 @@ pub struct RenderArgs {
     /// Hide the progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Acceleration structure.
+    #[arg(long, value_enum, default_value_t = Accel::Bvh)]
+    pub accel: Accel,
 }
 
 /// `tubecast info`.
@@ -110,6 +122,9 @@ pub struct IntersectArgs {
     /// Output hits, N×8 float64 .npy.
     #[arg(long)]
     pub out: PathBuf,
+    /// Acceleration structure (the hits are the same).
+    #[arg(long, value_enum, default_value_t = Accel::Bvh)]
+    pub accel: Accel,
     /// Tube radius for formats without radii.
     #[arg(long, default_value_t = 0.2)]
     pub radius: f64,

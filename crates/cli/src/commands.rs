@@ -1,11 +1,12 @@
 //! Each command: arguments into library calls, results to files or stdout.
 
-use crate::args::{Color, GenerateArgs, InfoArgs, IntersectArgs, Kind, RenderArgs};
+use crate::args::{Accel, Color, GenerateArgs, InfoArgs, IntersectArgs, Kind, RenderArgs};
 use crate::error::CliError;
 use std::path::Path;
-use tubecast_render::accel::{hit_table, Bvh};
+use tubecast_render::accel::{grid::Grid, hit_table, Bvh, Tracer};
 use tubecast_render::io::{self, npy::Array2};
 use tubecast_render::render::{self, ColorBy, Options, Shading, View};
+use tubecast_render::scene::Prim;
 use tubecast_render::scene::{generate, LoadOptions, Model, Scene};
 
 type Res = Result<(), CliError>;
@@ -34,6 +35,14 @@ fn load(input: &Path, radius: f64, min_radius: Option<f64>, empty: &str) -> Resu
     Ok(scene)
 }
 
+/// The chosen acceleration structure over `prims`.
+fn tracer(accel: Accel, prims: Vec<Prim>) -> Box<dyn Tracer> {
+    match accel {
+        Accel::Bvh => Box::new(Bvh::build(prims)),
+        Accel::Grid => Box::new(Grid::build(prims)),
+    }
+}
+
 fn model(splines: bool) -> Model {
     if splines {
         Model::Splines
@@ -49,7 +58,7 @@ pub fn render(a: &RenderArgs) -> Res {
     // scene is viewed as if it were the box [-1, 1]³.
     let st = scene.stats_of(&prims);
     let bounds = if st.is_empty() { ([-1.0; 3], [1.0; 3]) } else { st.bounds };
-    let bvh = Bvh::build(prims);
+    let bvh = tracer(a.accel, prims);
     let view = View { eye: a.eye, look_at: a.look_at, up: a.up, fov_deg: a.fov, width: a.width, height: a.height };
     let cam = view.camera(bounds)?;
     let opts = Options {
@@ -65,7 +74,7 @@ pub fn render(a: &RenderArgs) -> Res {
         progress: !a.quiet && (a.width as u64 * a.height as u64) >= 256 * 256,
         ..Options::default()
     };
-    Ok(render::render(&scene, &bvh, &cam, &opts)?.write_png(&a.out)?)
+    Ok(render::render(&scene, bvh.as_ref(), &cam, &opts)?.write_png(&a.out)?)
 }
 
 pub fn info(a: &InfoArgs) -> Res {
@@ -103,8 +112,8 @@ pub fn intersect(a: &IntersectArgs) -> Res {
     let scene = load(&a.input, a.radius, a.min_radius, "every ray misses")?;
     let name = a.rays.display().to_string();
     let rays = io::npy::read(&io::read_bytes(&a.rays)?, &name, Some(6))?.rays(&name)?;
-    let bvh = Bvh::build(scene.primitives());
-    let hits = Array2::from_rows(&hit_table(&bvh, &rays));
+    let bvh = tracer(a.accel, scene.primitives());
+    let hits = Array2::from_rows(&hit_table(bvh.as_ref(), &rays));
     Ok(io::write_bytes(&a.out, &io::npy::write(&hits))?)
 }
 

@@ -51,6 +51,8 @@ enum Which {
     Speed,
     /// Embree 3's round linear curves on the same rays (feature `embree`).
     Peers,
+    /// Dynamic line sets: rebuild + render per frame, voxel grid vs BVH.
+    Voxel,
     /// Every report this build has (peers only with feature `embree`).
     All,
 }
@@ -68,6 +70,9 @@ fn jobs(which: Which) -> Result<Vec<(&'static str, Job)>, String> {
     }
     if all || which == Which::Speed {
         jobs.push(("speed", report::run_speed));
+    }
+    if all || which == Which::Voxel {
+        jobs.push(("voxel", report::run_voxel));
     }
     #[cfg(feature = "embree")]
     if all || which == Which::Peers {

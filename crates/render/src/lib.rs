@@ -27,5 +27,6 @@
 
 pub mod accel;
 pub mod io;
+pub mod quantized;
 pub mod render;
 pub mod scene;

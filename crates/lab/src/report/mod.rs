@@ -23,11 +23,13 @@ pub mod oracle;
 mod peers;
 mod runs;
 mod speed;
+mod voxel;
 
 #[cfg(feature = "embree")]
 pub use peers::run_peers;
 pub use runs::{run_accuracy, run_stability};
 pub use speed::run_speed;
+pub use voxel::run_voxel;
 
 use std::path::{Path, PathBuf};
 

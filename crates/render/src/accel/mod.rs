@@ -30,6 +30,7 @@ use tubecast::csg::Tagged;
 use tubecast::Ray;
 use tubecast::V3;
 
+pub mod grid;
 #[cfg(feature = "wide")]
 mod packet;
 mod tracer;

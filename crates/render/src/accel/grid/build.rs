@@ -1,0 +1,147 @@
+//! Grid construction: resolution, then count → prefix sum → fill, each pass parallel over
+//! the primitives (rayon), voxel counters and cursors as relaxed atomics.
+
+use super::{Grid, GridParams, Voxelizer, BLOCK};
+use crate::scene::{Prim, Shape};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
+use tubecast::voxel;
+use tubecast::{RoundCone, V3};
+
+/// The padded bounding box of `prims` and the padding `pad = D·2⁻¹⁶`.
+fn scene_box(prims: &[Prim]) -> ([f64; 3], [f64; 3], f64) {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in prims {
+        let (a, b) = p.aabb();
+        lo = std::array::from_fn(|i| lo[i].min(a[i]));
+        hi = std::array::from_fn(|i| hi[i].max(b[i]));
+    }
+    if prims.is_empty() {
+        return ([0.0; 3], [0.0; 3], 0.0);
+    }
+    let diag = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
+    let pad = diag.max(f64::MIN_POSITIVE) * 2f64.powi(-16);
+    (lo.map(|x| x - 2.0 * pad), hi.map(|x| x + 2.0 * pad), pad)
+}
+
+/// Voxel side and counts for `n` primitives over `[lo, hi]` (module docs, "Resolution").
+fn resolution(lo: [f64; 3], hi: [f64; 3], n: usize, p: &GridParams) -> (f64, [u32; 3]) {
+    let ext: [f64; 3] = std::array::from_fn(|i| hi[i] - lo[i]);
+    let diag = (ext[0] * ext[0] + ext[1] * ext[1] + ext[2] * ext[2]).sqrt().max(f64::MIN_POSITIVE);
+    let e = ext.map(|x| x.max(diag * 1e-3));
+    let cells = (p.cells_per_prim * n.max(1) as f64).clamp(1.0, p.max_cells.max(1) as f64);
+    let mut h = (e[0] * e[1] * e[2] / cells).cbrt();
+    if !h.is_normal() {
+        return (1.0, [1, 1, 1]); // no primitives (or a subnormal scene): one voxel
+    }
+    loop {
+        let dims = e.map(|x| ((x / h).ceil().max(1.0)).min(u32::MAX as f64 / 4.0) as u32);
+        if dims.iter().map(|&d| d as f64).product::<f64>() <= p.max_cells.max(1) as f64 {
+            return (h, dims);
+        }
+        h *= 1.05; // rounding up each axis can overshoot the cap by a little
+    }
+}
+
+/// The world round cone of a link or sphere primitive with radii grown by `pad`; `None` for a
+/// spline sub-segment.
+fn world_cone(p: &Prim, pad: f64) -> Option<RoundCone<f64>> {
+    let c = p.round_cone()?;
+    let o = V3::from(p.origin);
+    Some(RoundCone { a: o + c.a.cast(), ra: c.ra as f64 + pad, b: o + c.b.cast(), rb: c.rb as f64 + pad })
+}
+
+impl Grid {
+    /// Build over `prims` with explicit parameters. An empty list gives a grid every ray
+    /// misses.
+    pub fn build_with(prims: Vec<Prim>, params: &GridParams) -> Self {
+        let (lo, hi, pad) = scene_box(&prims);
+        let (h, dims) = resolution(lo, hi, prims.len(), params);
+        let bdims = dims.map(|d| d.div_ceil(BLOCK));
+        let (offsets, ids, occupied) = (Vec::new(), Vec::new(), Vec::new());
+        let mut grid = Grid { prims, lo, h, inv_h: 1.0 / h, dims, offsets, ids, bdims, occupied };
+        let cells = dims.iter().map(|&d| d as usize).product::<usize>();
+        let counts: Vec<AtomicU32> = (0..cells).map(|_| AtomicU32::new(0)).collect();
+        grid.prims.par_iter().for_each(|p| {
+            grid.voxelize(p, pad, params.voxelizer, |v| {
+                counts[v].fetch_add(1, Relaxed);
+            })
+        });
+        let total: u64 = counts.iter().map(|c| c.load(Relaxed) as u64).sum();
+        if total > u32::MAX as u64 && params.cells_per_prim > 1e-6 {
+            // Lists too long for u32 offsets (huge radii against the voxel size): coarser.
+            let coarser = GridParams { cells_per_prim: params.cells_per_prim / 8.0, ..*params };
+            return Self::build_with(grid.prims, &coarser);
+        }
+        let mut offsets = Vec::with_capacity(cells + 1);
+        let mut sum = 0u32;
+        offsets.push(0);
+        for c in &counts {
+            sum = sum.saturating_add(c.load(Relaxed));
+            offsets.push(sum);
+        }
+        // Reuse the counters as fill cursors.
+        counts.par_iter().zip(offsets.par_iter()).for_each(|(c, &o)| c.store(o, Relaxed));
+        let ids: Vec<AtomicU32> = (0..sum).map(|_| AtomicU32::new(0)).collect();
+        grid.prims.par_iter().enumerate().for_each(|(k, p)| {
+            grid.voxelize(p, pad, params.voxelizer, |v| {
+                let slot = counts[v].fetch_add(1, Relaxed);
+                ids[slot as usize].store(k as u32, Relaxed);
+            })
+        });
+        grid.offsets = offsets;
+        grid.ids = ids.into_iter().map(AtomicU32::into_inner).collect();
+        grid.occupied = grid.block_occupancy();
+        grid
+    }
+
+    /// Per block: whether any of its voxels has a non-empty list.
+    fn block_occupancy(&self) -> Vec<bool> {
+        let mut occ = vec![false; self.bdims.iter().map(|&d| d as usize).product()];
+        for z in 0..self.dims[2] {
+            for y in 0..self.dims[1] {
+                for x in 0..self.dims[0] {
+                    let v = self.index([x, y, z]);
+                    if self.offsets[v + 1] > self.offsets[v] {
+                        occ[self.block_index([x / BLOCK, y / BLOCK, z / BLOCK])] = true;
+                    }
+                }
+            }
+        }
+        occ
+    }
+
+    /// A world point in grid coordinates.
+    #[inline]
+    pub(super) fn to_grid(&self, x: V3<f64>) -> V3<f64> {
+        V3::new((x.x - self.lo[0]) * self.inv_h, (x.y - self.lo[1]) * self.inv_h, (x.z - self.lo[2]) * self.inv_h)
+    }
+
+    /// Hand the linear index of every voxel `p` is assigned to to `f`.
+    fn voxelize(&self, p: &Prim, pad: f64, how: Voxelizer, mut f: impl FnMut(usize)) {
+        let s = self.inv_h;
+        let cone = match (world_cone(p, pad), p.shape) {
+            (Some(c), _) => RoundCone { a: self.to_grid(c.a), ra: c.ra * s, b: self.to_grid(c.b), rb: c.rb * s },
+            (None, Shape::Spline { quad, .. }) if how == Voxelizer::CentreLine => {
+                let o = V3::from(p.origin);
+                RoundCone {
+                    a: self.to_grid(o + quad.b[0].cast()),
+                    ra: 0.0,
+                    b: self.to_grid(o + quad.b[2].cast()),
+                    rb: 0.0,
+                }
+            }
+            _ => {
+                // A spline sub-segment: its padded box, as a zero-radius "link" corner to corner.
+                let (a, b) = p.aabb();
+                let a = self.to_grid(V3::from(a.map(|x| x - pad)));
+                let b = self.to_grid(V3::from(b.map(|x| x + pad)));
+                return voxel::voxelize_aabb(&RoundCone { a, ra: 0.0, b, rb: 0.0 }, self.dims, |c| f(self.index(c)));
+            }
+        };
+        match how {
+            Voxelizer::Conservative => voxel::voxelize_round_cone(&cone, self.dims, |c| f(self.index(c))),
+            Voxelizer::CentreLine => voxel::voxelize_dda(&cone, self.dims, |c| f(self.index(c))),
+        }
+    }
+}

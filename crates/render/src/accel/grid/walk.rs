@@ -1,0 +1,103 @@
+//! Ray queries on the grid: the DDA walk with a closest hit accepted inside the current
+//! voxel's `t` range (module docs), any hit, and every line interval for the CSG union.
+
+use super::{Grid, BLOCK};
+use crate::accel::Hit;
+use tubecast::csg::Tagged;
+use tubecast::{voxel, Ray};
+
+/// The last few primitives tested on a walk, so a primitive listed in consecutive voxels is
+/// tested once there (a check, not a guarantee: older ones may be tested again, harmlessly).
+struct Mailbox {
+    ids: [u32; 8],
+    next: usize,
+}
+
+impl Mailbox {
+    fn new() -> Self {
+        Self { ids: [u32::MAX; 8], next: 0 }
+    }
+    /// True when `id` is new (and remember it).
+    #[inline]
+    fn fresh(&mut self, id: u32) -> bool {
+        if self.ids.contains(&id) {
+            return false;
+        }
+        self.ids[self.next] = id;
+        self.next = (self.next + 1) % self.ids.len();
+        true
+    }
+}
+
+impl Grid {
+    /// Walk the voxels of `ray`'s line over `[t_lo, t_hi]` (ray parameter), skipping empty
+    /// blocks, handing each voxel's list and exit `t` to `f` until it returns false.
+    #[inline]
+    fn walk(&self, ray: &Ray<f64>, t_lo: f64, t_hi: f64, mut f: impl FnMut(&[u32], f64) -> bool) {
+        if self.prims.is_empty() {
+            return;
+        }
+        let o = self.to_grid(ray.o);
+        let d = ray.d * self.inv_h;
+        let s = 1.0 / BLOCK as f64;
+        voxel::dda(o * s, d * s, t_lo, t_hi, self.bdims, |b, t0, t1| {
+            if !self.occupied[self.block_index(b)] {
+                return true;
+            }
+            let mut go = true;
+            voxel::dda(o, d, t0, t1, self.dims, |c, _, tc| {
+                go = f(self.list(c), tc);
+                go
+            });
+            go
+        });
+    }
+
+    /// The closest surface crossing in `[t_min, t_max]`; ties in `t` go to the lower index.
+    pub(super) fn closest(&self, ray: &Ray<f64>) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        let mut seen = Mailbox::new();
+        self.walk(ray, ray.t_min, ray.t_max, |list, t1| {
+            for &id in list {
+                if !seen.fresh(id) {
+                    continue;
+                }
+                let p = &self.prims[id as usize];
+                if let Some((t, n, u, entering)) = p.first_hit(ray) {
+                    if best.map_or(true, |b| t < b.t || (t == b.t && id < b.prim)) {
+                        best = Some(Hit { t, n, u, prim: id, link: p.link, entering });
+                    }
+                }
+            }
+            best.map_or(true, |b| b.t > t1)
+        });
+        best
+    }
+
+    /// True when any primitive meets `[t_min, t_max]` of the ray.
+    pub(super) fn any(&self, ray: &Ray<f64>) -> bool {
+        let mut found = false;
+        let mut seen = Mailbox::new();
+        self.walk(ray, ray.t_min, ray.t_max, |list, _| {
+            found = list.iter().any(|&id| seen.fresh(id) && self.prims[id as usize].meets(ray));
+            !found
+        });
+        found
+    }
+
+    /// Every primitive's intervals with the ray's whole line (each primitive once).
+    pub(super) fn intervals(&self, ray: &Ray<f64>, out: &mut Vec<Tagged<f64>>) {
+        let mut ids = Vec::new();
+        let mut seen = Mailbox::new();
+        self.walk(ray, f64::NEG_INFINITY, f64::INFINITY, |list, _| {
+            ids.extend(list.iter().filter(|&&id| seen.fresh(id)));
+            true
+        });
+        ids.sort_unstable();
+        ids.dedup();
+        let line = Ray::with_range(ray.o, ray.d, f64::NEG_INFINITY, f64::INFINITY);
+        for id in ids {
+            self.prims[id as usize].pieces(&line, |iv| out.push(Tagged { iv, id }));
+        }
+    }
+}
