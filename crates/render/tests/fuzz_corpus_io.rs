@@ -1,4 +1,4 @@
-//! Replays the committed fuzz corpora of the file readers (fuzz/corpus/{swc,trk,tck,obj,npy})
+//! Replays the committed fuzz corpora of the file readers (fuzz/corpus/{swc,trk,tck,obj,npy,trx})
 //! through the same checks the fuzz targets run (fuzz/checks/*.rs), on stable Rust.
 
 mod swc {
@@ -15,6 +15,9 @@ mod obj {
 }
 mod npy {
     include!("../../../fuzz/checks/npy.rs");
+}
+mod trx {
+    include!("../../../fuzz/checks/trx.rs");
 }
 
 include!("../../../fuzz/checks/replay.rs");
@@ -43,4 +46,8 @@ fn obj_corpus() {
 #[test]
 fn npy_corpus() {
     replay("npy", npy::check);
+}
+#[test]
+fn trx_corpus() {
+    replay("trx", trx::check);
 }
