@@ -4,7 +4,7 @@ use clap::{Args, ValueEnum};
 use std::path::PathBuf;
 
 /// Surface colouring (`--color`).
-#[derive(Clone, Copy, ValueEnum)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Color {
     /// |tangent| as RGB (tractography convention).
     Direction,
@@ -12,6 +12,19 @@ pub enum Color {
     Radius,
     /// SWC structure type.
     Type,
+    /// A data field of the file (`scalar:NAME` or `property:NAME`) through `--colormap`.
+    Data(String),
+}
+
+/// `direction`, `radius`, `type`, `scalar:NAME` or `property:NAME`.
+pub fn parse_color(s: &str) -> Result<Color, String> {
+    match s {
+        "direction" => Ok(Color::Direction),
+        "radius" => Ok(Color::Radius),
+        "type" => Ok(Color::Type),
+        _ if (s.starts_with("scalar:") || s.starts_with("property:")) && !s.ends_with(':') => Ok(Color::Data(s.into())),
+        _ => Err(format!("{s:?}: use direction, radius, type, scalar:NAME or property:NAME")),
+    }
 }
 
 /// A procedural scene (`generate`).
@@ -48,9 +61,15 @@ pub struct RenderArgs {
     /// often hold) by R; a warning counts them. Without it such a file is refused.
     #[arg(long, value_name = "R")]
     pub min_radius: Option<f64>,
-    /// Colouring.
-    #[arg(long, value_enum, default_value_t = Color::Direction)]
+    /// Colouring: direction, radius, type, or a data field of the file through --colormap:
+    /// scalar:NAME (TrackVis scalar, TRX dpv, `scalar:tsf` for the .tsf beside a .tck,
+    /// `scalar:radius`, `scalar:type`) or property:NAME (TrackVis property, TRX dps).
+    #[arg(long, value_parser = parse_color, default_value = "direction")]
     pub color: Color,
+    /// Colour map for --color scalar:/property: (viridis, magma, inferno, plasma, cividis,
+    /// turbo, greys, rdylbu).
+    #[arg(long, value_parser = |s: &str| s.parse::<tubecast_render::render::Colormap>(), default_value = "viridis")]
+    pub colormap: tubecast_render::render::Colormap,
     /// Surface opacity in (0, 1]; below 1 renders transparent tubes (CSG union).
     #[arg(long, default_value_t = 1.0)]
     pub opacity: f64,

@@ -18,7 +18,21 @@ fn warn(msg: &str) {
 /// Load the scene at `input`; warn about radii raised to `min_radius` and, with `empty`
 /// (what the command does then), about a scene without nodes.
 fn load(input: &Path, radius: f64, min_radius: Option<f64>, empty: &str) -> Result<Scene, CliError> {
-    let (scene, rep) = Scene::load_with(input, &LoadOptions { default_radius: radius, min_radius })?;
+    load_colored(input, radius, min_radius, empty, None)
+}
+
+/// [`load`], then, with `field`, colour values from that data field of the file.
+fn load_colored(
+    input: &Path,
+    radius: f64,
+    min_radius: Option<f64>,
+    empty: &str,
+    field: Option<&str>,
+) -> Result<Scene, CliError> {
+    let (mut scene, rep, fields) = Scene::load_fields(input, &LoadOptions { default_radius: radius, min_radius })?;
+    if let Some(key) = field {
+        scene.select_values(&fields, key)?;
+    }
     if let (Some(r), true) = (min_radius, rep.replaced > 0) {
         warn(&format!(
             "{}: {} of {} radii were below --min-radius {r} ({} of them ≤ 0) and were set to {r}",
@@ -43,7 +57,11 @@ fn model(splines: bool) -> Model {
 }
 
 pub fn render(a: &RenderArgs) -> Res {
-    let scene = load(&a.input, a.radius, a.min_radius, "the image shows the background only")?;
+    let field = match &a.color {
+        Color::Data(key) => Some(key.as_str()),
+        _ => None,
+    };
+    let scene = load_colored(&a.input, a.radius, a.min_radius, "the image shows the background only", field)?;
     let prims = scene.model_primitives(model(a.splines))?;
     // Bounds of the primitives in use (a spline can bulge beyond its links' boxes); an empty
     // scene is viewed as if it were the box [-1, 1]³.
@@ -57,6 +75,7 @@ pub fn render(a: &RenderArgs) -> Res {
             Color::Direction => ColorBy::Direction,
             Color::Radius => ColorBy::Radius,
             Color::Type => ColorBy::Type,
+            Color::Data(_) => ColorBy::Values(a.colormap),
         },
         shading: Shading::Lit,
         opacity: a.opacity,

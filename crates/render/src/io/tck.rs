@@ -12,15 +12,14 @@ use super::{Cursor, IoError, Polyline};
 /// A header entry: key, value (continuation lines joined by newlines), line of the key.
 type Entry = (String, String, usize);
 
-fn header_lines(data: &[u8], name: &str) -> Result<(Vec<Entry>, usize), IoError> {
-    const MAGIC: &[u8] = b"mrtrix tracks\n";
+fn header_lines(data: &[u8], name: &str, magic: &str) -> Result<(Vec<Entry>, usize), IoError> {
     if data.is_empty() {
         return Err(IoError::file(name, "empty file"));
     }
-    if !data.starts_with(MAGIC) {
-        return Err(IoError::line(name, 1, "first line is not \"mrtrix tracks\""));
+    if !(data.starts_with(magic.as_bytes()) && data.get(magic.len()) == Some(&b'\n')) {
+        return Err(IoError::line(name, 1, format!("first line is not {magic:?}")));
     }
-    let mut pos = MAGIC.len();
+    let mut pos = magic.len() + 1;
     let mut line_no = 1;
     let mut entries: Vec<Entry> = Vec::new();
     let mut last: Option<usize> = None;
@@ -64,8 +63,8 @@ fn header_lines(data: &[u8], name: &str) -> Result<(Vec<Entry>, usize), IoError>
 /// The header of a `.tck` file: the data's byte order (`true`: big endian) and offset. As in
 /// nibabel, a missing `datatype` means `Float32LE` and a missing `file` entry means the data
 /// start right after `END`.
-fn read_header(data: &[u8], name: &str) -> Result<(bool, usize), IoError> {
-    let (entries, header_end) = header_lines(data, name)?;
+fn read_header(data: &[u8], name: &str, magic: &str) -> Result<(bool, usize), IoError> {
+    let (entries, header_end) = header_lines(data, name, magic)?;
     let get = |k: &str| entries.iter().find(|e| e.0 == k);
     let big = match get("datatype") {
         None => false,
@@ -119,7 +118,7 @@ fn read_header(data: &[u8], name: &str) -> Result<(bool, usize), IoError> {
 /// triplet mixing finite and non-finite values, no Inf end marker (truncated file), a last
 /// streamline without its NaN triplet, or bytes after the Inf end marker.
 pub fn read(data: &[u8], name: &str) -> Result<Vec<Polyline>, IoError> {
-    let (big, off) = read_header(data, name)?;
+    let (big, off) = read_header(data, name, "mrtrix tracks")?;
     let mut c = Cursor::new(data, name, big);
     c.pos = off;
     let mut out = Vec::new();
@@ -157,6 +156,52 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<Polyline>, IoError> {
         }
     }
     Ok(out)
+}
+
+/// Parse an MRtrix track scalar file (`.tsf`, the per-point values beside a `.tck`): the same
+/// header (first line `mrtrix track scalars`), then one `float32` per point, a NaN after each
+/// streamline and an Inf at the end, with the same rules as [`read`]. Returns the values per
+/// streamline.
+pub fn read_tsf(data: &[u8], name: &str) -> Result<Vec<Vec<f64>>, IoError> {
+    let (big, off) = read_header(data, name, "mrtrix track scalars")?;
+    let mut c = Cursor::new(data, name, big);
+    c.pos = off;
+    let (mut out, mut cur) = (Vec::new(), Vec::new());
+    loop {
+        let at = c.pos as u64;
+        if c.remaining() == 0 {
+            return Err(IoError::offset(name, at, "truncated: data ends without the Inf end marker"));
+        }
+        let v = c.f32("a value")?;
+        if v.is_nan() {
+            // Empty streamlines are skipped, as `read` skips them.
+            if !cur.is_empty() {
+                out.push(std::mem::take(&mut cur));
+            }
+        } else if v.is_infinite() {
+            if !cur.is_empty() || c.remaining() > 0 {
+                return Err(IoError::offset(name, at, "the Inf end marker must follow a NaN and end the file"));
+            }
+            return Ok(out);
+        } else {
+            cur.push(v as f64);
+        }
+    }
+}
+
+/// Write per-point values as a little-endian `.tsf` file (inverse of [`read_tsf`]).
+pub fn write_tsf(values: &[Vec<f64>]) -> Vec<u8> {
+    let head = |off: usize| format!("mrtrix track scalars\ndatatype: Float32LE\nfile: . {off:08}\nEND\n");
+    let off = head(0).len();
+    let mut out = head(off).into_bytes();
+    for l in values {
+        for &v in l {
+            out.extend_from_slice(&(v as f32).to_le_bytes());
+        }
+        out.extend_from_slice(&f32::NAN.to_le_bytes());
+    }
+    out.extend_from_slice(&f32::INFINITY.to_le_bytes());
+    out
 }
 
 /// Write streamlines as a little-endian (`big = false`) or big-endian `.tck` file with a

@@ -14,6 +14,7 @@
 //! Colours are linear RGB in `[0, 1]`; [`Image::to_srgb8`] encodes them for PNG.
 
 mod camera;
+mod colormap;
 mod error;
 mod image;
 mod options;
@@ -21,6 +22,7 @@ mod shade;
 mod trace;
 
 pub use camera::{Camera, View};
+pub use colormap::{value_range, Colormap};
 pub use error::RenderError;
 pub use image::Image;
 pub use options::{ColorBy, Options, Shading};

@@ -1,4 +1,4 @@
-//! Surface colours: by direction, radius, SWC type or one colour.
+//! Surface colours: by direction, radius, SWC type, data values or one colour.
 
 use super::ColorBy;
 use crate::scene::{Prim, Scene};
@@ -7,6 +7,8 @@ use crate::scene::{Prim, Scene};
 pub(super) struct Palette {
     r_lo: f64,
     r_hi: f64,
+    /// Finite range of the scene's data values.
+    v_range: Option<(f64, f64)>,
 }
 
 fn colormap(x: f64) -> [f32; 3] {
@@ -38,7 +40,7 @@ impl Palette {
             r_lo = r_lo.min(n.radius);
             r_hi = r_hi.max(n.radius);
         }
-        Self { r_lo, r_hi }
+        Self { r_lo, r_hi, v_range: super::value_range(&scene.values) }
     }
     /// Colour of primitive `prim` at its curve parameter `u`.
     pub(super) fn color(&self, scene: &Scene, by: ColorBy, prim: &Prim, u: f64) -> [f32; 3] {
@@ -71,6 +73,18 @@ impl Palette {
                 colormap(if span > 0.0 { (r - self.r_lo) / span } else { 0.5 })
             }
             ColorBy::Type => type_color(scene.nodes[l[1] as usize].kind),
+            ColorBy::Values(map) => {
+                let (Some((lo, hi)), Some(&a), Some(&b)) =
+                    (self.v_range, scene.values.get(l[0] as usize), scene.values.get(l[1] as usize))
+                else {
+                    return [0.5; 3];
+                };
+                let v = a + (b - a) * u.clamp(0.0, 1.0);
+                if !v.is_finite() {
+                    return [0.5; 3];
+                }
+                map.linear(if hi > lo { (v - lo) / (hi - lo) } else { 0.5 })
+            }
         }
     }
 }
