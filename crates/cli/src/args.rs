@@ -70,6 +70,9 @@ pub struct RenderArgs {
     /// turbo, greys, rdylbu).
     #[arg(long, value_parser = |s: &str| s.parse::<tubecast_render::render::Colormap>(), default_value = "viridis")]
     pub colormap: tubecast_render::render::Colormap,
+    /// Draw a colour bar with the value range at the right edge (with --color scalar:/property:).
+    #[arg(long)]
+    pub legend: bool,
     /// Surface opacity in (0, 1]; below 1 renders transparent tubes (CSG union).
     #[arg(long, default_value_t = 1.0)]
     pub opacity: f64,

@@ -84,7 +84,15 @@ pub fn render(a: &RenderArgs) -> Res {
         progress: !a.quiet && (a.width as u64 * a.height as u64) >= 256 * 256,
         ..Options::default()
     };
-    Ok(render::render(&scene, &bvh, &cam, &opts)?.write_png(&a.out)?)
+    let mut img = render::render(&scene, &bvh, &cam, &opts)?;
+    if a.legend {
+        match (&a.color, render::value_range(&scene.values)) {
+            (Color::Data(_), Some((lo, hi))) => img.draw_legend(a.colormap, lo, hi, [0.0; 3]),
+            (Color::Data(key), None) => warn(&format!("{key} has no finite values: no legend drawn")),
+            _ => warn("--legend needs --color scalar:NAME or property:NAME: no legend drawn"),
+        }
+    }
+    Ok(img.write_png(&a.out)?)
 }
 
 pub fn info(a: &InfoArgs) -> Res {

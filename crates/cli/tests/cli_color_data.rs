@@ -53,3 +53,15 @@ fn unknown_field_and_colormap_are_clear_errors() {
     let o = render(&reference("nibabel/complex.trk"), &out, &["--color", "fa"]);
     assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("scalar:NAME"));
 }
+
+#[test]
+fn legend_changes_the_image_and_needs_a_data_colouring() {
+    let input = reference("nibabel/complex.trk");
+    let (plain, with) = (tmp("legend-off.png"), tmp("legend-on.png"));
+    assert!(render(&input, &plain, &["--color", "scalar:fa"]).status.success());
+    let o = render(&input, &with, &["--color", "scalar:fa", "--legend"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_ne!(std::fs::read(&plain).unwrap(), std::fs::read(&with).unwrap(), "--legend drew nothing");
+    let o = render(&input, &with, &["--legend"]);
+    assert!(o.status.success() && String::from_utf8_lossy(&o.stderr).contains("--legend needs"));
+}

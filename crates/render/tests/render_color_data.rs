@@ -119,3 +119,29 @@ fn flat_render_shows_the_colour_map_ends() {
     let upper = (0..32).find(|&y| img.at(col, y) != [1.0; 3]).expect("the upper tube is visible");
     assert!(img.at(col, upper + 1).iter().zip(want_lo).all(|(a, b)| (a - b).abs() <= 1e-6));
 }
+
+#[test]
+fn legend_bar_runs_from_low_to_high_with_its_labels() {
+    let (w, h) = (200u32, 100u32);
+    let n = (w * h) as usize;
+    let mut img = render::Image { width: w, height: h, rgb: vec![[1.0; 3]; n], depth: vec![f64::INFINITY; n] };
+    img.draw_legend(Colormap::Viridis, -0.5, 2.0, [0.0; 3]);
+    // Layout (documented): bar over rows h/5 .. h − h/5, top row the map's high end, bottom
+    // row its low end; find the bar's columns by the top row's viridis(1) colour.
+    let (top, bottom) = (h / 5, h - h / 5);
+    let want_hi = [0xfd, 0xe7, 0x25].map(lin);
+    let want_lo = [0x44, 0x01, 0x54].map(lin);
+    let near = |p: [f32; 3], w: [f32; 3]| p.iter().zip(w).all(|(a, b)| (a - b).abs() <= 1e-6);
+    let xs: Vec<u32> = (0..w).filter(|&x| near(img.at(x, top), want_hi)).collect();
+    assert!(xs.len() >= 6, "bar columns {xs:?}");
+    assert!(xs.iter().all(|&x| near(img.at(x, bottom - 1), want_lo)));
+    // Frame and labels in ink, to the right of the bar's first column, nowhere left of the bar.
+    let ink = |x: u32, y: u32| img.at(x, y) == [0.0; 3];
+    assert!((xs[xs.len() - 1] + 2..w).any(|x| (top..top + 5).any(|y| ink(x, y))), "high label drawn");
+    assert!((xs[xs.len() - 1] + 2..w).any(|x| (bottom - 5..bottom).any(|y| ink(x, y))), "low label drawn");
+    assert!((0..xs[0] - 1).all(|x| (0..h).all(|y| img.at(x, y) == [1.0; 3])), "nothing drawn left of the bar");
+    assert_eq!(render::legend_label(-0.5), "-0.5");
+    assert_eq!(render::legend_label(2.0), "2");
+    assert_eq!(render::legend_label(1.5e-6), "1.50e-6");
+    assert_eq!(render::legend_label(0.0), "0");
+}

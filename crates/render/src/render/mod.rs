@@ -17,6 +17,7 @@ mod camera;
 mod colormap;
 mod error;
 mod image;
+mod legend;
 mod options;
 mod shade;
 mod trace;
@@ -25,6 +26,7 @@ pub use camera::{Camera, View};
 pub use colormap::{value_range, Colormap};
 pub use error::RenderError;
 pub use image::Image;
+pub use legend::label as legend_label;
 pub use options::{ColorBy, Options, Shading};
 
 #[allow(unused_imports)] // documentation links
