@@ -2,10 +2,11 @@
 
 use crate::args::{Color, GenerateArgs, InfoArgs, IntersectArgs, Kind, RenderArgs};
 use crate::error::CliError;
+use crate::render_opts::{check_out, Background, Radius};
 use std::path::Path;
 use tubecast_render::accel::{hit_table, Bvh};
 use tubecast_render::io::{self, npy::Array2};
-use tubecast_render::render::{self, ColorBy, Options, Shading, View};
+use tubecast_render::render::{self, Camera, ColorBy, Options, Shading, View};
 use tubecast_render::scene::{generate, LoadOptions, Model, Scene};
 
 type Res = Result<(), CliError>;
@@ -48,6 +49,25 @@ fn load_colored(
     Ok(scene)
 }
 
+/// The default radius: absolute, or the fraction of the diagonal of the bounding box of the
+/// file's points (read once more to measure it; a file of one point: the fraction of 1 unit).
+fn resolve_radius(input: &Path, r: Radius, min_radius: Option<f64>) -> Result<f64, CliError> {
+    let Radius::Relative(f) = r else {
+        let Radius::Absolute(v) = r else { unreachable!() };
+        return Ok(v);
+    };
+    let (scene, _) = Scene::load_with(input, &LoadOptions { default_radius: 1.0, min_radius })?;
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for n in &scene.nodes {
+        for k in 0..3 {
+            lo[k] = lo[k].min(n.pos[k]);
+            hi[k] = hi[k].max(n.pos[k]);
+        }
+    }
+    let diag = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+    Ok(if diag.is_finite() && diag > 0.0 { f * diag } else { f })
+}
+
 fn model(splines: bool) -> Model {
     if splines {
         Model::Splines
@@ -61,7 +81,12 @@ pub fn render(a: &RenderArgs) -> Res {
         Color::Data(key) => Some(key.as_str()),
         _ => None,
     };
-    let scene = load_colored(&a.input, a.radius, a.min_radius, "the image shows the background only", field)?;
+    check_out(&a.out, a.force)?;
+    if let Some(d) = &a.depth {
+        check_out(d, a.force)?;
+    }
+    let radius = resolve_radius(&a.input, a.radius, a.min_radius)?;
+    let scene = load_colored(&a.input, radius, a.min_radius, "the image shows the background only", field)?;
     let prims = scene.model_primitives(model(a.splines))?;
     // Bounds of the primitives in use (a spline can bulge beyond its links' boxes); an empty
     // scene is viewed as if it were the box [-1, 1]³.
@@ -69,20 +94,34 @@ pub fn render(a: &RenderArgs) -> Res {
     let bounds = if st.is_empty() { ([-1.0; 3], [1.0; 3]) } else { st.bounds };
     let bvh = Bvh::build(prims);
     let view = View { eye: a.eye, look_at: a.look_at, up: a.up, fov_deg: a.fov, width: a.width, height: a.height };
-    let cam = view.camera(bounds)?;
+    let mut cam = match a.view {
+        Some(p) if a.eye.is_none() && a.look_at.is_none() => {
+            Camera::fit_preset(bounds.0, bounds.1, p, a.fov, a.width, a.height)?
+        }
+        _ => view.camera(bounds)?,
+    };
+    if a.ortho {
+        let centre = std::array::from_fn(|k| 0.5 * (bounds.0[k] + bounds.1[k]));
+        cam = cam.orthographic(a.look_at.unwrap_or(centre));
+    }
+    let background = match a.background {
+        Background::Color(c) => c,
+        Background::Transparent => [0.0; 3],
+    };
     let opts = Options {
         color: match a.color {
             Color::Direction => ColorBy::Direction,
             Color::Radius => ColorBy::Radius,
             Color::Type => ColorBy::Type,
             Color::Data(_) => ColorBy::Values(a.colormap),
+            Color::Solid(c) => ColorBy::Solid(c),
         },
+        background,
         shading: Shading::Lit,
         opacity: a.opacity,
         ao: a.ao,
         shadows: a.shadows,
         progress: !a.quiet && (a.width as u64 * a.height as u64) >= 256 * 256,
-        ..Options::default()
     };
     let mut img = render::render(&scene, &bvh, &cam, &opts)?;
     if a.legend {
@@ -92,15 +131,47 @@ pub fn render(a: &RenderArgs) -> Res {
             _ => warn("--legend needs --color scalar:NAME or property:NAME: no legend drawn"),
         }
     }
-    Ok(img.write_png(&a.out)?)
+    if let Some(d) = &a.depth {
+        let arr = Array2 { rows: img.height as usize, cols: img.width as usize, data: img.depth.clone() };
+        io::write_bytes(d, &io::npy::write(&arr))?;
+    }
+    match a.background {
+        Background::Transparent => img.write_png_rgba(&a.out)?,
+        Background::Color(_) => img.write_png(&a.out)?,
+    }
+    Ok(())
+}
+
+/// The coordinate units a format defines (by extension).
+fn units(input: &Path) -> &'static str {
+    match input.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase().as_str() {
+        "trk" | "tck" | "trx" => "mm (RAS+ world space)",
+        "swc" => "µm (the SWC convention; the file does not state it)",
+        _ => "unknown (the format has no units)",
+    }
 }
 
 pub fn info(a: &InfoArgs) -> Res {
-    let scene = load(&a.input, a.radius, a.min_radius, "counts are zero")?;
+    let radius = resolve_radius(&a.input, a.radius, a.min_radius)?;
+    let scene = load(&a.input, radius, a.min_radius, "counts are zero")?;
     let prims = scene.model_primitives(model(a.splines))?;
     let st = if a.splines { scene.stats_of(&prims) } else { scene.stats() };
     let bvh = Bvh::build(prims);
+    if a.json {
+        let bounds = (!st.is_empty()).then(|| serde_json::json!({"min": st.bounds.0, "max": st.bounds.1}));
+        let j = serde_json::json!({
+            "file": a.input.display().to_string(),
+            "units": units(&a.input),
+            "nodes": st.nodes, "links": st.links, "cylinders": st.cylinders, "cones": st.cones,
+            "spheres": st.spheres, "splines": st.splines, "bounds": bounds,
+            "memory": {"scene_bytes": scene.memory_bytes(), "primitives_bvh_bytes": bvh.memory_bytes(),
+                       "bvh_nodes": bvh.node_count()},
+        });
+        println!("{}", serde_json::to_string_pretty(&j).expect("a JSON value prints"));
+        return Ok(());
+    }
     println!("file       {}", a.input.display());
+    println!("units      {}", units(&a.input));
     println!("nodes      {}", st.nodes);
     println!("links      {}", st.links);
     println!("cylinders  {}", st.cylinders);

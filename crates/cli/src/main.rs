@@ -3,6 +3,7 @@
 mod args;
 mod commands;
 mod error;
+mod render_opts;
 
 use args::{GenerateArgs, InfoArgs, IntersectArgs, RenderArgs};
 use clap::{Parser, Subcommand};
@@ -17,7 +18,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Cmd {
-    /// Render a scene (.swc, .trk, .tck, .obj) to a PNG.
+    /// Render a scene (.swc, .trk, .tck, .trx, .obj) to a PNG.
     Render(RenderArgs),
     /// Print counts of nodes, links and primitives, bounds and memory.
     Info(InfoArgs),

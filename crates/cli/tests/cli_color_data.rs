@@ -62,6 +62,6 @@ fn legend_changes_the_image_and_needs_a_data_colouring() {
     let o = render(&input, &with, &["--color", "scalar:fa", "--legend"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_ne!(std::fs::read(&plain).unwrap(), std::fs::read(&with).unwrap(), "--legend drew nothing");
-    let o = render(&input, &with, &["--legend"]);
+    let o = render(&input, &with, &["--legend", "--force"]);
     assert!(o.status.success() && String::from_utf8_lossy(&o.stderr).contains("--legend needs"));
 }

@@ -22,7 +22,7 @@ mod options;
 mod shade;
 mod trace;
 
-pub use camera::{Camera, View};
+pub use camera::{Camera, Preset, View};
 pub use colormap::{value_range, Colormap};
 pub use error::RenderError;
 pub use image::Image;
