@@ -151,12 +151,15 @@ pub struct InfoArgs {
 pub struct IntersectArgs {
     /// Input scene.
     pub input: PathBuf,
-    /// Rays, N×6 float64 .npy.
+    /// Rays, N×6 float32 or float64 .npy (C or Fortran order); `-` reads stdin.
     #[arg(long)]
     pub rays: PathBuf,
-    /// Output hits, N×8 float64 .npy.
+    /// Output hits, N×8: float64 .npy, or CSV (with --csv or a .csv name); `-` writes stdout.
     #[arg(long)]
     pub out: PathBuf,
+    /// Write the hits as CSV (header t_in,t_out,nx,ny,nz,link,u,hit).
+    #[arg(long)]
+    pub csv: bool,
     /// Tube radius for formats without radii.
     #[arg(long, default_value_t = 0.2)]
     pub radius: f64,

@@ -200,10 +200,10 @@ pub fn info(a: &InfoArgs) -> Res {
 pub fn intersect(a: &IntersectArgs) -> Res {
     let scene = load(&a.input, a.radius, a.min_radius, "every ray misses")?;
     let name = a.rays.display().to_string();
-    let rays = io::npy::read(&io::read_bytes(&a.rays)?, &name, Some(6))?.rays(&name)?;
+    let rays = io::npy::read(&crate::hits_io::read_input(&a.rays)?, &name, Some(6))?.rays(&name)?;
     let bvh = Bvh::build(scene.primitives());
     let hits = Array2::from_rows(&hit_table(&bvh, &rays));
-    Ok(io::write_bytes(&a.out, &io::npy::write(&hits))?)
+    crate::hits_io::write_hits(&a.out, &hits, a.csv)
 }
 
 pub fn generate(a: &GenerateArgs) -> Res {

@@ -3,6 +3,7 @@
 mod args;
 mod commands;
 mod error;
+mod hits_io;
 mod render_opts;
 
 use args::{GenerateArgs, InfoArgs, IntersectArgs, RenderArgs};
@@ -22,7 +23,8 @@ enum Cmd {
     Render(RenderArgs),
     /// Print counts of nodes, links and primitives, bounds and memory.
     Info(InfoArgs),
-    /// Intersect rays (N×6 float64 .npy: origin, direction) with a scene; write N×8 hits.
+    /// Intersect rays (N×6 float32/float64 .npy, C or Fortran order: origin, direction; `-`:
+    /// stdin) with a scene; write N×8 hits (.npy, or CSV with --csv or a .csv name; `-`: stdout).
     ///
     /// Hit columns: t_in, t_out (first component of the union of all tubes along the ray's
     /// line that meets t ≥ 0; t_in < 0 when the ray starts inside), normal at entry (x, y, z),
