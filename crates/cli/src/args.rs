@@ -30,6 +30,17 @@ pub fn parse_color(s: &str) -> Result<Color, String> {
     }
 }
 
+/// Minimum pixel footprint for thin tubes (`--thin`).
+#[derive(Clone, Copy, ValueEnum)]
+pub enum Thin {
+    /// On for wireframe-like data (.trk, .tck, .trx, .obj), off for SWC.
+    Auto,
+    /// Always.
+    On,
+    /// Never: tubes keep their radii, thinner than a pixel they alias.
+    Off,
+}
+
 /// A procedural scene (`generate`).
 #[derive(Clone, Copy, ValueEnum)]
 pub enum Kind {
@@ -80,6 +91,13 @@ pub struct RenderArgs {
     /// H×W float64 .npy.
     #[arg(long, value_name = "OUT.npy")]
     pub depth: Option<PathBuf>,
+    /// Thin tubes stay visible: tubes thinner than --min-pixels on screen are drawn that wide
+    /// and faded toward the background by their true coverage (phone-wire anti-aliasing).
+    #[arg(long, value_enum, default_value_t = Thin::Auto)]
+    pub thin: Thin,
+    /// Minimum on-screen tube diameter in pixels for --thin.
+    #[arg(long, default_value_t = 1.0)]
+    pub min_pixels: f64,
     /// Overwrite existing output files (refused otherwise).
     #[arg(long)]
     pub force: bool,

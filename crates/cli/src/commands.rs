@@ -1,6 +1,6 @@
 //! Each command: arguments into library calls, results to files or stdout.
 
-use crate::args::{Color, GenerateArgs, InfoArgs, IntersectArgs, Kind, RenderArgs};
+use crate::args::{Color, GenerateArgs, InfoArgs, IntersectArgs, Kind, RenderArgs, Thin};
 use crate::error::CliError;
 use crate::render_opts::{check_out, Background, Radius};
 use std::path::Path;
@@ -68,6 +68,16 @@ fn resolve_radius(input: &Path, r: Radius, min_radius: Option<f64>) -> Result<f6
     Ok(if diag.is_finite() && diag > 0.0 { f * diag } else { f })
 }
 
+/// Whether the minimum pixel footprint applies: `auto` turns it on for wireframe-like data
+/// (formats without radii: .trk, .tck, .trx, .obj), off for SWC morphologies.
+fn thin_on(t: Thin, input: &Path) -> bool {
+    match t {
+        Thin::On => true,
+        Thin::Off => false,
+        Thin::Auto => !input.extension().is_some_and(|e| e.eq_ignore_ascii_case("swc")),
+    }
+}
+
 fn model(splines: bool) -> Model {
     if splines {
         Model::Splines
@@ -86,13 +96,12 @@ pub fn render(a: &RenderArgs) -> Res {
         check_out(d, a.force)?;
     }
     let radius = resolve_radius(&a.input, a.radius, a.min_radius)?;
-    let scene = load_colored(&a.input, radius, a.min_radius, "the image shows the background only", field)?;
-    let prims = scene.model_primitives(model(a.splines))?;
+    let mut scene = load_colored(&a.input, radius, a.min_radius, "the image shows the background only", field)?;
+    let mut prims = scene.model_primitives(model(a.splines))?;
     // Bounds of the primitives in use (a spline can bulge beyond its links' boxes); an empty
     // scene is viewed as if it were the box [-1, 1]³.
     let st = scene.stats_of(&prims);
     let bounds = if st.is_empty() { ([-1.0; 3], [1.0; 3]) } else { st.bounds };
-    let bvh = Bvh::build(prims);
     let view = View { eye: a.eye, look_at: a.look_at, up: a.up, fov_deg: a.fov, width: a.width, height: a.height };
     let mut cam = match a.view {
         Some(p) if a.eye.is_none() && a.look_at.is_none() => {
@@ -104,6 +113,10 @@ pub fn render(a: &RenderArgs) -> Res {
         let centre = std::array::from_fn(|k| 0.5 * (bounds.0[k] + bounds.1[k]));
         cam = cam.orthographic(a.look_at.unwrap_or(centre));
     }
+    if thin_on(a.thin, &a.input) && render::clamp_thin(&mut scene, &cam, a.min_pixels) > 0 {
+        prims = scene.model_primitives(model(a.splines))?;
+    }
+    let bvh = Bvh::build(prims);
     let background = match a.background {
         Background::Color(c) => c,
         Background::Transparent => [0.0; 3],

@@ -102,3 +102,16 @@ fn info_json_with_units() {
     let o = bin().arg("info").arg(&input).output().unwrap();
     assert!(String::from_utf8_lossy(&o.stdout).contains("units      mm"));
 }
+
+#[test]
+fn thin_tubes_stay_visible_by_default_for_tractograms() {
+    // Radius 0.01 on a 1000-unit line: about 1/2000 of a pixel at 40 px; on by default for
+    // .tck (wireframe-like), so some pixels differ from the background; --thin off: none do.
+    let input = line_tck("thin.tck");
+    let (on, off) = (tmp("thin-on.png"), tmp("thin-off.png"));
+    assert!(run(&input, &on, &["--radius", "0.01", "--view", "xy"]).status.success());
+    assert!(run(&input, &off, &["--radius", "0.01", "--view", "xy", "--thin", "off"]).status.success());
+    let covered = |p: &Path| decode(p).3.chunks(3).filter(|c| c != &[255, 255, 255]).count();
+    assert_eq!(covered(&off), 0);
+    assert!(covered(&on) >= 20, "{} pixels show the thin line", covered(&on));
+}

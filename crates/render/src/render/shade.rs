@@ -9,6 +9,8 @@ pub(super) struct Palette {
     r_hi: f64,
     /// Finite range of the scene's data values.
     v_range: Option<(f64, f64)>,
+    /// The background, which faded thin tubes are mixed with ([`super::clamp_thin`]).
+    bg: [f32; 3],
 }
 
 fn colormap(x: f64) -> [f32; 3] {
@@ -34,16 +36,30 @@ fn type_color(t: i32) -> [f32; 3] {
 }
 
 impl Palette {
-    pub(super) fn new(scene: &Scene) -> Self {
+    pub(super) fn new(scene: &Scene, bg: [f32; 3]) -> Self {
         let (mut r_lo, mut r_hi) = (f64::INFINITY, f64::NEG_INFINITY);
         for n in &scene.nodes {
             r_lo = r_lo.min(n.radius);
             r_hi = r_hi.max(n.radius);
         }
-        Self { r_lo, r_hi, v_range: super::value_range(&scene.values) }
+        Self { r_lo, r_hi, v_range: super::value_range(&scene.values), bg }
     }
-    /// Colour of primitive `prim` at its curve parameter `u`.
+    /// Colour of primitive `prim` at its curve parameter `u`, faded toward the background by
+    /// the scene's coverage where thin tubes were widened ([`super::clamp_thin`]).
     pub(super) fn color(&self, scene: &Scene, by: ColorBy, prim: &Prim, u: f64) -> [f32; 3] {
+        let c = self.base_color(scene, by, prim, u);
+        let l = scene.links[prim.link as usize];
+        match (scene.coverage.get(l[0] as usize), scene.coverage.get(l[1] as usize)) {
+            (Some(&a), Some(&b)) => {
+                let t = u.clamp(0.0, 1.0) as f32;
+                let alpha = a + (b - a) * t;
+                std::array::from_fn(|k| alpha * c[k] + (1.0 - alpha) * self.bg[k])
+            }
+            _ => c,
+        }
+    }
+
+    fn base_color(&self, scene: &Scene, by: ColorBy, prim: &Prim, u: f64) -> [f32; 3] {
         let link = prim.link;
         let l = scene.links[link as usize];
         let spline = prim.quad().map(|q| q.cast::<f64>());
