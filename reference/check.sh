@@ -26,3 +26,13 @@ if ! "$work/venv/bin/python" "$here/compare.py" "$here/fixtures" "$work/fixtures
 if the change is intended, run: python reference/generate.py (in a venv with reference/requirements.txt) and commit"
 fi
 echo "reference/check.sh: OK, committed fixtures reproduce"
+
+# Tractography readers (nibabel, trx-python): their own venv, fixtures compared exactly (the
+# fixture is what the reference readers read from the committed inputs under readers/).
+"$python" -m venv "$work/venv-readers" || die "could not create a venv with $python"
+"$work/venv-readers/bin/pip" install --quiet --disable-pip-version-check --only-binary=:all: \
+    -r "$here/requirements-readers.txt" || die "pip could not install reference/requirements-readers.txt"
+"$work/venv-readers/bin/python" "$here/readers.py" --out "$work/readers" || die "readers.py failed"
+cmp "$here/readers/fixture.json" "$work/readers/fixture.json" \
+    || die "reference/readers/fixture.json differs from what the pinned readers read (run reference/readers.py)"
+echo "reference/check.sh: OK, reader fixtures reproduce"

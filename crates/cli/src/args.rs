@@ -4,7 +4,7 @@ use clap::{Args, ValueEnum};
 use std::path::PathBuf;
 
 /// Surface colouring (`--color`).
-#[derive(Clone, Copy, ValueEnum)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Color {
     /// |tangent| as RGB (tractography convention).
     Direction,
@@ -12,6 +12,33 @@ pub enum Color {
     Radius,
     /// SWC structure type.
     Type,
+    /// A data field of the file (`scalar:NAME` or `property:NAME`) through `--colormap`.
+    Data(String),
+    /// One colour (`solid:#rrggbb`), linear RGB.
+    Solid([f32; 3]),
+}
+
+/// `direction`, `radius`, `type`, `scalar:NAME` or `property:NAME`.
+pub fn parse_color(s: &str) -> Result<Color, String> {
+    match s {
+        "direction" => Ok(Color::Direction),
+        "radius" => Ok(Color::Radius),
+        "type" => Ok(Color::Type),
+        _ if s.starts_with("solid:") => crate::render_opts::parse_rgb(&s[6..]).map(Color::Solid),
+        _ if (s.starts_with("scalar:") || s.starts_with("property:")) && !s.ends_with(':') => Ok(Color::Data(s.into())),
+        _ => Err(format!("{s:?}: use direction, radius, type, solid:#rrggbb, scalar:NAME or property:NAME")),
+    }
+}
+
+/// Minimum pixel footprint for thin tubes (`--thin`).
+#[derive(Clone, Copy, ValueEnum)]
+pub enum Thin {
+    /// On for wireframe-like data (.trk, .tck, .trx, .obj), off for SWC.
+    Auto,
+    /// Always.
+    On,
+    /// Never: tubes keep their radii, thinner than a pixel they alias.
+    Off,
 }
 
 /// Acceleration structure (`--accel`).
@@ -50,16 +77,51 @@ pub struct RenderArgs {
     /// Image height in pixels.
     #[arg(long, default_value_t = 600)]
     pub height: u32,
-    /// Tube radius for formats without radii (.trk, .tck, OBJ without radius).
-    #[arg(long, default_value_t = 0.2)]
-    pub radius: f64,
+    /// Tube radius for formats without radii (.trk, .tck, .trx, OBJ without radius): in the
+    /// file's units (0.2), or relative to the scene, e.g. 0.5% of the diagonal of the points'
+    /// bounding box (shows tubes whatever the units, nm or mm).
+    #[arg(long, value_parser = crate::render_opts::parse_radius, default_value = "0.2")]
+    pub radius: crate::render_opts::Radius,
     /// Replace every radius below R (and placeholder radii ≤ 0, which SWC files from the field
     /// often hold) by R; a warning counts them. Without it such a file is refused.
     #[arg(long, value_name = "R")]
     pub min_radius: Option<f64>,
-    /// Colouring.
-    #[arg(long, value_enum, default_value_t = Color::Direction)]
+    /// Background: #rrggbb, r,g,b (sRGB in [0, 1]), white, black, grey, or transparent (an RGBA
+    /// PNG, alpha 0 where no tube is seen).
+    #[arg(long, value_parser = crate::render_opts::parse_background, default_value = "white")]
+    pub background: crate::render_opts::Background,
+    /// View preset: xy (down −z), xz (along +y), yz (along −x) or iso; fitted to the scene.
+    #[arg(long, value_parser = |s: &str| s.parse::<tubecast_render::render::Preset>())]
+    pub view: Option<tubecast_render::render::Preset>,
+    /// Orthographic projection (parallel rays), framed as the perspective view would be.
+    #[arg(long)]
+    pub ortho: bool,
+    /// Also write the depth (ray parameter of the first surface, inf where none) as an
+    /// H×W float64 .npy.
+    #[arg(long, value_name = "OUT.npy")]
+    pub depth: Option<PathBuf>,
+    /// Thin tubes stay visible: tubes thinner than --min-pixels on screen are drawn that wide
+    /// and faded toward the background by their true coverage (phone-wire anti-aliasing).
+    #[arg(long, value_enum, default_value_t = Thin::Auto)]
+    pub thin: Thin,
+    /// Minimum on-screen tube diameter in pixels for --thin.
+    #[arg(long, default_value_t = 1.0)]
+    pub min_pixels: f64,
+    /// Overwrite existing output files (refused otherwise).
+    #[arg(long)]
+    pub force: bool,
+    /// Colouring: direction, radius, type, solid:#rrggbb, or a data field of the file through --colormap:
+    /// scalar:NAME (TrackVis scalar, TRX dpv, `scalar:tsf` for the .tsf beside a .tck,
+    /// `scalar:radius`, `scalar:type`) or property:NAME (TrackVis property, TRX dps).
+    #[arg(long, value_parser = parse_color, default_value = "direction")]
     pub color: Color,
+    /// Colour map for --color scalar:/property: (viridis, magma, inferno, plasma, cividis,
+    /// turbo, greys, rdylbu).
+    #[arg(long, value_parser = |s: &str| s.parse::<tubecast_render::render::Colormap>(), default_value = "viridis")]
+    pub colormap: tubecast_render::render::Colormap,
+    /// Draw a colour bar with the value range at the right edge (with --color scalar:/property:).
+    #[arg(long)]
+    pub legend: bool,
     /// Surface opacity in (0, 1]; below 1 renders transparent tubes (CSG union).
     #[arg(long, default_value_t = 1.0)]
     pub opacity: f64,
@@ -99,13 +161,16 @@ pub struct RenderArgs {
 pub struct InfoArgs {
     /// Input file.
     pub input: PathBuf,
-    /// Tube radius for formats without radii.
-    #[arg(long, default_value_t = 0.2)]
-    pub radius: f64,
+    /// Tube radius for formats without radii: absolute, or relative to the scene (0.5%).
+    #[arg(long, value_parser = crate::render_opts::parse_radius, default_value = "0.2")]
+    pub radius: crate::render_opts::Radius,
     /// Replace every radius below R (and placeholder radii ≤ 0, which SWC files from the field
     /// often hold) by R; a warning counts them. Without it such a file is refused.
     #[arg(long, value_name = "R")]
     pub min_radius: Option<f64>,
+    /// Print a JSON object instead of the table.
+    #[arg(long)]
+    pub json: bool,
     /// Count the primitives of the spline model (as `render --splines` uses them).
     #[arg(long)]
     pub splines: bool,
@@ -116,15 +181,18 @@ pub struct InfoArgs {
 pub struct IntersectArgs {
     /// Input scene.
     pub input: PathBuf,
-    /// Rays, N×6 float64 .npy.
+    /// Rays, N×6 float32 or float64 .npy (C or Fortran order); `-` reads stdin.
     #[arg(long)]
     pub rays: PathBuf,
-    /// Output hits, N×8 float64 .npy.
+    /// Output hits, N×8: float64 .npy, or CSV (with --csv or a .csv name); `-` writes stdout.
     #[arg(long)]
     pub out: PathBuf,
     /// Acceleration structure (the hits are the same).
     #[arg(long, value_enum, default_value_t = Accel::Bvh)]
     pub accel: Accel,
+    /// Write the hits as CSV (header t_in,t_out,nx,ny,nz,link,u,hit).
+    #[arg(long)]
+    pub csv: bool,
     /// Tube radius for formats without radii.
     #[arg(long, default_value_t = 0.2)]
     pub radius: f64,

@@ -1,11 +1,12 @@
 //! Each command: arguments into library calls, results to files or stdout.
 
-use crate::args::{Accel, Color, GenerateArgs, InfoArgs, IntersectArgs, Kind, RenderArgs};
+use crate::args::{Accel, Color, GenerateArgs, InfoArgs, IntersectArgs, Kind, RenderArgs, Thin};
 use crate::error::CliError;
+use crate::render_opts::{check_out, Background, Radius};
 use std::path::Path;
 use tubecast_render::accel::{grid::Grid, hit_table, Bvh, Tracer};
 use tubecast_render::io::{self, npy::Array2};
-use tubecast_render::render::{self, ColorBy, Options, Shading, View};
+use tubecast_render::render::{self, Camera, ColorBy, Options, Shading, View};
 use tubecast_render::scene::Prim;
 use tubecast_render::scene::{generate, LoadOptions, Model, Scene};
 
@@ -19,7 +20,21 @@ fn warn(msg: &str) {
 /// Load the scene at `input`; warn about radii raised to `min_radius` and, with `empty`
 /// (what the command does then), about a scene without nodes.
 fn load(input: &Path, radius: f64, min_radius: Option<f64>, empty: &str) -> Result<Scene, CliError> {
-    let (scene, rep) = Scene::load_with(input, &LoadOptions { default_radius: radius, min_radius })?;
+    load_colored(input, radius, min_radius, empty, None)
+}
+
+/// [`load`], then, with `field`, colour values from that data field of the file.
+fn load_colored(
+    input: &Path,
+    radius: f64,
+    min_radius: Option<f64>,
+    empty: &str,
+    field: Option<&str>,
+) -> Result<Scene, CliError> {
+    let (mut scene, rep, fields) = Scene::load_fields(input, &LoadOptions { default_radius: radius, min_radius })?;
+    if let Some(key) = field {
+        scene.select_values(&fields, key)?;
+    }
     if let (Some(r), true) = (min_radius, rep.replaced > 0) {
         warn(&format!(
             "{}: {} of {} radii were below --min-radius {r} ({} of them ≤ 0) and were set to {r}",
@@ -43,6 +58,35 @@ fn tracer(accel: Accel, prims: Vec<Prim>) -> Box<dyn Tracer> {
     }
 }
 
+/// The default radius: absolute, or the fraction of the diagonal of the bounding box of the
+/// file's points (read once more to measure it; a file of one point: the fraction of 1 unit).
+fn resolve_radius(input: &Path, r: Radius, min_radius: Option<f64>) -> Result<f64, CliError> {
+    let Radius::Relative(f) = r else {
+        let Radius::Absolute(v) = r else { unreachable!() };
+        return Ok(v);
+    };
+    let (scene, _) = Scene::load_with(input, &LoadOptions { default_radius: 1.0, min_radius })?;
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for n in &scene.nodes {
+        for k in 0..3 {
+            lo[k] = lo[k].min(n.pos[k]);
+            hi[k] = hi[k].max(n.pos[k]);
+        }
+    }
+    let diag = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+    Ok(if diag.is_finite() && diag > 0.0 { f * diag } else { f })
+}
+
+/// Whether the minimum pixel footprint applies: `auto` turns it on for wireframe-like data
+/// (formats without radii: .trk, .tck, .trx, .obj), off for SWC morphologies.
+fn thin_on(t: Thin, input: &Path) -> bool {
+    match t {
+        Thin::On => true,
+        Thin::Off => false,
+        Thin::Auto => !input.extension().is_some_and(|e| e.eq_ignore_ascii_case("swc")),
+    }
+}
+
 fn model(splines: bool) -> Model {
     if splines {
         Model::Splines
@@ -52,37 +96,104 @@ fn model(splines: bool) -> Model {
 }
 
 pub fn render(a: &RenderArgs) -> Res {
-    let scene = load(&a.input, a.radius, a.min_radius, "the image shows the background only")?;
-    let prims = scene.model_primitives(model(a.splines))?;
+    let field = match &a.color {
+        Color::Data(key) => Some(key.as_str()),
+        _ => None,
+    };
+    check_out(&a.out, a.force)?;
+    if let Some(d) = &a.depth {
+        check_out(d, a.force)?;
+    }
+    let radius = resolve_radius(&a.input, a.radius, a.min_radius)?;
+    let mut scene = load_colored(&a.input, radius, a.min_radius, "the image shows the background only", field)?;
+    let mut prims = scene.model_primitives(model(a.splines))?;
     // Bounds of the primitives in use (a spline can bulge beyond its links' boxes); an empty
     // scene is viewed as if it were the box [-1, 1]³.
     let st = scene.stats_of(&prims);
     let bounds = if st.is_empty() { ([-1.0; 3], [1.0; 3]) } else { st.bounds };
-    let bvh = tracer(a.accel, prims);
     let view = View { eye: a.eye, look_at: a.look_at, up: a.up, fov_deg: a.fov, width: a.width, height: a.height };
-    let cam = view.camera(bounds)?;
+    let mut cam = match a.view {
+        Some(p) if a.eye.is_none() && a.look_at.is_none() => {
+            Camera::fit_preset(bounds.0, bounds.1, p, a.fov, a.width, a.height)?
+        }
+        _ => view.camera(bounds)?,
+    };
+    if a.ortho {
+        let centre = std::array::from_fn(|k| 0.5 * (bounds.0[k] + bounds.1[k]));
+        cam = cam.orthographic(a.look_at.unwrap_or(centre));
+    }
+    if thin_on(a.thin, &a.input) && render::clamp_thin(&mut scene, &cam, a.min_pixels) > 0 {
+        prims = scene.model_primitives(model(a.splines))?;
+    }
+    let bvh = tracer(a.accel, prims);
+    let background = match a.background {
+        Background::Color(c) => c,
+        Background::Transparent => [0.0; 3],
+    };
     let opts = Options {
         color: match a.color {
             Color::Direction => ColorBy::Direction,
             Color::Radius => ColorBy::Radius,
             Color::Type => ColorBy::Type,
+            Color::Data(_) => ColorBy::Values(a.colormap),
+            Color::Solid(c) => ColorBy::Solid(c),
         },
+        background,
         shading: Shading::Lit,
         opacity: a.opacity,
         ao: a.ao,
         shadows: a.shadows,
         progress: !a.quiet && (a.width as u64 * a.height as u64) >= 256 * 256,
-        ..Options::default()
     };
-    Ok(render::render(&scene, bvh.as_ref(), &cam, &opts)?.write_png(&a.out)?)
+    let mut img = render::render(&scene, bvh.as_ref(), &cam, &opts)?;
+    if a.legend {
+        match (&a.color, render::value_range(&scene.values)) {
+            (Color::Data(_), Some((lo, hi))) => img.draw_legend(a.colormap, lo, hi, [0.0; 3]),
+            (Color::Data(key), None) => warn(&format!("{key} has no finite values: no legend drawn")),
+            _ => warn("--legend needs --color scalar:NAME or property:NAME: no legend drawn"),
+        }
+    }
+    if let Some(d) = &a.depth {
+        let arr = Array2 { rows: img.height as usize, cols: img.width as usize, data: img.depth.clone() };
+        io::write_bytes(d, &io::npy::write(&arr))?;
+    }
+    match a.background {
+        Background::Transparent => img.write_png_rgba(&a.out)?,
+        Background::Color(_) => img.write_png(&a.out)?,
+    }
+    Ok(())
+}
+
+/// The coordinate units a format defines (by extension).
+fn units(input: &Path) -> &'static str {
+    match input.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase().as_str() {
+        "trk" | "tck" | "trx" => "mm (RAS+ world space)",
+        "swc" => "µm (the SWC convention; the file does not state it)",
+        _ => "unknown (the format has no units)",
+    }
 }
 
 pub fn info(a: &InfoArgs) -> Res {
-    let scene = load(&a.input, a.radius, a.min_radius, "counts are zero")?;
+    let radius = resolve_radius(&a.input, a.radius, a.min_radius)?;
+    let scene = load(&a.input, radius, a.min_radius, "counts are zero")?;
     let prims = scene.model_primitives(model(a.splines))?;
     let st = if a.splines { scene.stats_of(&prims) } else { scene.stats() };
     let bvh = Bvh::build(prims);
+    if a.json {
+        let bounds = (!st.is_empty()).then(|| serde_json::json!({"min": st.bounds.0, "max": st.bounds.1}));
+        let j = serde_json::json!({
+            "file": a.input.display().to_string(),
+            "units": units(&a.input),
+            "nodes": st.nodes, "links": st.links, "cylinders": st.cylinders, "cones": st.cones,
+            "spheres": st.spheres, "splines": st.splines, "bounds": bounds,
+            "memory": {"scene_bytes": scene.memory_bytes(), "primitives_bvh_bytes": bvh.memory_bytes(),
+                       "bvh_nodes": bvh.node_count()},
+        });
+        println!("{}", serde_json::to_string_pretty(&j).expect("a JSON value prints"));
+        return Ok(());
+    }
     println!("file       {}", a.input.display());
+    println!("units      {}", units(&a.input));
     println!("nodes      {}", st.nodes);
     println!("links      {}", st.links);
     println!("cylinders  {}", st.cylinders);
@@ -111,10 +222,10 @@ pub fn info(a: &InfoArgs) -> Res {
 pub fn intersect(a: &IntersectArgs) -> Res {
     let scene = load(&a.input, a.radius, a.min_radius, "every ray misses")?;
     let name = a.rays.display().to_string();
-    let rays = io::npy::read(&io::read_bytes(&a.rays)?, &name, Some(6))?.rays(&name)?;
+    let rays = io::npy::read(&crate::hits_io::read_input(&a.rays)?, &name, Some(6))?.rays(&name)?;
     let bvh = tracer(a.accel, scene.primitives());
     let hits = Array2::from_rows(&hit_table(bvh.as_ref(), &rays));
-    Ok(io::write_bytes(&a.out, &io::npy::write(&hits))?)
+    crate::hits_io::write_hits(&a.out, &hits, a.csv)
 }
 
 pub fn generate(a: &GenerateArgs) -> Res {

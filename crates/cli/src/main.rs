@@ -3,6 +3,8 @@
 mod args;
 mod commands;
 mod error;
+mod hits_io;
+mod render_opts;
 
 use args::{GenerateArgs, InfoArgs, IntersectArgs, RenderArgs};
 use clap::{Parser, Subcommand};
@@ -17,11 +19,12 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Cmd {
-    /// Render a scene (.swc, .trk, .tck, .obj) to a PNG.
+    /// Render a scene (.swc, .trk, .tck, .trx, .obj) to a PNG.
     Render(RenderArgs),
     /// Print counts of nodes, links and primitives, bounds and memory.
     Info(InfoArgs),
-    /// Intersect rays (N×6 float64 .npy: origin, direction) with a scene; write N×8 hits.
+    /// Intersect rays (N×6 float32/float64 .npy, C or Fortran order: origin, direction; `-`:
+    /// stdin) with a scene; write N×8 hits (.npy, or CSV with --csv or a .csv name; `-`: stdout).
     ///
     /// Hit columns: t_in, t_out (first component of the union of all tubes along the ray's
     /// line that meets t ≥ 0; t_in < 0 when the ray starts inside), normal at entry (x, y, z),

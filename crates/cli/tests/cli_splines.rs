@@ -69,7 +69,13 @@ fn huge_spline_scenes_render_and_bad_options_are_errors() {
         .unwrap();
     assert!(st.success());
     assert_eq!(png_size(&std::fs::read(&png).unwrap()), (8, 8));
-    let out = bin().arg("render").arg(&obj).args(["--splines", "--opacity", "0", "-o"]).arg(&png).output().unwrap();
+    let out = bin()
+        .arg("render")
+        .arg(&obj)
+        .args(["--splines", "--opacity", "0", "--force", "-o"])
+        .arg(&png)
+        .output()
+        .unwrap();
     assert_eq!(out.status.code(), Some(1));
     let e = String::from_utf8_lossy(&out.stderr);
     assert!(e.starts_with("tubecast: error: ") && e.contains("opacity"), "{e}");

@@ -1,4 +1,4 @@
-//! Replays the committed fuzz corpora of the file readers (fuzz/corpus/{swc,trk,tck,obj,npy})
+//! Replays the committed fuzz corpora of the file readers (fuzz/corpus/{swc,trk,tck,obj,npy,trx})
 //! through the same checks the fuzz targets run (fuzz/checks/*.rs), on stable Rust.
 
 mod swc {
@@ -18,6 +18,9 @@ mod npy {
 }
 mod accel {
     include!("../../../fuzz/checks/accel.rs");
+}
+mod trx {
+    include!("../../../fuzz/checks/trx.rs");
 }
 
 include!("../../../fuzz/checks/replay.rs");
@@ -67,4 +70,9 @@ fn accel_check_catches_a_missing_primitive() {
     let partial = Bvh::build(vec![prims[0]]);
     let ray = Ray::new(V3::new(1.0, 10.0, 5.0), V3::new(0.0, 0.0, -1.0));
     accel::agree("partial", &partial, &prims, &ray);
+}
+
+#[test]
+fn trx_corpus() {
+    replay("trx", trx::check);
 }

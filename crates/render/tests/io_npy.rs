@@ -46,11 +46,12 @@ fn malformed_files_are_errors() {
         (vec![], "empty file"),
         (b"PK\x03\x04 not npy".to_vec(), "magic"),
         (build(9, ok, &body), "version 9"),
-        (build(1, &ok.replace("<f8", "<f4"), &body), "not float64"),
+        // float32 is read (float32_in_both_orders); an integer dtype is not.
+        (build(1, &ok.replace("<f8", "<i8"), &body), "not float32 or float64"),
         (build(1, &ok.replace("False", "Maybe"), &body), "fortran_order"),
         (build(1, &ok.replace("(2, 3)", "(6,)"), &body), "1-D"),
-        (build(1, &ok.replace("(2, 3)", "(2, x)"), &body), "non-integer"),
-        (build(1, "{'descr': '<f8'}", &body), "no 'fortran_order'"),
+        (build(1, &ok.replace("(2, 3)", "(2, x)"), &body), "unparsable (could not parse Python expression"),
+        (build(1, "{'descr': '<f8'}", &body), "missing key 'fortran_order'"),
         (build(1, ok, &body[..40]), "data is 40 bytes"),
         (build(1, ok, &[body.clone(), vec![0; 8]].concat()), "data is 56 bytes"),
         (build(1, &ok.replace("(2, 3)", "(99999999999, 99999999999)"), &body), "overflows"),
@@ -78,4 +79,22 @@ fn rays_from_rows() {
     assert_eq!((one[0].o.to_array(), one[0].d.to_array()), ([1.0, 2.0, 3.0], [0.0, 0.0, -2.0]));
     let e = arr().rays("r.npy").unwrap_err().to_string();
     assert!(e.contains("3 columns, expected 6"), "{e}");
+}
+
+#[test]
+fn float32_in_both_orders() {
+    // The 2×3 array [[1, 2, 3], [4, 5, 6]] as float32, C order and Fortran order (columns
+    // first), little and big endian: the same f64 values (float32 → f64 is exact).
+    let want = Array2 { rows: 2, cols: 3, data: vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0] };
+    for (order, vals) in [("False", [1.0f32, 2.0, 3.0, 4.0, 5.0, 6.0]), ("True", [1.0, 4.0, 2.0, 5.0, 3.0, 6.0])] {
+        for big in [false, true] {
+            let descr = if big { ">f4" } else { "<f4" };
+            let body: Vec<u8> = vals.iter().flat_map(|v| if big { v.to_be_bytes() } else { v.to_le_bytes() }).collect();
+            let d = build(1, &format!("{{'descr': '{descr}', 'fortran_order': {order}, 'shape': (2, 3), }}"), &body);
+            assert_eq!(read(&d, "f4.npy", None).unwrap(), want, "{descr} fortran={order}");
+        }
+    }
+    // A non-representable float32 value keeps its float32 value exactly.
+    let d = build(1, "{'descr': '<f4', 'fortran_order': False, 'shape': (1, 1), }", &0.1f32.to_le_bytes());
+    assert_eq!(read(&d, "x.npy", None).unwrap().data, vec![0.1f32 as f64]);
 }

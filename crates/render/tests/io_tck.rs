@@ -50,7 +50,8 @@ fn data_offset_after_padding_is_honoured() {
     let h = "mrtrix tracks\ndatatype: Float32BE\nfile: . 064\nEND\n";
     let mut d = h.as_bytes().to_vec();
     d.resize(64, b' ');
-    for v in [1.0f32, 2.0, 3.0, i, i, i] {
+    let n = f32::NAN;
+    for v in [1.0f32, 2.0, 3.0, n, n, n, i, i, i] {
         d.extend_from_slice(&v.to_be_bytes());
     }
     assert_eq!(read(&d, "p.tck").unwrap()[0].points, vec![[1.0, 2.0, 3.0]]);
@@ -64,8 +65,11 @@ fn malformed_files_are_errors() {
         (vec![], "empty file"),
         (b"not tracks\n".to_vec(), "mrtrix tracks"),
         (b"mrtrix tracks\ndatatype: Float32LE\n".to_vec(), "without an END"),
-        (b"mrtrix tracks\nfile: . 40\nEND\n".to_vec(), "no datatype"),
-        (b"mrtrix tracks\ndatatype: Float32LE\nEND\n".to_vec(), "no \"file"),
+        // (A missing datatype or file entry is accepted as nibabel accepts it: see
+        // nibabel_header_defaults below and reference/readers/variants/no_{datatype,file}.tck.)
+        (b"mrtrix tracks\ndatatype: Float32LE\nfile: .\nEND\n".to_vec(), "is not \". OFFSET\""),
+        (raw(ok_head, &[1.0, 2.0, 3.0, f32::INFINITY, f32::INFINITY, f32::INFINITY], false), "no NaN triplet"),
+        (raw(ok_head, &[n, n, n, f32::INFINITY, f32::INFINITY, f32::INFINITY, 0.0], false), "after the Inf end marker"),
         (b"mrtrix tracks\ndatatype: Float64LE\nfile: . 50\nEND\n".to_vec(), "unsupported"),
         (b"mrtrix tracks\ndatatype: Float32LE\nfile: other.dat 0\nEND\n".to_vec(), "separate data files"),
         (b"mrtrix tracks\ndatatype: Float32LE\nfile: . xx\nEND\n".to_vec(), "not a byte count"),
@@ -83,4 +87,18 @@ fn malformed_files_are_errors() {
     }
     let e = read(&raw(ok_head, &[1.0, 2.0, 3.0, 4.0], false), "bad.tck").unwrap_err();
     assert!(matches!(e.at, Location::Offset(o) if o > 40), "{e:?}");
+}
+
+#[test]
+fn nibabel_header_defaults() {
+    // nibabel reads a header without `datatype` as Float32LE and, without `file`, takes the data
+    // to start right after END; a line without a colon continues the previous key's value.
+    let (n, i) = (f32::NAN, f32::INFINITY);
+    let body = [1.0, 2.0, 3.0, n, n, n, i, i, i];
+    let no_dt = raw("mrtrix tracks\nfile: . OFF\nEND\n", &body, false);
+    assert_eq!(read(&no_dt, "a.tck").unwrap()[0].points, vec![[1.0, 2.0, 3.0]]);
+    let no_file = raw("mrtrix tracks\ndatatype: Float32BE\nEND\n", &body, true);
+    assert_eq!(read(&no_file, "b.tck").unwrap()[0].points, vec![[1.0, 2.0, 3.0]]);
+    let multi = raw("mrtrix tracks\ncommand: tckgen\n  -seed x\ndatatype: Float32LE\nfile: . OFF\nEND\n", &body, false);
+    assert_eq!(read(&multi, "c.tck").unwrap()[0].points, vec![[1.0, 2.0, 3.0]]);
 }

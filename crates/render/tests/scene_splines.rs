@@ -45,6 +45,8 @@ fn chains_split_at_bifurcations_and_loops_are_closed() {
     // A closed loop (a square): one periodic chain.
     let node = |x: f64, y: f64| Node { pos: [x, y, 0.0], radius: 0.2, kind: 0 };
     let sq = Scene {
+        values: Vec::new(),
+        coverage: Vec::new(),
         nodes: vec![node(0.0, 0.0), node(1.0, 0.0), node(1.0, 1.0), node(0.0, 1.0)],
         links: vec![[0, 1], [1, 2], [2, 3], [3, 0]],
     };

@@ -3,8 +3,12 @@
 //! system font is ever loaded (the viewer's font renders the labels).
 //!
 //! Log axes are drawn as linear axes over `log10` of the values, labelled `1e<k>`: one code path
-//! for every chart, and zero or negative values are clamped to the axis floor (stated in the
-//! chart's axis description).
+//! for every chart. Values at or below the axis floor (zero included) are drawn at the floor
+//! and marked `0` (or `≤floor`), `+∞` at the top edge marked `∞`, so neither is silently lost.
+//! Category labels are cut to 28 characters and the label area sized to the longest, so
+//! they never cross the axis; point labels that would overlap are moved down until they do
+//! not. Series whose label names a precision get a shape as well as a colour (f32 circle, f64
+//! square, SIMD lanes triangle), shown in the legend.
 
 use super::ReportError;
 use plotters::prelude::*;
@@ -104,6 +108,30 @@ fn lg(v: f64, floor: f64) -> f64 {
     }
 }
 
+/// The marker shape of a series whose label names a precision: lanes (`x8`, `x4`, `lane`)
+/// triangle, `f64` square, `f32` circle; `None` otherwise.
+pub fn precision_shape(label: &str) -> Option<&'static str> {
+    let l = label.to_ascii_lowercase();
+    if l.contains("x8") || l.contains("x4") || l.contains("lane") {
+        Some("triangle")
+    } else if l.contains("f64") {
+        Some("square")
+    } else if l.contains("f32") {
+        Some("circle")
+    } else {
+        None
+    }
+}
+
+/// A category label cut to 28 characters (with an ellipsis).
+fn short(label: &str) -> String {
+    if label.chars().count() > 28 {
+        label.chars().take(27).collect::<String>() + "…"
+    } else {
+        label.to_string()
+    }
+}
+
 fn err<E: std::fmt::Debug>(path: &Path) -> impl Fn(E) -> ReportError + '_ {
     move |e| ReportError::Chart(format!("{}: {e:?}", path.display()))
 }
@@ -140,9 +168,10 @@ pub fn write_svg(path: &Path, chart: &Chart, size: (u32, u32)) -> Result<(), Rep
     let mut cc = ChartBuilder::on(&plot)
         .caption(&chart.title, ("sans-serif", 18))
         .margin(12)
-        .x_label_area_size(match chart.x {
+        .x_label_area_size(match &chart.x {
             XAxis::Log => 40,
-            XAxis::Categories(_) => 120,
+            // Rotated labels of 12-px text: about 7 px per character, plus the axis title.
+            XAxis::Categories(c) => 40 + 7 * c.iter().map(|l| short(l).chars().count()).max().unwrap_or(1) as u32,
         })
         .y_label_area_size(60)
         .build_cartesian_2d(x0..x1, y0..y1)
@@ -155,7 +184,7 @@ pub fn write_svg(path: &Path, chart: &Chart, size: (u32, u32)) -> Result<(), Rep
         }
     };
     let cats = match &chart.x {
-        XAxis::Categories(c) => c.clone(),
+        XAxis::Categories(c) => c.iter().map(|l| short(l)).collect(),
         XAxis::Log => Vec::new(),
     };
     let cat_label = |v: &f64| {
@@ -186,30 +215,49 @@ pub fn write_svg(path: &Path, chart: &Chart, size: (u32, u32)) -> Result<(), Rep
         XAxis::Log => lg(x, 1e-300),
         XAxis::Categories(_) => x,
     };
+    let mut placed: Vec<(i32, i32, i32)> = Vec::new(); // point-label boxes: x, y, width (px)
     for s in &chart.series {
         let c = color(s.color);
-        let pts: Vec<(f64, f64, &Pt)> = s
+        let shape = precision_shape(&s.label);
+        let pts: Vec<(f64, f64, &Pt, Option<&str>)> = s
             .points
             .iter()
             .filter(|p| p.x.is_finite() && !p.y.is_nan())
-            .map(|p| (xmap(p.x), lg(p.y, floor), p))
+            .map(|p| {
+                // +∞ at the top edge, values at or below the floor at the floor: both marked.
+                let (y, mark) = if p.y == f64::INFINITY {
+                    (y1, Some("∞"))
+                } else if p.y <= floor {
+                    (lg(p.y, floor), Some(if p.y == 0.0 { "0" } else { "≤floor" }))
+                } else {
+                    (lg(p.y, floor), None)
+                };
+                (xmap(p.x), y, p, mark)
+            })
             .collect();
         if s.line && pts.len() > 1 {
-            cc.draw_series(LineSeries::new(pts.iter().map(|&(x, y, _)| (x, y)), c.stroke_width(2))).map_err(&e)?;
+            cc.draw_series(LineSeries::new(pts.iter().map(|&(x, y, _, _)| (x, y)), c.stroke_width(2))).map_err(&e)?;
         }
-        for &(x, y, p) in &pts {
-            match p.marker {
-                Marker::Dot => cc.draw_series(std::iter::once(Circle::new((x, y), 4, c.filled()))).map_err(&e)?,
-                Marker::Cross => {
-                    cc.draw_series(std::iter::once(Cross::new((x, y), 4, c.stroke_width(2)))).map_err(&e)?
-                }
-                Marker::Triangle => {
-                    cc.draw_series(std::iter::once(TriangleMarker::new((x, y), 5, c.filled()))).map_err(&e)?
-                }
+        for &(x, y, p, mark) in &pts {
+            draw_marker(&mut cc, (x, y), p.marker, shape, c).map_err(&e)?;
+            let text = match (mark, &p.text) {
+                (Some(m), Some(t)) => Some(format!("{m} {t}")),
+                (Some(m), None) => Some(m.to_string()),
+                (None, t) => t.clone(),
             };
-            if let Some(t) = &p.text {
-                cc.draw_series(std::iter::once(Text::new(t.clone(), (x, y), ("sans-serif", 10).into_font().color(&c))))
-                    .map_err(&e)?;
+            if let Some(t) = text {
+                // Move the label down (12 px at a time) until it overlaps no label placed before.
+                let (px, mut py) = cc.backend_coord(&(x, y));
+                let w = 6 * t.chars().count() as i32 + 4;
+                for _ in 0..8 {
+                    let hit = placed.iter().any(|&(qx, qy, qw)| px < qx + qw && qx < px + w && (py - qy).abs() < 11);
+                    if !hit {
+                        break;
+                    }
+                    py += 12;
+                }
+                placed.push((px, py, w));
+                plot.draw(&Text::new(t, (px + 5, py - 5), ("sans-serif", 10).into_font().color(&c))).map_err(&e)?;
             }
         }
     }
@@ -218,7 +266,11 @@ pub fn write_svg(path: &Path, chart: &Chart, size: (u32, u32)) -> Result<(), Rep
     let mut yy = 30;
     for s in &chart.series {
         let c = color(s.color);
-        legend.draw(&Circle::new((12, yy), 5, c.filled())).map_err(&e)?;
+        match precision_shape(&s.label) {
+            Some("square") => legend.draw(&Rectangle::new([(8, yy - 4), (16, yy + 4)], c.filled())).map_err(&e)?,
+            Some("triangle") => legend.draw(&TriangleMarker::new((12, yy), 6, c.filled())).map_err(&e)?,
+            _ => legend.draw(&Circle::new((12, yy), 5, c.filled())).map_err(&e)?,
+        }
         legend.draw(&Text::new(s.label.clone(), (24, yy - 6), ("sans-serif", 12).into_font())).map_err(&e)?;
         yy += 18;
     }
@@ -231,4 +283,35 @@ pub fn write_svg(path: &Path, chart: &Chart, size: (u32, u32)) -> Result<(), Rep
     }
     root.present().map_err(&e)?;
     Ok(())
+}
+
+type Cc<'a, 'b> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// One point's marker: the point's own marker (a statistic: dot, cross, triangle) for series
+/// without a precision; for precision series the precision's shape, filled for a dot and
+/// hollow for a cross (so both distinctions survive).
+fn draw_marker(
+    cc: &mut Cc<'_, '_>,
+    at: (f64, f64),
+    m: Marker,
+    shape: Option<&str>,
+    c: RGBColor,
+) -> Result<(), DrawingAreaErrorKind<std::io::Error>> {
+    let style = if m == Marker::Cross { c.stroke_width(2) } else { c.filled() };
+    let (px, py) = cc.backend_coord(&at);
+    let area = cc.plotting_area().strip_coord_spec();
+    let (ox, oy) = cc.plotting_area().get_base_pixel();
+    let p = (px - ox, py - oy);
+    match (shape, m) {
+        (Some("square"), _) => area.draw(&Rectangle::new([(p.0 - 4, p.1 - 4), (p.0 + 4, p.1 + 4)], style)),
+        (Some("triangle"), _) => area.draw(&TriangleMarker::new(p, 5, style)),
+        (Some(_), _) => area.draw(&Circle::new(p, 4, style)),
+        (None, Marker::Dot) => area.draw(&Circle::new(p, 4, style)),
+        (None, Marker::Cross) => area.draw(&Cross::new(p, 4, style)),
+        (None, Marker::Triangle) => area.draw(&TriangleMarker::new(p, 5, style)),
+    }
 }

@@ -154,7 +154,40 @@ pub(crate) fn ensure_dir(out: &Path) -> Result<(), ReportError> {
 }
 
 pub(crate) fn write_text(path: &Path, text: &str) -> Result<(), ReportError> {
-    std::fs::write(path, text).map_err(|e| ReportError::Io(format!("{}: {e}", path.display())))
+    std::fs::write(path, text).map_err(|e| ReportError::Io(format!("{}: {e}", path.display())))?;
+    if path.extension().is_some_and(|e| e == "md") {
+        let json = serde_json::to_string_pretty(&tables_json(text)).expect("tables print as JSON");
+        let jp = path.with_extension("tables.json");
+        std::fs::write(&jp, json + "\n").map_err(|e| ReportError::Io(format!("{}: {e}", jp.display())))?;
+    }
+    Ok(())
+}
+
+/// Every markdown table of `markdown`, for machines: a JSON array of
+/// `{"columns": [...], "rows": [[...], ...]}` in document order, cells as strings exactly as in
+/// the table (numbers in the report's own formatting; `-` for no value). Written beside each
+/// report as `<name>.tables.json`.
+pub fn tables_json(markdown: &str) -> serde_json::Value {
+    let cells = |l: &str| l.trim().trim_matches('|').split('|').map(|c| c.trim().to_string()).collect::<Vec<_>>();
+    let lines: Vec<&str> = markdown.lines().collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i + 1 < lines.len() {
+        let sep = lines[i + 1].trim();
+        if lines[i].trim_start().starts_with('|') && sep.starts_with('|') && sep.contains("---") {
+            let columns = cells(lines[i]);
+            let mut rows = Vec::new();
+            i += 2;
+            while i < lines.len() && lines[i].trim_start().starts_with('|') {
+                rows.push(cells(lines[i]));
+                i += 1;
+            }
+            out.push(serde_json::json!({"columns": columns, "rows": rows}));
+        } else {
+            i += 1;
+        }
+    }
+    serde_json::Value::Array(out)
 }
 
 pub(crate) fn progress(opts: &ReportOptions, len: u64, what: &str) -> indicatif::ProgressBar {

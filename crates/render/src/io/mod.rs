@@ -5,11 +5,14 @@
 //! Readers never panic and never return NaN or infinite coordinates. Each format has a writer
 //! too, so the tests can round-trip.
 
+pub mod data;
 pub mod npy;
 pub mod obj;
+mod orient;
 pub mod swc;
 pub mod tck;
 pub mod trk;
+pub mod trx;
 
 use std::fmt;
 use std::path::Path;

@@ -43,16 +43,11 @@ impl Array2 {
     }
 }
 
-fn dict_value<'a>(h: &'a str, key: &str) -> Option<&'a str> {
-    let k = h.find(&format!("'{key}'")).or_else(|| h.find(&format!("\"{key}\"")))?;
-    let rest = &h[k + key.len() + 2..];
-    let rest = rest.trim_start().strip_prefix(':')?.trim_start();
-    Some(rest)
-}
-
-/// Parse a `.npy` file holding a 2-D `float64` array with `cols` columns (`None`: any).
+/// Parse a `.npy` file holding a 2-D `float32` or `float64` array (either byte order, C or
+/// Fortran order) with `cols` columns (`None`: any), through the `npyz` crate; values are
+/// returned as `f64` (exact for `float32`), row-major.
 ///
-/// Errors: bad magic or version, header cut short or unparsable, dtype other than `f8`,
+/// Errors: bad magic or version, header cut short or unparsable, a dtype other than `f4`/`f8`,
 /// a shape that is not 2-D (or has the wrong column count), data shorter or longer than the
 /// shape says. Values are returned as stored (NaN included); callers validate them.
 pub fn read(data: &[u8], name: &str, cols: Option<usize>) -> Result<Array2, IoError> {
@@ -79,45 +74,40 @@ pub fn read(data: &[u8], name: &str, cols: Option<usize>) -> Result<Array2, IoEr
             format!("truncated header: {hlen} bytes announced, {} left", data.len() - start),
         ));
     }
-    let h = std::str::from_utf8(&data[start..start + hlen])
-        .map_err(|_| IoError::offset(name, start as u64, "header is not text"))?;
-    let bad = |what: &str| IoError::offset(name, start as u64, format!("header {what}: {}", h.trim()));
-    let descr = dict_value(h, "descr").ok_or_else(|| bad("has no 'descr'"))?;
-    let big = if descr.starts_with("'<f8'") || descr.starts_with("\"<f8\"") {
-        false
-    } else if descr.starts_with("'>f8'") || descr.starts_with("\">f8\"") {
-        true
-    } else {
-        return Err(bad("dtype is not float64 ('<f8' or '>f8')"));
-    };
-    let fo = dict_value(h, "fortran_order").ok_or_else(|| bad("has no 'fortran_order'"))?;
-    let fortran = if fo.starts_with("True") {
-        true
-    } else if fo.starts_with("False") {
-        false
-    } else {
-        return Err(bad("fortran_order is not True or False"));
-    };
-    let shape = dict_value(h, "shape").ok_or_else(|| bad("has no 'shape'"))?;
-    let inner = shape.strip_prefix('(').and_then(|s| s.split(')').next()).ok_or_else(|| bad("shape is not a tuple"))?;
-    let dims: Vec<usize> = inner
-        .split(',')
-        .map(str::trim)
-        .filter(|s| !s.is_empty())
-        .map(|s| s.parse::<usize>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| bad("shape has a non-integer"))?;
-    if dims.len() != 2 {
-        return Err(bad(&format!("shape is {}-D, expected 2-D", dims.len())));
+    let text = String::from_utf8_lossy(&data[start..start + hlen]).trim().to_string();
+    let bad = |what: String| IoError::offset(name, start as u64, format!("header {what}: {text}"));
+    // npyz 0.8 multiplies the shape's entries unchecked (a panic in debug builds, a wrapped
+    // count in release): refuse a shape whose element count overflows before handing it over.
+    let shape_text = text.split("shape").nth(1).and_then(|t| t.split(')').next()).unwrap_or("");
+    let count = shape_text
+        .split(|c: char| !c.is_ascii_digit())
+        .filter(|t| !t.is_empty())
+        .try_fold(1u64, |acc, t| t.parse::<u64>().ok().and_then(|v| acc.checked_mul(v)));
+    if !matches!(count, Some(n) if n <= usize::MAX as u64 / 8) {
+        return Err(bad("shape overflows".into()));
     }
-    let (rows, ncols) = (dims[0], dims[1]);
+    let npy = npyz::NpyFile::new(data).map_err(|e| {
+        let e = e.to_string();
+        bad(format!("unparsable ({})", e.lines().next().unwrap_or("").trim()))
+    })?;
+    let size = match npy.dtype() {
+        npyz::DType::Plain(t) if t.type_char() == npyz::TypeChar::Float && matches!(t.size_field(), 4 | 8) => {
+            t.size_field() as usize
+        }
+        other => return Err(bad(format!("dtype {:?} is not float32 or float64", other.descr()))),
+    };
+    let dims = npy.shape().to_vec();
+    if dims.len() != 2 {
+        return Err(bad(format!("shape is {}-D, expected 2-D", dims.len())));
+    }
+    let (rows, ncols) = (dims[0] as usize, dims[1] as usize);
     if let Some(c) = cols {
         if ncols != c {
-            return Err(bad(&format!("has {ncols} columns, expected {c}")));
+            return Err(bad(format!("has {ncols} columns, expected {c}")));
         }
     }
     let body = start + hlen;
-    let n = rows.checked_mul(ncols).and_then(|n| n.checked_mul(8)).ok_or_else(|| bad("shape overflows"))?;
+    let n = rows.checked_mul(ncols).and_then(|n| n.checked_mul(size)).ok_or_else(|| bad("shape overflows".into()))?;
     if data.len() - body != n {
         return Err(IoError::offset(
             name,
@@ -125,12 +115,19 @@ pub fn read(data: &[u8], name: &str, cols: Option<usize>) -> Result<Array2, IoEr
             format!("data is {} bytes, shape ({rows}, {ncols}) needs {n}", data.len() - body),
         ));
     }
-    let mut out = vec![0.0; rows * ncols];
-    for (k, ch) in data[body..].chunks_exact(8).enumerate() {
-        let b: [u8; 8] = ch.try_into().expect("chunks of 8");
-        let v = if big { f64::from_be_bytes(b) } else { f64::from_le_bytes(b) };
-        let (r, c) = if fortran { (k % rows.max(1), k / rows.max(1)) } else { (k / ncols, k % ncols) };
-        out[r * ncols + c] = v;
+    let fortran = npy.order() == npyz::Order::Fortran;
+    let read_err = |e: std::io::Error| IoError::offset(name, body as u64, format!("data: {e}"));
+    let flat: Vec<f64> = if size == 4 {
+        npy.into_vec::<f32>().map_err(read_err)?.into_iter().map(f64::from).collect()
+    } else {
+        npy.into_vec::<f64>().map_err(read_err)?
+    };
+    let mut out = flat.clone();
+    if fortran {
+        for (k, v) in flat.into_iter().enumerate() {
+            let (r, c) = (k % rows.max(1), k / rows.max(1));
+            out[r * ncols + c] = v;
+        }
     }
     Ok(Array2 { rows, cols: ncols, data: out })
 }

@@ -6,12 +6,16 @@
 //! first voxel). They are returned in RAS+ millimetres exactly as nibabel does:
 //! `ras = vox_to_ras · (voxmm / voxel_size − ½)` — the `−½` moves the origin from the voxel's
 //! corner to its centre. A header whose `vox_to_ras[3][3]` is 0 (old writers leave the matrix
-//! unset) is read with the identity matrix, as nibabel does. When `voxel_order` is set and
-//! disagrees with the orientation of `vox_to_ras`, nibabel reorients the axes; this reader
-//! reports an error instead of guessing.
+//! unset, and version 1 has none) is read with the identity matrix, as nibabel does. When
+//! `voxel_order` (LPS when unset, TrackVis's default) differs from the orientation of
+//! `vox_to_ras`, the voxel axes are reoriented first, as nibabel does
+//! (`get_affine_trackvis_to_rasmm`): a flipped axis maps index `x` to `dim − 1 − x`.
+//! Per-point scalars and per-streamline properties are kept ([`read_data`]), grouped and named
+//! by the header's name tables as nibabel groups them.
 
+use super::data::{Field, Tractogram};
+use super::orient::{self, io_orientation, Affine, Ornt};
 use super::{Cursor, IoError, Polyline};
-use std::cmp::Ordering;
 
 /// The header fields the reader uses (and the writer writes).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,34 +51,90 @@ impl Default for TrkHeader {
     }
 }
 
-/// Axis codes (`R/L`, `A/P`, `S/I`) of the voxel axes of an affine: for each column the
-/// world axis with the largest weight and its sign.
-fn axcodes(m: &[[f32; 4]; 4]) -> [u8; 3] {
-    let mut out = [0u8; 3];
-    for (j, o) in out.iter_mut().enumerate() {
-        let (mut best, mut bi) = (-1.0f32, 0);
-        for (i, row) in m.iter().enumerate().take(3) {
-            if row[j].abs() > best {
-                best = row[j].abs();
-                bi = i;
-            }
-        }
-        let pos = m[bi][j] >= 0.0;
-        *o = match (bi, pos) {
-            (0, true) => b'R',
-            (0, false) => b'L',
-            (1, true) => b'A',
-            (1, false) => b'P',
-            (_, true) => b'S',
-            (_, false) => b'I',
-        };
-    }
-    out
+/// A parsed header: the fields, byte order, `n_count` (0: unknown), the column groups of the
+/// scalars and properties, and the affine voxmm → RAS+ mm.
+struct Parsed {
+    h: TrkHeader,
+    big: bool,
+    n_count: i32,
+    scalars: Vec<(String, usize, usize)>,
+    properties: Vec<(String, usize, usize)>,
+    affine: Affine,
 }
 
-/// The validated header of a TrackVis file, its byte order (`true`: big endian) and
-/// `n_count` (0: unknown).
-fn read_header(data: &[u8], name: &str) -> Result<(TrkHeader, bool, i32), IoError> {
+/// Column groups named in the 10 × 20-byte name table at `at` (nibabel's
+/// `decode_value_from_name`): `name` (one column) or `name\0COUNT` (COUNT columns), all-zero
+/// entries skipped, columns taken in order and clipped to `n`; columns no name covers form one
+/// group called `rest` (`"scalars"` / `"properties"`). Returns `(name, first column, width)`.
+fn decode_names(
+    data: &[u8],
+    at: usize,
+    n: usize,
+    rest: &str,
+    name: &str,
+) -> Result<Vec<(String, usize, usize)>, IoError> {
+    let mut out: Vec<(String, usize, usize)> = Vec::new();
+    let mut cpt = 0usize;
+    for k in 0..10 {
+        let raw = &data[at + 20 * k..at + 20 * (k + 1)];
+        let end = raw.iter().rposition(|&b| b != 0).map_or(0, |i| i + 1);
+        if end == 0 {
+            continue;
+        }
+        let text: String = raw[..end].iter().map(|&b| b as char).collect();
+        let parts: Vec<&str> = text.split('\0').collect();
+        let count = match parts.as_slice() {
+            [_] => 1,
+            [_, v] => v.trim().parse::<usize>().map_err(|_| {
+                IoError::offset(
+                    name,
+                    (at + 20 * k) as u64,
+                    format!("column count {v:?} in name {:?} is not a number", parts[0]),
+                )
+            })?,
+            _ => {
+                let problem = format!("name {text:?} has bytes after its column count (unused bytes must be 0)");
+                return Err(IoError::offset(name, (at + 20 * k) as u64, problem));
+            }
+        };
+        if count == 0 {
+            continue;
+        }
+        let (a, b) = (cpt.min(n), (cpt + count).min(n));
+        let group = (parts[0].to_string(), a, b - a);
+        match out.iter_mut().find(|g| g.0 == group.0) {
+            Some(g) => *g = group,
+            None => out.push(group),
+        }
+        cpt += count;
+    }
+    if cpt < n {
+        out.push((rest.to_string(), cpt, n - cpt));
+    }
+    Ok(out)
+}
+
+/// The voxmm → RAS+ mm affine (nibabel's `get_affine_trackvis_to_rasmm`):
+/// `vox_to_ras · R · (−½ shift) · diag(1/voxel_size)`, with `R` the reorientation from the
+/// header's `voxel_order` to the orientation of `vox_to_ras` (identity when they agree).
+fn voxmm_to_ras(h: &TrkHeader, order: &Ornt, name: &str) -> Result<Affine, IoError> {
+    let v = h.vox_to_ras.map(|r| r.map(|x| x as f64));
+    let Some(aff_ornt) = io_orientation(&v) else {
+        return Err(IoError::offset(name, 440, "vox_to_ras is singular (no axis directions)"));
+    };
+    let mut scale = orient::eye();
+    let mut shift = orient::eye();
+    for k in 0..3 {
+        scale[k][k] = 1.0 / h.voxel_size[k] as f64;
+        shift[k][3] = -0.5;
+    }
+    let dims = h.dim.map(|d| d as f64);
+    let m = orient::mul(&orient::reorient(order, &aff_ornt, dims), &orient::mul(&shift, &scale));
+    Ok(orient::mul(&v, &m))
+}
+
+/// The validated header of a TrackVis file.
+fn read_header(data: &[u8], name: &str) -> Result<Parsed, IoError> {
     if data.is_empty() {
         return Err(IoError::file(name, "empty file"));
     }
@@ -97,6 +157,11 @@ fn read_header(data: &[u8], name: &str) -> Result<(TrkHeader, bool, i32), IoErro
         return Err(IoError::offset(name, 996, "hdr_size is not 1000 in either byte order"));
     };
     let mut c = Cursor::new(data, name, big);
+    c.pos = 992;
+    let version = c.i32("version")?;
+    if !(1..=3).contains(&version) {
+        return Err(IoError::offset(name, 992, format!("version {version} is not a TrackVis version (1, 2 or 3)")));
+    }
     c.pos = 6;
     let mut h = TrkHeader::default();
     for d in h.dim.iter_mut() {
@@ -105,20 +170,20 @@ fn read_header(data: &[u8], name: &str) -> Result<(TrkHeader, bool, i32), IoErro
     for k in 0..3 {
         let at = c.pos as u64;
         let v = c.f32("voxel_size")?;
-        if !(v.is_finite() && v > 0.0) {
-            return Err(IoError::offset(name, at, format!("voxel size {v} is not a positive number")));
+        if !(v.is_finite() && v != 0.0) {
+            return Err(IoError::offset(name, at, format!("voxel size {v} is zero or not finite")));
         }
         h.voxel_size[k] = v;
     }
     c.pos = 36;
     h.n_scalars = c.i16("n_scalars")?;
-    if !(0..=10).contains(&h.n_scalars) {
-        return Err(IoError::offset(name, 36, format!("n_scalars {} is not in 0..=10", h.n_scalars)));
+    if h.n_scalars < 0 {
+        return Err(IoError::offset(name, 36, format!("n_scalars {} is negative", h.n_scalars)));
     }
     c.pos = 238;
     h.n_properties = c.i16("n_properties")?;
-    if !(0..=10).contains(&h.n_properties) {
-        return Err(IoError::offset(name, 238, format!("n_properties {} is not in 0..=10", h.n_properties)));
+    if h.n_properties < 0 {
+        return Err(IoError::offset(name, 238, format!("n_properties {} is negative", h.n_properties)));
     }
     c.pos = 440;
     for r in 0..4 {
@@ -126,61 +191,64 @@ fn read_header(data: &[u8], name: &str) -> Result<(TrkHeader, bool, i32), IoErro
             h.vox_to_ras[r][k] = c.f32("vox_to_ras")?;
         }
     }
-    let unset = h.vox_to_ras[3][3] == 0.0;
-    if unset {
+    // Version 1 has no matrix; a zero vox_to_ras[3][3] means "not recorded": identity.
+    if version == 1 || h.vox_to_ras[3][3] == 0.0 {
         h.vox_to_ras = TrkHeader::default().vox_to_ras;
     }
     if h.vox_to_ras.iter().flatten().any(|v| !v.is_finite()) {
         return Err(IoError::offset(name, 440, "vox_to_ras has NaN or infinite entries"));
     }
-    let m = h.vox_to_ras.map(|r| r.map(|v| v as f64));
-    let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-    if det.abs().partial_cmp(&0.0) != Some(Ordering::Greater) || !det.is_finite() {
-        return Err(IoError::offset(name, 440, "vox_to_ras is singular"));
-    }
     h.voxel_order.copy_from_slice(&data[948..951]);
-    let order = h.voxel_order.map(|b| b.to_ascii_uppercase());
-    if !unset && order != [0, 0, 0] && order != axcodes(&h.vox_to_ras) {
-        return Err(IoError::offset(
-            name,
-            948,
-            format!(
-                "voxel_order {:?} disagrees with the orientation of vox_to_ras ({:?}); reorienting is unsupported",
-                String::from_utf8_lossy(&order),
-                String::from_utf8_lossy(&axcodes(&h.vox_to_ras))
-            ),
-        ));
-    }
+    let raw = &data[948..952];
+    let code = &raw[..raw.iter().rposition(|&b| b != 0).map_or(0, |i| i + 1)];
+    // TrackVis's default when unset is LPS (nibabel assumes it too).
+    let code = if code.is_empty() { &b"LPS"[..] } else { code };
+    let Some(order) = orient::parse_axcodes(code) else {
+        let problem =
+            format!("voxel_order {:?} is not three axis codes (R/L, A/P, S/I)", String::from_utf8_lossy(code));
+        return Err(IoError::offset(name, 948, problem));
+    };
+    let affine = voxmm_to_ras(&h, &order, name)?;
     c.pos = 988;
     let n_count = c.i32("n_count")?;
     if n_count < 0 {
         return Err(IoError::offset(name, 988, format!("n_count {n_count} is negative")));
     }
-    Ok((h, big, n_count))
+    let scalars = decode_names(data, 38, h.n_scalars as usize, "scalars", name)?;
+    let properties = decode_names(data, 240, h.n_properties as usize, "properties", name)?;
+    Ok(Parsed { h, big, n_count, scalars, properties, affine })
 }
 
 /// Parse a `.trk` file into streamlines in RAS+ mm (no radii), with its header.
-///
-/// Errors: short header, bad magic, `hdr_size` ≠ 1000 in both byte orders, non-positive or
-/// non-finite voxel size, negative or too many scalars/properties, a singular or non-finite
-/// `vox_to_ras`, a `voxel_order` that disagrees with it, a negative point count, a truncated
-/// streamline, non-finite coordinates, fewer streamlines than `n_count`, or trailing bytes.
+/// ([`read_data`] keeps the scalars and properties too.)
 pub fn read(data: &[u8], name: &str) -> Result<(TrkHeader, Vec<Polyline>), IoError> {
-    let (h, big, n_count) = read_header(data, name)?;
-    let m = h.vox_to_ras.map(|r| r.map(|v| v as f64));
-    let mut c = Cursor::new(data, name, big);
+    read_data(data, name).map(|(h, t)| (h, t.lines))
+}
+
+/// Parse a `.trk` file into streamlines in RAS+ mm with their per-point scalars and
+/// per-streamline properties, named as nibabel names them, and the header.
+///
+/// Errors: short header, bad magic, `hdr_size` ≠ 1000 in both byte orders, a version other
+/// than 1, 2 or 3, a zero or non-finite voxel size, a negative number of scalars/properties, a
+/// malformed scalar/property name, a singular or non-finite `vox_to_ras`, a `voxel_order` that
+/// is not three axis codes, a negative point count, a truncated streamline, non-finite
+/// coordinates, fewer streamlines than `n_count`, or trailing bytes.
+pub fn read_data(data: &[u8], name: &str) -> Result<(TrkHeader, Tractogram), IoError> {
+    let p = read_header(data, name)?;
+    let (h, m) = (p.h, p.affine);
+    let mut c = Cursor::new(data, name, p.big);
     c.pos = 1000;
-    let per_point = 3 + h.n_scalars as usize;
-    let vs = h.voxel_size.map(|v| v as f64);
+    let (ns, np) = (h.n_scalars as usize, h.n_properties as usize);
+    let per_point = 3 + ns;
     let mut out = Vec::new();
-    while c.remaining() > 0 && (n_count == 0 || out.len() < n_count as usize) {
+    let (mut scal, mut prop) = (Vec::new(), Vec::new());
+    while c.remaining() > 0 && (p.n_count == 0 || out.len() < p.n_count as usize) {
         let at = c.pos as u64;
         let n = c.i32("a point count")?;
         if n < 0 {
             return Err(IoError::offset(name, at, format!("point count {n} is negative")));
         }
-        let need = (n as u64) * per_point as u64 * 4 + h.n_properties as u64 * 4;
+        let need = (n as u64) * per_point as u64 * 4 + np as u64 * 4;
         if need > c.remaining() as u64 {
             return Err(IoError::offset(
                 name,
@@ -191,41 +259,42 @@ pub fn read(data: &[u8], name: &str) -> Result<(TrkHeader, Vec<Polyline>), IoErr
         let mut pl = Polyline { points: Vec::with_capacity(n as usize), radii: Vec::new() };
         for _ in 0..n {
             let pat = c.pos as u64;
-            let mut v = [0.0f64; 3];
-            for (k, x) in v.iter_mut().enumerate() {
-                let f = c.f32("a point")? as f64;
-                // Voxel-centre index coordinates.
-                *x = f / vs[k] - 0.5;
+            let v: [f64; 3] = [c.f32("a point")? as f64, c.f32("a point")? as f64, c.f32("a point")? as f64];
+            for _ in 0..ns {
+                scal.push(c.f32("a scalar")? as f64);
             }
-            for _ in 0..h.n_scalars {
-                c.f32("a scalar")?;
-            }
-            let p: [f64; 3] = std::array::from_fn(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2] + m[r][3]);
-            if p.iter().any(|x| !x.is_finite()) {
+            let q: [f64; 3] = std::array::from_fn(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2] + m[r][3]);
+            if q.iter().any(|x| !x.is_finite()) {
                 return Err(IoError::offset(name, pat, "point has NaN or infinite coordinates"));
             }
-            pl.points.push(p);
+            pl.points.push(q);
         }
-        for _ in 0..h.n_properties {
-            c.f32("a property")?;
+        for _ in 0..np {
+            prop.push(c.f32("a property")? as f64);
         }
         out.push(pl);
     }
-    if n_count > 0 && out.len() < n_count as usize {
-        return Err(IoError::offset(
-            name,
-            c.pos as u64,
-            format!("truncated: header says {n_count} streamlines, file holds {}", out.len()),
-        ));
+    if p.n_count > 0 && out.len() < p.n_count as usize {
+        let problem = format!("truncated: header says {} streamlines, file holds {}", p.n_count, out.len());
+        return Err(IoError::offset(name, c.pos as u64, problem));
     }
     if c.remaining() > 0 {
-        return Err(IoError::offset(
-            name,
-            c.pos as u64,
-            format!("{} bytes after the last of n_count = {n_count} streamlines", c.remaining()),
-        ));
+        let problem = format!("{} bytes after the last of n_count = {} streamlines", c.remaining(), p.n_count);
+        return Err(IoError::offset(name, c.pos as u64, problem));
     }
-    Ok((h, out))
+    let fields = |groups: &[(String, usize, usize)], all: &[f64], n: usize| -> Vec<Field> {
+        let items = all.len().checked_div(n).unwrap_or(0);
+        let groups = groups.iter().map(|(gname, a, w)| Field {
+            name: gname.clone(),
+            width: *w,
+            values: (0..items).flat_map(|i| all[i * n + a..i * n + a + w].iter().copied()).collect(),
+        });
+        groups.collect()
+    };
+    let per_point = fields(&p.scalars, &scal, ns);
+    let per_line = if np == 0 { Vec::new() } else { fields(&p.properties, &prop, np) };
+    let per_point = if ns == 0 { Vec::new() } else { per_point };
+    Ok((h, Tractogram { lines: out, per_point, per_line, groups: Vec::new(), affine: Some(m) }))
 }
 
 /// Write streamlines given in RAS+ mm as a `.trk` file with header `h` (inverse of [`read`]:

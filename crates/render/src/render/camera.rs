@@ -1,4 +1,4 @@
-//! The pinhole camera and how a view is chosen.
+//! The pinhole (or orthographic) camera and how a view is chosen.
 
 use super::RenderError;
 use std::cmp::Ordering;
@@ -35,6 +35,48 @@ pub struct Camera {
     pub width: u32,
     /// Image height in pixels.
     pub height: u32,
+    /// `0`: perspective. `> 0`: orthographic, the image spanning `±ortho` world units
+    /// vertically around the eye ([`Camera::orthographic`]).
+    pub ortho: f64,
+}
+
+/// A named view direction (`--view`): the direction from the scene's centre to the eye and
+/// the up direction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Preset {
+    /// Looking down −z at the x–y plane, x right, y up.
+    Xy,
+    /// Looking along +y at the x–z plane, x right, z up.
+    Xz,
+    /// Looking along −x at the y–z plane, y right, z up.
+    Yz,
+    /// Isometric: from the (1, 1, 1) direction, y up.
+    Iso,
+}
+
+impl Preset {
+    /// (eye direction from the centre, up).
+    pub fn axes(self) -> ([f64; 3], [f64; 3]) {
+        match self {
+            Preset::Xy => ([0.0, 0.0, 1.0], [0.0, 1.0, 0.0]),
+            Preset::Xz => ([0.0, -1.0, 0.0], [0.0, 0.0, 1.0]),
+            Preset::Yz => ([1.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+            Preset::Iso => ([1.0, 1.0, 1.0], [0.0, 1.0, 0.0]),
+        }
+    }
+}
+
+impl std::str::FromStr for Preset {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "xy" => Ok(Preset::Xy),
+            "xz" => Ok(Preset::Xz),
+            "yz" => Ok(Preset::Yz),
+            "iso" => Ok(Preset::Iso),
+            _ => Err(format!("unknown view {s:?} (xy, xz, yz or iso)")),
+        }
+    }
 }
 
 fn finite3(v: V3<f64>) -> bool {
@@ -73,13 +115,59 @@ impl Camera {
         }
         let right = right.normalize_or_zero();
         let up = right.cross(forward);
-        Ok(Self { eye, forward, right, up, fov_deg, width, height })
+        Ok(Self { eye, forward, right, up, fov_deg, width, height, ortho: 0.0 })
+    }
+
+    /// The orthographic camera with the same eye, orientation and framing at `target`: the
+    /// image spans `±tan(fov/2)·|target − eye|` vertically (what the perspective view shows
+    /// in the plane through `target`); rays run along `forward` from the image plane through
+    /// the eye, `t` measured in units of `forward` (unit length).
+    ///
+    /// ```
+    /// use tubecast::V3;
+    /// use tubecast_render::render::Camera;
+    /// let cam = Camera::look_at(V3::new(0.0, 0.0, 10.0), V3::zero(), V3::new(0.0, 1.0, 0.0), 90.0, 4, 4).unwrap();
+    /// let o = cam.orthographic([0.0; 3]);
+    /// assert!((o.ortho - 10.0).abs() < 1e-12);
+    /// let (a, b) = (o.ray(0, 0), o.ray(3, 3));
+    /// assert_eq!((a.d, b.d), (cam.forward, cam.forward)); // parallel rays
+    /// assert!((a.o.x + 7.5).abs() < 1e-12 && (a.o.y - 7.5).abs() < 1e-12); // pixel centres
+    /// ```
+    pub fn orthographic(&self, target: [f64; 3]) -> Self {
+        let half = (self.fov_deg * 0.5).to_radians().tan() * (V3::from(target) - self.eye).length();
+        Self { ortho: half, ..*self }
+    }
+
+    /// [`Camera::fit`] from a named view direction ([`Preset`]).
+    pub fn fit_preset(
+        lo: [f64; 3],
+        hi: [f64; 3],
+        preset: Preset,
+        fov_deg: f64,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, RenderError> {
+        let (dir, up) = preset.axes();
+        Self::fit_from(lo, hi, V3::from(dir), V3::from(up), fov_deg, width, height)
     }
 
     /// A camera that frames the box `(lo, hi)`: looking at its centre from the direction
     /// `(0.25, 0.35, 1)` (a three-quarter view from +z), just far enough (plus 5%) that all
     /// eight corners of the box project inside both the vertical and horizontal field of view.
     pub fn fit(lo: [f64; 3], hi: [f64; 3], fov_deg: f64, width: u32, height: u32) -> Result<Self, RenderError> {
+        Self::fit_from(lo, hi, V3::new(0.25, 0.35, 1.0), V3::new(0.0, 1.0, 0.0), fov_deg, width, height)
+    }
+
+    /// [`Camera::fit`] looking from the direction `dir` with `up`.
+    fn fit_from(
+        lo: [f64; 3],
+        hi: [f64; 3],
+        dir: V3<f64>,
+        up: V3<f64>,
+        fov_deg: f64,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, RenderError> {
         let c = V3::new(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2]));
         let r = 0.5 * (V3::from(hi) - V3::from(lo)).length();
         if !(r.is_finite() && r > 0.0) {
@@ -88,9 +176,9 @@ impl Camera {
         let aspect = width.max(1) as f64 / height.max(1) as f64;
         let half_v = (fov_deg.clamp(1e-3, 179.0) * 0.5).to_radians();
         let half_h = (half_v.tan() * aspect).atan();
-        let dir = V3::new(0.25, 0.35, 1.0).normalize_or_zero();
+        let dir = dir.normalize_or_zero();
         // Orientation only (eye distance 1), to measure the corners in the camera frame.
-        let probe = Self::look_at(c + dir, c, V3::new(0.0, 1.0, 0.0), fov_deg, width, height)?;
+        let probe = Self::look_at(c + dir, c, up, fov_deg, width, height)?;
         let (tv, th) = (half_v.tan(), half_h.tan());
         let mut dist: f64 = 0.0;
         for k in 0..8 {
@@ -105,7 +193,7 @@ impl Camera {
         }
         // Keep the eye outside the box's bounding sphere as well.
         let dist = (1.05 * dist).max(1.05 * r);
-        Self::look_at(c + dir * dist, c, V3::new(0.0, 1.0, 0.0), fov_deg, width, height)
+        Self::look_at(c + dir * dist, c, up, fov_deg, width, height)
     }
 
     /// The primary ray through the centre of pixel `(x, y)` (`y = 0` is the top row). Its
@@ -115,6 +203,10 @@ impl Camera {
         let aspect = self.width as f64 / self.height as f64;
         let sx = ((x as f64 + 0.5) / self.width as f64 * 2.0 - 1.0) * th * aspect;
         let sy = (1.0 - (y as f64 + 0.5) / self.height as f64 * 2.0) * th;
+        if self.ortho > 0.0 {
+            let k = self.ortho / th;
+            return Ray::new(self.eye + self.right * (sx * k) + self.up * (sy * k), self.forward);
+        }
         Ray::new(self.eye, self.forward + self.right * sx + self.up * sy)
     }
 }

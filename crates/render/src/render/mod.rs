@@ -14,16 +14,22 @@
 //! Colours are linear RGB in `[0, 1]`; [`Image::to_srgb8`] encodes them for PNG.
 
 mod camera;
+mod colormap;
 mod error;
 mod image;
+mod legend;
 mod options;
 mod shade;
+mod thin;
 mod trace;
 
-pub use camera::{Camera, View};
+pub use camera::{Camera, Preset, View};
+pub use colormap::{value_range, Colormap};
 pub use error::RenderError;
 pub use image::Image;
+pub use legend::label as legend_label;
 pub use options::{ColorBy, Options, Shading};
+pub use thin::clamp_thin;
 
 #[allow(unused_imports)] // documentation links
 use crate::accel::Bvh;
@@ -46,7 +52,7 @@ pub fn render(scene: &Scene, bvh: &dyn Tracer, cam: &Camera, opts: &Options) -> 
     let light = (cam.up * 0.6 - cam.right * 0.4 - cam.forward * 0.7).normalize_or_zero();
     let st = scene.stats();
     let diag = (V3::from(st.bounds.1) - V3::from(st.bounds.0)).length();
-    let ctx = Ctx { scene, bvh, cam, opts, pal: Palette::new(scene), light, ao_dist: 0.1 * diag };
+    let ctx = Ctx { scene, bvh, cam, opts, pal: Palette::new(scene, opts.background), light, ao_dist: 0.1 * diag };
     let bar = if opts.progress { indicatif::ProgressBar::new(h as u64) } else { indicatif::ProgressBar::hidden() };
     let mut rgb = vec![[0.0f32; 3]; (w * h) as usize];
     let mut depth = vec![f64::INFINITY; (w * h) as usize];

@@ -15,6 +15,10 @@ pub enum ColorBy {
     Type,
     /// One colour.
     Solid([f32; 3]),
+    /// The scene's per-node data values ([`crate::scene::Scene::values`], e.g. a TrackVis
+    /// scalar, a TRX `dpv`), interpolated along each link, through a named colour map over
+    /// their finite range; a NaN value shows grey.
+    Values(super::Colormap),
 }
 
 /// Lighting model.

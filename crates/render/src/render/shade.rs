@@ -1,4 +1,4 @@
-//! Surface colours: by direction, radius, SWC type or one colour.
+//! Surface colours: by direction, radius, SWC type, data values or one colour.
 
 use super::ColorBy;
 use crate::scene::{Prim, Scene};
@@ -7,6 +7,10 @@ use crate::scene::{Prim, Scene};
 pub(super) struct Palette {
     r_lo: f64,
     r_hi: f64,
+    /// Finite range of the scene's data values.
+    v_range: Option<(f64, f64)>,
+    /// The background, which faded thin tubes are mixed with ([`super::clamp_thin`]).
+    bg: [f32; 3],
 }
 
 fn colormap(x: f64) -> [f32; 3] {
@@ -32,16 +36,30 @@ fn type_color(t: i32) -> [f32; 3] {
 }
 
 impl Palette {
-    pub(super) fn new(scene: &Scene) -> Self {
+    pub(super) fn new(scene: &Scene, bg: [f32; 3]) -> Self {
         let (mut r_lo, mut r_hi) = (f64::INFINITY, f64::NEG_INFINITY);
         for n in &scene.nodes {
             r_lo = r_lo.min(n.radius);
             r_hi = r_hi.max(n.radius);
         }
-        Self { r_lo, r_hi }
+        Self { r_lo, r_hi, v_range: super::value_range(&scene.values), bg }
     }
-    /// Colour of primitive `prim` at its curve parameter `u`.
+    /// Colour of primitive `prim` at its curve parameter `u`, faded toward the background by
+    /// the scene's coverage where thin tubes were widened ([`super::clamp_thin`]).
     pub(super) fn color(&self, scene: &Scene, by: ColorBy, prim: &Prim, u: f64) -> [f32; 3] {
+        let c = self.base_color(scene, by, prim, u);
+        let l = scene.links[prim.link as usize];
+        match (scene.coverage.get(l[0] as usize), scene.coverage.get(l[1] as usize)) {
+            (Some(&a), Some(&b)) => {
+                let t = u.clamp(0.0, 1.0) as f32;
+                let alpha = a + (b - a) * t;
+                std::array::from_fn(|k| alpha * c[k] + (1.0 - alpha) * self.bg[k])
+            }
+            _ => c,
+        }
+    }
+
+    fn base_color(&self, scene: &Scene, by: ColorBy, prim: &Prim, u: f64) -> [f32; 3] {
         let link = prim.link;
         let l = scene.links[link as usize];
         let spline = prim.quad().map(|q| q.cast::<f64>());
@@ -71,6 +89,18 @@ impl Palette {
                 colormap(if span > 0.0 { (r - self.r_lo) / span } else { 0.5 })
             }
             ColorBy::Type => type_color(scene.nodes[l[1] as usize].kind),
+            ColorBy::Values(map) => {
+                let (Some((lo, hi)), Some(&a), Some(&b)) =
+                    (self.v_range, scene.values.get(l[0] as usize), scene.values.get(l[1] as usize))
+                else {
+                    return [0.5; 3];
+                };
+                let v = a + (b - a) * u.clamp(0.0, 1.0);
+                if !v.is_finite() {
+                    return [0.5; 3];
+                }
+                map.linear(if hi > lo { (v - lo) / (hi - lo) } else { 0.5 })
+            }
         }
     }
 }

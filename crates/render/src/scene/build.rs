@@ -85,7 +85,7 @@ impl Scene {
                 links.push([i as u32, i as u32]);
             }
         }
-        let s = Self { nodes, links };
+        let s = Self { nodes, links, values: Vec::new(), coverage: Vec::new() };
         for (k, l) in s.links.iter().enumerate() {
             if s.nodes[l[0] as usize].radius == 0.0 && s.nodes[l[1] as usize].radius == 0.0 {
                 return Err(SceneError::NoVolume { file: name.to_string(), link: k, nodes: *l });

@@ -1,6 +1,7 @@
 //! Loading a scene from a file, with the fallback for placeholder radii.
 
 use super::{Node, Scene, SceneError};
+use crate::io::data::{Field, Tractogram};
 use crate::io::{self, swc::SwcFile, IoError};
 use std::collections::HashMap;
 use std::path::Path;
@@ -34,7 +35,7 @@ pub struct LoadReport {
 }
 
 impl Scene {
-    /// Load a scene from a file, by extension: `.swc`, `.trk`, `.tck`, `.obj`. Formats without
+    /// Load a scene from a file, by extension: `.swc`, `.trk`, `.tck`, `.trx`, `.obj`. Formats without
     /// radii (and OBJ vertices without one) use `default_radius`. A file without streamlines
     /// or nodes gives the empty scene. ([`Self::load_with`] without a minimum radius.)
     pub fn load(path: &Path, default_radius: f64) -> Result<Self, SceneError> {
@@ -44,6 +45,15 @@ impl Scene {
     /// [`Self::load`] with a minimum radius ([`LoadOptions`]); the report counts the radii
     /// it replaced.
     pub fn load_with(path: &Path, opts: &LoadOptions) -> Result<(Self, LoadReport), SceneError> {
+        Self::load_fields(path, opts).map(|(s, r, _)| (s, r))
+    }
+
+    /// [`Self::load_with`], also returning the file's data as per-node fields (one item per
+    /// node) for colouring, named `scalar:NAME` (TrackVis scalars, the `.tsf` beside a `.tck`
+    /// — `scalar:tsf` —, TRX `dpv`) and `property:NAME` (TrackVis properties, TRX `dps`, each
+    /// node of a streamline getting its streamline's value), plus `scalar:radius` and
+    /// `scalar:type` (SWC structure type; 0 for other formats) for every file.
+    pub fn load_fields(path: &Path, opts: &LoadOptions) -> Result<(Self, LoadReport, Vec<Field>), SceneError> {
         let name = path.display().to_string();
         if let Some(r) = opts.min_radius {
             if !(r.is_finite() && r > 0.0) {
@@ -52,7 +62,7 @@ impl Scene {
         }
         let data = io::read_bytes(path)?;
         let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
-        let lines = match ext.as_str() {
+        let t = match ext.as_str() {
             "swc" => {
                 let file = io::swc::read_with(&data, &name, opts.min_radius)?;
                 if opts.min_radius.is_none() {
@@ -60,20 +70,82 @@ impl Scene {
                 }
                 let (nodes, links) = Self::swc_parts(&file.nodes, &name)?;
                 let report = LoadReport { replaced: file.replaced, placeholders: file.placeholders };
-                return Ok((Self::finish(nodes, links, &name)?, report));
+                let scene = Self::finish(nodes, links, &name)?;
+                let fields = node_fields(&scene, &Tractogram::default());
+                return Ok((scene, report, fields));
             }
-            "trk" => io::trk::read(&data, &name)?.1,
-            "tck" => io::tck::read(&data, &name)?,
-            "obj" => io::obj::read(&data, &name)?,
+            "trk" => io::trk::read_data(&data, &name)?.1,
+            "tck" => with_tsf(path, io::tck::read(&data, &name)?)?,
+            "trx" => io::trx::read(&data, &name)?,
+            "obj" => Tractogram { lines: io::obj::read(&data, &name)?, ..Tractogram::default() },
             _ => {
-                let problem = format!("unknown extension {ext:?} (expected .swc, .trk, .tck or .obj)");
+                let problem = format!("unknown extension {ext:?} (expected .swc, .trk, .tck, .trx or .obj)");
                 return Err(SceneError::Io(IoError::file(&name, problem)));
             }
         };
-        let (mut nodes, links) = Self::polyline_parts(&lines, opts.default_radius)?;
+        let (mut nodes, links) = Self::polyline_parts(&t.lines, opts.default_radius)?;
         let report = opts.min_radius.map(|r| raise(&mut nodes, r)).unwrap_or_default();
-        Ok((Self::finish(nodes, links, &name)?, report))
+        let scene = Self::finish(nodes, links, &name)?;
+        let fields = node_fields(&scene, &t);
+        Ok((scene, report, fields))
     }
+
+    /// Colour by the field called `key` (`scalar:NAME` or `property:NAME`, from
+    /// [`Self::load_fields`]): [`Self::values`] gets its values, the Euclidean norm of each
+    /// item for a field of several columns (a colour, a vector). An unknown key is an error
+    /// listing the fields there are.
+    pub fn select_values(&mut self, fields: &[Field], key: &str) -> Result<(), SceneError> {
+        let Some(f) = fields.iter().find(|f| f.name == key) else {
+            let have: Vec<&str> = fields.iter().map(|f| f.name.as_str()).collect();
+            let problem = format!("no data field {key:?} (the file has: {})", have.join(", "));
+            return Err(SceneError::Io(IoError::file("--color", problem)));
+        };
+        self.values = (0..f.len()).map(|i| (0..f.width).map(|c| f.get(i, c).powi(2)).sum::<f64>().sqrt()).collect();
+        if f.width == 1 {
+            self.values = f.values.clone();
+        }
+        Ok(())
+    }
+}
+
+/// The scalars of the `.tsf` file beside a `.tck` (same stem), if there is one: one value per
+/// point, as field `tsf`.
+fn with_tsf(path: &Path, lines: Vec<io::Polyline>) -> Result<Tractogram, SceneError> {
+    let mut t = Tractogram { lines, ..Tractogram::default() };
+    let tsf = path.with_extension("tsf");
+    if tsf.is_file() {
+        let name = tsf.display().to_string();
+        let values = io::tck::read_tsf(&io::read_bytes(&tsf)?, &name)?;
+        let lens: Vec<usize> = values.iter().map(Vec::len).collect();
+        if lens != t.lines.iter().map(|l| l.points.len()).collect::<Vec<_>>() {
+            let problem = "its streamline lengths differ from the .tck's (not its companion?)";
+            return Err(SceneError::Io(IoError::file(&name, problem)));
+        }
+        t.per_point.push(Field { name: "tsf".into(), width: 1, values: values.concat() });
+    }
+    Ok(t)
+}
+
+/// Per-node fields of a scene built from `t` (nodes in point order).
+fn node_fields(scene: &Scene, t: &Tractogram) -> Vec<Field> {
+    let n = scene.nodes.len();
+    let mut out = vec![
+        Field { name: "scalar:radius".into(), width: 1, values: scene.nodes.iter().map(|v| v.radius).collect() },
+        Field { name: "scalar:type".into(), width: 1, values: scene.nodes.iter().map(|v| v.kind as f64).collect() },
+    ];
+    for f in &t.per_point {
+        if f.values.len() == n * f.width {
+            out.push(Field { name: format!("scalar:{}", f.name), ..f.clone() });
+        }
+    }
+    for f in &t.per_line {
+        let values = t.lines.iter().enumerate().flat_map(|(i, l)| {
+            let item = &f.values[i * f.width..(i + 1) * f.width];
+            std::iter::repeat(item).take(l.points.len()).flatten().copied()
+        });
+        out.push(Field { name: format!("property:{}", f.name), width: f.width, values: values.collect() });
+    }
+    out
 }
 
 /// Raise every radius below `r` to `r`, counting.

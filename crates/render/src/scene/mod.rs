@@ -86,6 +86,12 @@ pub struct Scene {
     /// Links as node index pairs. A node that no link uses is stored as the zero-length link
     /// `[i, i]` (a sphere), so every primitive has a link index.
     pub links: Vec<[u32; 2]>,
+    /// One data value per node for colouring ([`crate::render::ColorBy::Values`]), or empty;
+    /// set by [`Scene::select_values`] from the fields [`Scene::load_fields`] returns.
+    pub values: Vec<f64>,
+    /// Per-node coverage in `[0, 1]` of tubes widened to a minimum pixel footprint
+    /// ([`crate::render::clamp_thin`]); empty when none was.
+    pub coverage: Vec<f32>,
 }
 
 /// Which model of the tubes a renderer uses ([`Scene::model_primitives`]).

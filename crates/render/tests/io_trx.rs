@@ -1,0 +1,126 @@
+//! TRX reader: archives built here with the zip crate's writer (hand-chosen arrays, expected
+//! values written out), and malformed archives refused with a clear error.
+//! (Agreement with trx-python's own files: io_reference_readers.rs.)
+
+use std::io::Write;
+use tubecast_render::io::trx::read;
+
+fn le<T: Copy, const N: usize>(v: &[T], f: fn(T) -> [u8; N]) -> Vec<u8> {
+    v.iter().flat_map(|&x| f(x)).collect()
+}
+
+fn archive(entries: &[(&str, Vec<u8>)], deflate: bool) -> Vec<u8> {
+    let mut w = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let method = if deflate { zip::CompressionMethod::Deflated } else { zip::CompressionMethod::Stored };
+    let opts = zip::write::SimpleFileOptions::default().compression_method(method);
+    for (name, data) in entries {
+        w.start_file(*name, opts).unwrap();
+        w.write_all(data).unwrap();
+    }
+    w.finish().unwrap().into_inner()
+}
+
+fn header(ns: usize, nv: usize) -> Vec<u8> {
+    format!(
+        r#"{{"NB_STREAMLINES": {ns}, "NB_VERTICES": {nv}, "DIMENSIONS": [1, 1, 1],
+        "VOXEL_TO_RASMM": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}}"#
+    )
+    .into_bytes()
+}
+
+fn good(deflate: bool) -> Vec<u8> {
+    archive(
+        &[
+            ("header.json", header(2, 3)),
+            ("positions.3.float32", le(&[0.0f32, 0.0, 0.0, 1.0, 0.5, 0.25, -2.0, 3.0, 4.0], f32::to_le_bytes)),
+            ("offsets.uint64", le(&[0u64, 2, 3], u64::to_le_bytes)),
+            ("dpv/fa.float32", le(&[0.1f32, 0.2, 0.3], f32::to_le_bytes)),
+            ("dps/len.1.float64", le(&[2.5f64, 7.0], f64::to_le_bytes)),
+            ("groups/g.uint32", le(&[1u32], u32::to_le_bytes)),
+            ("dpg/g/w.float32", le(&[1.0f32], f32::to_le_bytes)),
+        ],
+        deflate,
+    )
+}
+
+#[test]
+fn reads_positions_offsets_dpv_dps_groups_stored_and_deflated() {
+    for deflate in [false, true] {
+        let t = read(&good(deflate), "g.trx").unwrap();
+        assert_eq!(t.lines.len(), 2);
+        assert_eq!(t.lines[0].points, vec![[0.0, 0.0, 0.0], [1.0, 0.5, 0.25]]);
+        assert_eq!(t.lines[1].points, vec![[-2.0, 3.0, 4.0]]);
+        assert_eq!(t.point_field("fa").unwrap().values, vec![0.1f32 as f64, 0.2f32 as f64, 0.3f32 as f64]);
+        assert_eq!(t.line_field("len").unwrap().values, vec![2.5, 7.0]);
+        assert_eq!(t.groups, vec![("g".to_string(), vec![1])]);
+    }
+}
+
+#[test]
+fn malformed_archives_are_errors() {
+    let pos = le(&[0.0f32; 9], f32::to_le_bytes);
+    let off = le(&[0u32, 2, 3], u32::to_le_bytes);
+    let cases: Vec<(Vec<u8>, &str)> = vec![
+        (b"PK not really".to_vec(), "zip archive"),
+        (archive(&[("positions.3.float32", pos.clone())], false), "no header.json"),
+        (archive(&[("header.json", b"{".to_vec())], false), "header.json"),
+        (archive(&[("header.json", br#"{"NB_STREAMLINES": -1, "NB_VERTICES": 3}"#.to_vec())], false), "NB_STREAMLINES"),
+        (archive(&[("header.json", header(2, 3)), ("offsets.uint32", off.clone())], false), "missing positions"),
+        (archive(&[("header.json", header(2, 3)), ("positions.3.float32", pos[..32].to_vec())], false), "positions"),
+        (archive(&[("header.json", header(2, 3)), ("positions.3.float32", pos[..30].to_vec())], false), "whole number"),
+        (
+            archive(
+                &[
+                    ("header.json", header(2, 3)),
+                    ("positions.3.float32", pos.clone()),
+                    ("offsets.uint32", le(&[0u32, 3, 2], u32::to_le_bytes)),
+                ],
+                false,
+            ),
+            "offsets must rise",
+        ),
+        (
+            archive(
+                &[
+                    ("header.json", header(2, 3)),
+                    ("positions.3.float32", pos.clone()),
+                    ("offsets.uint32", off.clone()),
+                    ("dpv/fa.float32", vec![0; 8]),
+                ],
+                false,
+            ),
+            "dpv",
+        ),
+        (
+            archive(
+                &[
+                    ("header.json", header(2, 3)),
+                    ("positions.3.float32", pos.clone()),
+                    ("offsets.uint32", off.clone()),
+                    ("groups/g.uint32", le(&[2u32], u32::to_le_bytes)),
+                ],
+                false,
+            ),
+            "outside 0..2",
+        ),
+        (
+            archive(
+                &[
+                    ("header.json", header(2, 3)),
+                    ("positions.3.float32", le(&[f32::NAN; 9], f32::to_le_bytes)),
+                    ("offsets.uint32", off.clone()),
+                ],
+                false,
+            ),
+            "NaN",
+        ),
+        (archive(&[("header.json", header(2, 3)), ("a.b.c.float32", vec![0; 4])], false), "NAME[.DIM].DTYPE"),
+    ];
+    for (d, what) in cases {
+        let e = read(&d, "bad.trx").expect_err(what);
+        assert!(e.to_string().starts_with("bad.trx: "), "{e}");
+        assert!(e.to_string().contains(what), "expected {what:?} in {e}");
+    }
+    // Empty (as trx-python): zero streamlines read as the empty tractogram.
+    assert!(read(&archive(&[("header.json", header(0, 0))], false), "e.trx").unwrap().lines.is_empty());
+}
