@@ -8,6 +8,7 @@
 use tubecast::csg::{union, Boundary, Tagged};
 #[allow(unused_imports)]
 use tubecast::{Ray, RoundCone, V3};
+use tubecast_render::accel::grid::Grid;
 use tubecast_render::accel::{Bvh, Tracer};
 use tubecast_render::scene::Prim;
 
@@ -20,9 +21,9 @@ fn f32_at(data: &[u8], i: usize) -> f64 {
     f32::from_le_bytes(b) as f64
 }
 
-/// Every accelerator over `prims` (a voxel grid or a wide BVH joins this list).
+/// Every accelerator over `prims`.
 pub fn tracers(prims: &[Prim]) -> Vec<(&'static str, Box<dyn Tracer>)> {
-    vec![("bvh", Box::new(Bvh::build(prims.to_vec())))]
+    vec![("bvh", Box::new(Bvh::build(prims.to_vec()))), ("grid", Box::new(Grid::build(prims.to_vec())))]
 }
 
 /// Input: byte 0 = number of links n (mod 9), then n links of 8 f32 (a, ra, b, rb), then rays
