@@ -27,6 +27,19 @@ pub enum Kind {
     Helix,
 }
 
+/// What `intersect` answers (`--query`).
+#[derive(Clone, Copy, ValueEnum)]
+pub enum Query {
+    /// The closest surface crossing (the renderer's fast path): t, the hit primitive's exit t,
+    /// normal x y z, link, u, flag (1 entry, −1 the ray starts inside, 0 miss).
+    Hit,
+    /// The first solid piece of the CSG union: t_in, t_out, entry normal x y z, link, u, flag.
+    Piece,
+    /// Every boundary of the union: one row each, ray index, t, normal x y z, link, u,
+    /// 1 (entry) or −1 (exit).
+    All,
+}
+
 /// `tubecast render`.
 #[derive(Args)]
 pub struct RenderArgs {
@@ -80,6 +93,9 @@ pub struct RenderArgs {
     /// Hide the progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Worker threads (default: one per core).
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..), value_name = "N")]
+    pub threads: Option<u16>,
 }
 
 /// `tubecast info`.
@@ -107,9 +123,15 @@ pub struct IntersectArgs {
     /// Rays, N×6 float64 .npy.
     #[arg(long)]
     pub rays: PathBuf,
-    /// Output hits, N×8 float64 .npy.
+    /// Output hits, N×8 float64 .npy (`--query all`: one row per crossing).
     #[arg(long)]
     pub out: PathBuf,
+    /// What to answer per ray.
+    #[arg(long, value_enum, default_value_t = Query::Hit)]
+    pub query: Query,
+    /// Worker threads (default: one per core).
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..), value_name = "N")]
+    pub threads: Option<u16>,
     /// Tube radius for formats without radii.
     #[arg(long, default_value_t = 0.2)]
     pub radius: f64,

@@ -1,10 +1,10 @@
 //! Each command: arguments into library calls, results to files or stdout.
 
-use crate::args::{Color, GenerateArgs, InfoArgs, IntersectArgs, Kind, RenderArgs};
+use crate::args::{Color, GenerateArgs, InfoArgs, Kind, RenderArgs};
 use crate::error::CliError;
 use std::path::Path;
-use tubecast_render::accel::{hit_table, Bvh};
-use tubecast_render::io::{self, npy::Array2};
+use tubecast_render::accel::Bvh;
+use tubecast_render::io;
 use tubecast_render::render::{self, ColorBy, Options, Shading, View};
 use tubecast_render::scene::{generate, LoadOptions, Model, Scene};
 
@@ -17,7 +17,7 @@ fn warn(msg: &str) {
 
 /// Load the scene at `input`; warn about radii raised to `min_radius` and, with `empty`
 /// (what the command does then), about a scene without nodes.
-fn load(input: &Path, radius: f64, min_radius: Option<f64>, empty: &str) -> Result<Scene, CliError> {
+pub(crate) fn load(input: &Path, radius: f64, min_radius: Option<f64>, empty: &str) -> Result<Scene, CliError> {
     let (scene, rep) = Scene::load_with(input, &LoadOptions { default_radius: radius, min_radius })?;
     if let (Some(r), true) = (min_radius, rep.replaced > 0) {
         warn(&format!(
@@ -49,7 +49,7 @@ pub fn render(a: &RenderArgs) -> Res {
     // scene is viewed as if it were the box [-1, 1]³.
     let st = scene.stats_of(&prims);
     let bounds = if st.is_empty() { ([-1.0; 3], [1.0; 3]) } else { st.bounds };
-    let bvh = Bvh::build(prims);
+    let bvh = crate::cmd_intersect::with_threads(a.threads.map(usize::from), || Bvh::build(prims))?;
     let view = View { eye: a.eye, look_at: a.look_at, up: a.up, fov_deg: a.fov, width: a.width, height: a.height };
     let cam = view.camera(bounds)?;
     let opts = Options {
@@ -65,7 +65,9 @@ pub fn render(a: &RenderArgs) -> Res {
         progress: !a.quiet && (a.width as u64 * a.height as u64) >= 256 * 256,
         ..Options::default()
     };
-    Ok(render::render(&scene, &bvh, &cam, &opts)?.write_png(&a.out)?)
+    let img =
+        crate::cmd_intersect::with_threads(a.threads.map(usize::from), || render::render(&scene, &bvh, &cam, &opts))?;
+    Ok(img?.write_png(&a.out)?)
 }
 
 pub fn info(a: &InfoArgs) -> Res {
@@ -97,15 +99,6 @@ pub fn info(a: &InfoArgs) -> Res {
         bvh.node_count()
     );
     Ok(())
-}
-
-pub fn intersect(a: &IntersectArgs) -> Res {
-    let scene = load(&a.input, a.radius, a.min_radius, "every ray misses")?;
-    let name = a.rays.display().to_string();
-    let rays = io::npy::read(&io::read_bytes(&a.rays)?, &name, Some(6))?.rays(&name)?;
-    let bvh = Bvh::build(scene.primitives());
-    let hits = Array2::from_rows(&hit_table(&bvh, &rays));
-    Ok(io::write_bytes(&a.out, &io::npy::write(&hits))?)
 }
 
 pub fn generate(a: &GenerateArgs) -> Res {

@@ -32,8 +32,10 @@ use tubecast::V3;
 
 #[cfg(feature = "wide")]
 mod packet;
+mod table;
 mod tracer;
 
+pub use table::{closest_table, crossings_table, hit_table, MISS_ROW};
 pub use tracer::Tracer;
 
 /// `pack_at` entry of a primitive that starts no packet.
@@ -403,20 +405,7 @@ impl Bvh {
     }
 }
 
-/// The `tubecast intersect` table of `rays` (one row of [`HIT_COLUMNS`] columns per ray):
-/// `t_in`, `t_out` of the first component of the union ([`first_component`]), the entry
-/// normal (x, y, z), the entry's scene link, its curve parameter `u`, and 1; a miss is
-/// `+∞, +∞, 0, 0, 0, −1, 0, 0`.
-pub fn hit_table(bvh: &dyn Tracer, rays: &[Ray<f64>]) -> Vec<[f64; HIT_COLUMNS]> {
-    rays.iter()
-        .map(|ray| match first_component(bvh, ray) {
-            Some((e, x)) => [e.t, x.t, e.n.x, e.n.y, e.n.z, bvh.prims()[e.id as usize].link as f64, e.u, 1.0],
-            None => [f64::INFINITY, f64::INFINITY, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0],
-        })
-        .collect()
-}
-
-/// Columns of a [`hit_table`] row.
+/// Columns of a [`hit_table`], [`closest_table`] or [`crossings_table`] row.
 pub const HIT_COLUMNS: usize = 8;
 
 /// The part of the scene's surface union that a ray meets first: the entry and exit
