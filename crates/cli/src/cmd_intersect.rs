@@ -3,7 +3,7 @@
 
 use crate::args::{IntersectArgs, Query};
 use crate::error::CliError;
-use tubecast_render::accel::{closest_table, crossings_table, hit_table, Bvh};
+use tubecast_render::accel::{closest_table, crossings_table, hit_table, WideBvh};
 use tubecast_render::io::{self, npy::Array2};
 
 /// Run `f` on a rayon pool of `threads` threads (`None`: one per core, rayon's default).
@@ -20,7 +20,7 @@ pub fn intersect(a: &IntersectArgs) -> Result<(), CliError> {
     let name = a.rays.display().to_string();
     let rays = io::npy::read(&io::read_bytes(&a.rays)?, &name, Some(6))?.rays(&name)?;
     let rows = with_threads(a.threads.map(usize::from), || {
-        let bvh = Bvh::build(scene.primitives());
+        let bvh = WideBvh::build(scene.primitives());
         match a.query {
             Query::Hit => closest_table(&bvh, &rays),
             Query::Piece => hit_table(&bvh, &rays),

@@ -3,7 +3,7 @@
 use crate::args::{Color, GenerateArgs, InfoArgs, Kind, RenderArgs};
 use crate::error::CliError;
 use std::path::Path;
-use tubecast_render::accel::Bvh;
+use tubecast_render::accel::{Tracer, WideBvh};
 use tubecast_render::io;
 use tubecast_render::render::{self, ColorBy, Options, Shading, View};
 use tubecast_render::scene::{generate, LoadOptions, Model, Scene};
@@ -49,7 +49,7 @@ pub fn render(a: &RenderArgs) -> Res {
     // scene is viewed as if it were the box [-1, 1]³.
     let st = scene.stats_of(&prims);
     let bounds = if st.is_empty() { ([-1.0; 3], [1.0; 3]) } else { st.bounds };
-    let bvh = crate::cmd_intersect::with_threads(a.threads.map(usize::from), || Bvh::build(prims))?;
+    let bvh = crate::cmd_intersect::with_threads(a.threads.map(usize::from), || WideBvh::build(prims))?;
     let view = View { eye: a.eye, look_at: a.look_at, up: a.up, fov_deg: a.fov, width: a.width, height: a.height };
     let cam = view.camera(bounds)?;
     let opts = Options {
@@ -74,7 +74,7 @@ pub fn info(a: &InfoArgs) -> Res {
     let scene = load(&a.input, a.radius, a.min_radius, "counts are zero")?;
     let prims = scene.model_primitives(model(a.splines))?;
     let st = if a.splines { scene.stats_of(&prims) } else { scene.stats() };
-    let bvh = Bvh::build(prims);
+    let bvh = WideBvh::build(prims);
     println!("file       {}", a.input.display());
     println!("nodes      {}", st.nodes);
     println!("links      {}", st.links);
@@ -93,10 +93,17 @@ pub fn info(a: &InfoArgs) -> Res {
         println!("bounds max {:?}", st.bounds.1);
     }
     println!(
-        "memory     scene {} B, primitives + BVH {} B ({} BVH nodes)",
+        "memory     scene {} B, primitives + BVH {} B ({} 8-wide BVH nodes)",
         scene.memory_bytes(),
         bvh.memory_bytes(),
         bvh.node_count()
+    );
+    let per = |b: usize| b as f64 / st.links.max(1) as f64;
+    println!(
+        "per link   {:.1} B: scene {:.1} B + primitives and BVH {:.1} B",
+        per(scene.memory_bytes() + bvh.memory_bytes()),
+        per(scene.memory_bytes()),
+        per(bvh.memory_bytes())
     );
     Ok(())
 }
