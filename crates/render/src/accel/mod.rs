@@ -1,5 +1,7 @@
-//! Acceleration structures: a BVH (built and traversed by [`obvhs`]) over the scene's
-//! primitives, with closest-hit, any-hit and all-intervals queries in `f64` ray parameters.
+//! Acceleration structures: a binary BVH ([`Bvh`], with lane packets) and an 8-wide compressed
+//! one ([`WideBvh`], what the CLI uses: fewer node visits and less memory), both built and
+//! traversed by [`obvhs`] over the scene's primitives, with closest-hit, any-hit and
+//! all-intervals queries in `f64` ray parameters ([`Tracer`]), and the `intersect` tables.
 //!
 //! # Conservative boxes
 //! obvhs works in `f32`. Its boxes are stored relative to the scene's centre, and every
