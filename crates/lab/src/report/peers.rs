@@ -34,7 +34,8 @@ struct Agree {
     err: [Vec<f64>; 2],
 }
 
-fn best_of<F: FnMut() -> usize>(reps: usize, mut f: F) -> (f64, usize) {
+/// Best wall time of `reps` runs of `f` (and its last result).
+pub(super) fn best_of<F: FnMut() -> usize>(reps: usize, mut f: F) -> (f64, usize) {
     let mut best = f64::INFINITY;
     let mut hits = 0;
     for _ in 0..reps.max(1) {

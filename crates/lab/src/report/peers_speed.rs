@@ -4,6 +4,7 @@
 //! [`WideBvh`] that the CLI uses), on one thread and on all threads; build times; bytes per
 //! link (ours: [`Tracer::memory_bytes`]; Embree's: its device memory monitor after the build).
 
+use super::peers::best_of;
 use super::ReportError;
 use crate::peer::embree::{Device, Scene as EScene};
 use crate::peer::SceneInputs;
@@ -33,18 +34,6 @@ pub(super) struct SceneSpeed {
     /// Hits: Embree, WideBvh; rays.
     hits: [usize; 2],
     rays: usize,
-}
-
-/// Best wall time of `reps` runs of `f` (and its last result).
-fn best_of<F: FnMut() -> usize>(reps: usize, mut f: F) -> (f64, usize) {
-    let mut best = f64::INFINITY;
-    let mut hits = 0;
-    for _ in 0..reps.max(1) {
-        let t0 = Instant::now();
-        hits = std::hint::black_box(f());
-        best = best.min(t0.elapsed().as_secs_f64());
-    }
-    (best, hits)
 }
 
 fn count<T: Tracer>(t: &T, rays: &[Ray<f64>]) -> usize {
