@@ -9,7 +9,7 @@ use tubecast::csg::{union, Boundary, Tagged};
 #[allow(unused_imports)]
 use tubecast::{Ray, RoundCone, V3};
 use tubecast_render::accel::grid::Grid;
-use tubecast_render::accel::{Bvh, Tracer};
+use tubecast_render::accel::{Bvh, Tracer, WideBvh};
 use tubecast_render::scene::Prim;
 
 /// The little-endian `f32` at 4-byte slot `i` (bytes past the end read as 0), widened.
@@ -23,7 +23,11 @@ fn f32_at(data: &[u8], i: usize) -> f64 {
 
 /// Every accelerator over `prims`.
 pub fn tracers(prims: &[Prim]) -> Vec<(&'static str, Box<dyn Tracer>)> {
-    vec![("bvh", Box::new(Bvh::build(prims.to_vec()))), ("grid", Box::new(Grid::build(prims.to_vec())))]
+    vec![
+        ("bvh", Box::new(Bvh::build(prims.to_vec()))),
+        ("wide bvh", Box::new(WideBvh::build(prims.to_vec()))),
+        ("grid", Box::new(Grid::build(prims.to_vec()))),
+    ]
 }
 
 /// Input: byte 0 = number of links n (mod 9), then n links of 8 f32 (a, ra, b, rb), then rays

@@ -44,8 +44,10 @@ pub enum Thin {
 /// Acceleration structure (`--accel`).
 #[derive(Clone, Copy, ValueEnum)]
 pub enum Accel {
-    /// Bounding volume hierarchy (obvhs).
+    /// 8-wide bounding volume hierarchy (obvhs CWBVH): the fastest here.
     Bvh,
+    /// Binary bounding volume hierarchy (obvhs Bvh2).
+    Bvh2,
     /// Uniform voxel grid, conservatively voxelized (cells ≈ 2 per primitive).
     Grid,
 }
@@ -61,6 +63,19 @@ pub enum Kind {
     Neurons,
     /// A double helix with varying radius.
     Helix,
+}
+
+/// What `intersect` answers (`--query`).
+#[derive(Clone, Copy, ValueEnum)]
+pub enum Query {
+    /// The closest surface crossing (the renderer's fast path): t, the hit primitive's exit t,
+    /// normal x y z, link, u, flag (1 entry, −1 the ray starts inside, 0 miss).
+    Hit,
+    /// The first solid piece of the CSG union: t_in, t_out, entry normal x y z, link, u, flag.
+    Piece,
+    /// Every boundary of the union: one row each, ray index, t, normal x y z, link, u,
+    /// 1 (entry) or −1 (exit).
+    All,
 }
 
 /// `tubecast render`.
@@ -154,6 +169,9 @@ pub struct RenderArgs {
     /// Acceleration structure.
     #[arg(long, value_enum, default_value_t = Accel::Bvh)]
     pub accel: Accel,
+    /// Worker threads (default: one per core).
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..), value_name = "N")]
+    pub threads: Option<u16>,
 }
 
 /// `tubecast info`.
@@ -184,7 +202,8 @@ pub struct IntersectArgs {
     /// Rays, N×6 float32 or float64 .npy (C or Fortran order); `-` reads stdin.
     #[arg(long)]
     pub rays: PathBuf,
-    /// Output hits, N×8: float64 .npy, or CSV (with --csv or a .csv name); `-` writes stdout.
+    /// Output hits, N×8: float64 .npy, or CSV (with --csv or a .csv name); `-` writes stdout
+    /// (`--query all`: one row per crossing).
     #[arg(long)]
     pub out: PathBuf,
     /// Acceleration structure (the hits are the same).
@@ -193,6 +212,12 @@ pub struct IntersectArgs {
     /// Write the hits as CSV (header t_in,t_out,nx,ny,nz,link,u,hit).
     #[arg(long)]
     pub csv: bool,
+    /// What to answer per ray.
+    #[arg(long, value_enum, default_value_t = Query::Hit)]
+    pub query: Query,
+    /// Worker threads (default: one per core).
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..), value_name = "N")]
+    pub threads: Option<u16>,
     /// Tube radius for formats without radii.
     #[arg(long, default_value_t = 0.2)]
     pub radius: f64,

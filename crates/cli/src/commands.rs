@@ -1,10 +1,10 @@
 //! Each command: arguments into library calls, results to files or stdout.
 
-use crate::args::{Accel, Color, GenerateArgs, InfoArgs, IntersectArgs, Kind, RenderArgs, Thin};
+use crate::args::{Accel, Color, GenerateArgs, InfoArgs, Kind, RenderArgs, Thin};
 use crate::error::CliError;
 use crate::render_opts::{check_out, Background, Radius};
 use std::path::Path;
-use tubecast_render::accel::{grid::Grid, hit_table, Bvh, Tracer};
+use tubecast_render::accel::{grid::Grid, Bvh, Tracer, WideBvh};
 use tubecast_render::io::{self, npy::Array2};
 use tubecast_render::render::{self, Camera, ColorBy, Options, Shading, View};
 use tubecast_render::scene::Prim;
@@ -19,7 +19,7 @@ fn warn(msg: &str) {
 
 /// Load the scene at `input`; warn about radii raised to `min_radius` and, with `empty`
 /// (what the command does then), about a scene without nodes.
-fn load(input: &Path, radius: f64, min_radius: Option<f64>, empty: &str) -> Result<Scene, CliError> {
+pub(crate) fn load(input: &Path, radius: f64, min_radius: Option<f64>, empty: &str) -> Result<Scene, CliError> {
     load_colored(input, radius, min_radius, empty, None)
 }
 
@@ -51,9 +51,10 @@ fn load_colored(
 }
 
 /// The chosen acceleration structure over `prims`.
-fn tracer(accel: Accel, prims: Vec<Prim>) -> Box<dyn Tracer> {
+pub(crate) fn tracer(accel: Accel, prims: Vec<Prim>) -> Box<dyn Tracer> {
     match accel {
-        Accel::Bvh => Box::new(Bvh::build(prims)),
+        Accel::Bvh => Box::new(WideBvh::build(prims)),
+        Accel::Bvh2 => Box::new(Bvh::build(prims)),
         Accel::Grid => Box::new(Grid::build(prims)),
     }
 }
@@ -125,7 +126,7 @@ pub fn render(a: &RenderArgs) -> Res {
     if thin_on(a.thin, &a.input) && render::clamp_thin(&mut scene, &cam, a.min_pixels) > 0 {
         prims = scene.model_primitives(model(a.splines))?;
     }
-    let bvh = tracer(a.accel, prims);
+    let bvh = crate::cmd_intersect::with_threads(a.threads.map(usize::from), || tracer(a.accel, prims))?;
     let background = match a.background {
         Background::Color(c) => c,
         Background::Transparent => [0.0; 3],
@@ -145,7 +146,9 @@ pub fn render(a: &RenderArgs) -> Res {
         shadows: a.shadows,
         progress: !a.quiet && (a.width as u64 * a.height as u64) >= 256 * 256,
     };
-    let mut img = render::render(&scene, bvh.as_ref(), &cam, &opts)?;
+    let mut img = crate::cmd_intersect::with_threads(a.threads.map(usize::from), || {
+        render::render(&scene, bvh.as_ref(), &cam, &opts)
+    })??;
     if a.legend {
         match (&a.color, render::value_range(&scene.values)) {
             (Color::Data(_), Some((lo, hi))) => img.draw_legend(a.colormap, lo, hi, [0.0; 3]),
@@ -178,7 +181,7 @@ pub fn info(a: &InfoArgs) -> Res {
     let scene = load(&a.input, radius, a.min_radius, "counts are zero")?;
     let prims = scene.model_primitives(model(a.splines))?;
     let st = if a.splines { scene.stats_of(&prims) } else { scene.stats() };
-    let bvh = Bvh::build(prims);
+    let bvh = WideBvh::build(prims);
     if a.json {
         let bounds = (!st.is_empty()).then(|| serde_json::json!({"min": st.bounds.0, "max": st.bounds.1}));
         let j = serde_json::json!({
@@ -211,21 +214,19 @@ pub fn info(a: &InfoArgs) -> Res {
         println!("bounds max {:?}", st.bounds.1);
     }
     println!(
-        "memory     scene {} B, primitives + BVH {} B ({} BVH nodes)",
+        "memory     scene {} B, primitives + BVH {} B ({} 8-wide BVH nodes)",
         scene.memory_bytes(),
         bvh.memory_bytes(),
         bvh.node_count()
     );
+    let per = |b: usize| b as f64 / st.links.max(1) as f64;
+    println!(
+        "per link   {:.1} B: scene {:.1} B + primitives and BVH {:.1} B",
+        per(scene.memory_bytes() + bvh.memory_bytes()),
+        per(scene.memory_bytes()),
+        per(bvh.memory_bytes())
+    );
     Ok(())
-}
-
-pub fn intersect(a: &IntersectArgs) -> Res {
-    let scene = load(&a.input, a.radius, a.min_radius, "every ray misses")?;
-    let name = a.rays.display().to_string();
-    let rays = io::npy::read(&crate::hits_io::read_input(&a.rays)?, &name, Some(6))?.rays(&name)?;
-    let bvh = tracer(a.accel, scene.primitives());
-    let hits = Array2::from_rows(&hit_table(bvh.as_ref(), &rays));
-    crate::hits_io::write_hits(&a.out, &hits, a.csv)
 }
 
 pub fn generate(a: &GenerateArgs) -> Res {

@@ -24,6 +24,8 @@ pub enum CliError {
     NeuronsPerSide,
     /// `generate neurons` to a file that is not `.swc`.
     NeuronsNeedSwc(PathBuf),
+    /// `--threads`: the worker pool could not be started.
+    Threads(rayon::ThreadPoolBuildError),
 }
 
 impl fmt::Display for CliError {
@@ -35,6 +37,7 @@ impl fmt::Display for CliError {
             Self::SceneSize { max } => write!(f, "--count × --segments must be between 1 and {max}"),
             Self::NeuronsPerSide => f.write_str("--n must be in 1..=40"),
             Self::NeuronsNeedSwc(p) => write!(f, "{}: neuron assemblies branch; write them as .swc", p.display()),
+            Self::Threads(e) => write!(f, "--threads: {e}"),
         }
     }
 }

@@ -1,6 +1,7 @@
 //! The `tubecast` command line: render, info, intersect, generate.
 
 mod args;
+mod cmd_intersect;
 mod commands;
 mod error;
 mod hits_io;
@@ -26,10 +27,12 @@ enum Cmd {
     /// Intersect rays (N×6 float32/float64 .npy, C or Fortran order: origin, direction; `-`:
     /// stdin) with a scene; write N×8 hits (.npy, or CSV with --csv or a .csv name; `-`: stdout).
     ///
-    /// Hit columns: t_in, t_out (first component of the union of all tubes along the ray's
-    /// line that meets t ≥ 0; t_in < 0 when the ray starts inside), normal at entry (x, y, z),
-    /// link index of the entry, curve parameter u at entry, hit flag (1 or 0). Misses:
-    /// t_in = t_out = +inf, normal 0, link −1, u 0, flag 0.
+    /// `--query hit` (default), the closest crossing: t, exit t of the hit primitive, normal
+    /// (x, y, z), link, u, flag (1 entry, −1 the ray starts inside). `--query piece`, the first
+    /// component of the union of all tubes along the line that meets t ≥ 0: t_in (< 0 when the
+    /// ray starts inside), t_out, entry normal, link, u, 1. Misses (both): t = +inf, +inf,
+    /// normal 0, link −1, u 0, flag 0. `--query all`: one row per union boundary: ray index,
+    /// t, normal, link, u, 1 entry / −1 exit.
     Intersect(IntersectArgs),
     /// Generate a procedural test scene (.swc, .tck, .obj or .trk by extension; neurons: .swc).
     Generate(GenerateArgs),
@@ -39,7 +42,7 @@ fn main() -> ExitCode {
     let r = match Cli::parse().cmd {
         Cmd::Render(a) => commands::render(&a),
         Cmd::Info(a) => commands::info(&a),
-        Cmd::Intersect(a) => commands::intersect(&a),
+        Cmd::Intersect(a) => cmd_intersect::intersect(&a),
         Cmd::Generate(a) => commands::generate(&a),
     };
     match r {

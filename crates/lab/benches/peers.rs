@@ -2,7 +2,8 @@
 //! `cargo bench --features embree --bench peers`.
 //!
 //! Scene: a generated *Furball* of ~10⁴ links; rays: 64×64 camera rays rounded to `f32`.
-//! Groups: whole-scene closest hit (our BVH + stable `f32` links vs Embree `ROUND_LINEAR_CURVE`
+//! Groups: whole-scene closest hit (our BVH + stable `f32` links, and the 8-wide `WideBvh` with
+//! the static link filter, vs Embree `ROUND_LINEAR_CURVE`
 //! as isolated segments, the same solid; Embree `ROUND_HERMITE_CURVE`, a swept circle, speed only)
 //! and one ray–link test (our kernel vs a one-segment Embree scene, which includes Embree's
 //! traversal overhead of one node).
@@ -12,7 +13,7 @@ use std::hint::black_box;
 use tubecast::{Primitive, Ray, RoundCone, V3};
 use tubecast_lab::peer::embree::{Device, Scene as EScene};
 use tubecast_lab::peer::{scene_inputs, SceneInputs};
-use tubecast_render::accel::Bvh;
+use tubecast_render::accel::{Bvh, Tracer, WideBvh};
 use tubecast_render::render::Camera;
 use tubecast_render::scene::{generate, Scene};
 
@@ -26,11 +27,15 @@ fn peers(c: &mut Criterion) {
     let dev = Device::new().expect("embree device");
     let emb = EScene::round_linear(&dev, &links32).expect("embree scene");
     let bvh = Bvh::build(scene.primitives());
+    let wide = WideBvh::build(scene.primitives());
 
     let mut g = c.benchmark_group("peers_scene_closest_hit");
     g.throughput(Throughput::Elements(rays32.len() as u64));
     g.bench_function("tubecast_bvh_stable_f32", |b| {
         b.iter(|| rays64.iter().filter(|r| bvh.closest_hit(black_box(r)).is_some()).count())
+    });
+    g.bench_function("tubecast_wide_bvh_filtered", |b| {
+        b.iter(|| rays64.iter().filter(|r| wide.closest_hit(black_box(r)).is_some()).count())
     });
     g.bench_function("embree_round_linear", |b| b.iter(|| emb.count_hits(black_box(&rays32))));
     let segs: Vec<_> = lines

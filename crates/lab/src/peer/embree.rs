@@ -93,6 +93,21 @@ extern "C" {
     fn rtcAttachGeometry(scene: RtcScene, geometry: RtcGeometry) -> u32;
     fn rtcReleaseGeometry(geometry: RtcGeometry);
     fn rtcIntersect1(scene: RtcScene, context: *mut RtcIntersectContext, rayhit: *mut RtcRayHit);
+    fn rtcSetDeviceMemoryMonitorFunction(
+        device: RtcDevice,
+        monitor: Option<unsafe extern "C" fn(*mut c_void, isize, bool) -> bool>,
+        user: *mut c_void,
+    );
+}
+
+/// Embree's memory monitor callback (`RTCMemoryMonitorFunction`): adds `bytes` (negative on a
+/// free) to the counter `user` points to and lets the allocation proceed.
+unsafe extern "C" fn count_bytes(user: *mut c_void, bytes: isize, _post: bool) -> bool {
+    // SAFETY: `user` is the `AtomicIsize` owned by the `Device` that registered this callback;
+    // Embree calls it only while the device lives (it is unregistered before release).
+    let counter = unsafe { &*(user as *const std::sync::atomic::AtomicIsize) };
+    counter.fetch_add(bytes, std::sync::atomic::Ordering::Relaxed);
+    true
 }
 
 /// One `ROUND_HERMITE_CURVE` segment: `([p0, r0], [m0, dr0], [p1, r1], [m1, dr1])`.
@@ -143,8 +158,9 @@ impl Drop for FlushDenormals {
     }
 }
 
-/// An Embree device (shared by the scenes built on it).
-pub struct Device(RtcDevice);
+/// An Embree device (shared by the scenes built on it), with its memory monitor: the bytes
+/// Embree has allocated on it (scene buffers, BVH, build scratch not yet freed).
+pub struct Device(RtcDevice, Box<std::sync::atomic::AtomicIsize>);
 
 // SAFETY: an Embree device handle may be used from any thread (the API is thread-safe for
 // scene creation and queries on distinct scenes).
@@ -160,15 +176,29 @@ impl Device {
         if device.is_null() {
             return Err(EmbreeError("rtcNewDevice failed (is libembree3 installed and the CPU supported?)".into()));
         }
-        Ok(std::sync::Arc::new(Self(device)))
+        let counter = Box::new(std::sync::atomic::AtomicIsize::new(0));
+        // SAFETY: `device` is valid; the counter is boxed (a stable address) and lives as long
+        // as the device (both in `Self`; the monitor is removed before the device is released).
+        unsafe { rtcSetDeviceMemoryMonitorFunction(device, Some(count_bytes), &*counter as *const _ as *mut c_void) };
+        Ok(std::sync::Arc::new(Self(device, counter)))
+    }
+
+    /// Bytes Embree currently holds on this device, by its memory monitor callback
+    /// (`rtcSetDeviceMemoryMonitorFunction`).
+    pub fn memory_bytes(&self) -> isize {
+        self.1.load(std::sync::atomic::Ordering::Relaxed)
     }
 }
 
 impl Drop for Device {
     fn drop(&mut self) {
         // SAFETY: the handle was created by `Device::new` and is released exactly once, after
-        // every scene holding this device (they hold an `Arc`) was released.
-        unsafe { rtcReleaseDevice(self.0) };
+        // every scene holding this device (they hold an `Arc`) was released; the monitor is
+        // removed first so Embree never calls it with a freed counter.
+        unsafe {
+            rtcSetDeviceMemoryMonitorFunction(self.0, None, std::ptr::null_mut());
+            rtcReleaseDevice(self.0)
+        };
     }
 }
 
@@ -413,5 +443,19 @@ mod tests {
         assert!((h.t - ours.t_in).abs() < 1e-4, "embree {h:?} vs ours {}", ours.t_in);
         assert!(s.intersect([2.0, -10.0, 3.0], [0.0, 1.0, 0.0], 0.0, f32::INFINITY).is_none());
         assert!(Scene::round_linear(&dev, &[]).is_err());
+    }
+
+    #[test]
+    fn the_memory_monitor_counts_a_scene_and_its_release() {
+        // A scene of 1000 segments holds at least its own vertex buffer (2 × 16 B per segment)
+        // and index buffer (4 B per segment); releasing it returns the count to where it was.
+        let dev = Device::new().unwrap();
+        let before = dev.memory_bytes();
+        let l = RoundCone::new(V3::new(0.0f32, 0.0, 0.0), 0.1, V3::new(1.0, 0.0, 0.0), 0.1).unwrap();
+        let s = Scene::round_linear(&dev, &vec![l; 1000]).unwrap();
+        let held = dev.memory_bytes() - before;
+        assert!(held >= 36_000, "{held} B");
+        drop(s);
+        assert!(dev.memory_bytes() - before < held, "{} B after release", dev.memory_bytes() - before);
     }
 }

@@ -21,6 +21,8 @@ pub mod eval;
 pub mod oracle;
 #[cfg(feature = "embree")]
 mod peers;
+#[cfg(feature = "embree")]
+mod peers_speed;
 mod runs;
 mod speed;
 mod voxel;

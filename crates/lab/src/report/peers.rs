@@ -34,7 +34,8 @@ struct Agree {
     err: [Vec<f64>; 2],
 }
 
-fn best_of<F: FnMut() -> usize>(reps: usize, mut f: F) -> (f64, usize) {
+/// Best wall time of `reps` runs of `f` (and its last result).
+pub(super) fn best_of<F: FnMut() -> usize>(reps: usize, mut f: F) -> (f64, usize) {
     let mut best = f64::INFINITY;
     let mut hits = 0;
     for _ in 0..reps.max(1) {
@@ -157,7 +158,21 @@ pub fn run_peers(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
     }
     let herm = EScene::round_hermite(&dev, &segs).map_err(perr)?;
     let (t_herm, h_herm) = best_of(reps, || herm.count_hits(&rays32));
+    drop((herm, emb));
     bar.inc(1);
+    // Speed and memory per scene: Furball and a dense tractography-like Bundle at the report's
+    // size, and at 10⁶ links with --big.
+    let mut sizes = vec![opts.max_segments.min(100_000)];
+    if opts.max_segments >= 1_000_000 {
+        sizes.push(1_000_000);
+    }
+    let mut speed_rows = Vec::new();
+    for &m in &sizes {
+        let fur = generate::furball(m.div_ceil(78), 78, opts.seed);
+        speed_rows.push(super::peers_speed::measure(&dev, "Furball", &fur, 0.05, side)?);
+        let bun = generate::bundle(m.div_ceil(84), 84, opts.seed);
+        speed_rows.push(super::peers_speed::measure(&dev, "Bundle", &bun, 0.12, side)?);
+    }
     bar.finish_and_clear();
 
     let nr = rays32.len() as f64;
@@ -222,6 +237,16 @@ pub fn run_peers(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
         same,
         rays32.len(),
         fmt_num(percentile(&dts, 0.99)),
+    );
+    let _ = write!(
+        md,
+        "\n## Speed and memory per scene (one run, same {side}×{side} f32 camera rays)\n\n\
+         Embree `rtcIntersect1` on `ROUND_LINEAR_CURVE` isolated segments (quality high, robust) against our \
+         binary `Bvh` (lane packets) and the 8-wide `WideBvh` (obvhs CWBVH, static link filter; what the CLI \
+         uses); ratios above 1 favour us. All threads: rays in chunks of 256 over rayon's pool, both sides. \
+         Embree's bytes: its device memory monitor after the build (vertex, index and flag buffers, BVH); \
+         ours: primitives + tree (`Tracer::memory_bytes`; the scene's nodes and links are extra).\n\n{}",
+        super::peers_speed::table(&speed_rows)
     );
     let mdp = out.join("peers.md");
     write_text(&mdp, &md)?;

@@ -1,5 +1,7 @@
-//! Acceleration structures: a BVH (built and traversed by [`obvhs`]) over the scene's
-//! primitives, with closest-hit, any-hit and all-intervals queries in `f64` ray parameters.
+//! Acceleration structures: a binary BVH ([`Bvh`], with lane packets) and an 8-wide compressed
+//! one ([`WideBvh`], what the CLI uses: fewer node visits and less memory), both built and
+//! traversed by [`obvhs`] over the scene's primitives, with closest-hit, any-hit and
+//! all-intervals queries in `f64` ray parameters ([`Tracer`]), and the `intersect` tables.
 //!
 //! # Conservative boxes
 //! obvhs works in `f32`. Its boxes are stored relative to the scene's centre, and every
@@ -33,9 +35,13 @@ use tubecast::V3;
 pub mod grid;
 #[cfg(feature = "wide")]
 mod packet;
+mod table;
 mod tracer;
+mod wide;
 
+pub use table::{closest_table, crossings_table, hit_table, MISS_ROW};
 pub use tracer::Tracer;
+pub use wide::WideBvh;
 
 /// `pack_at` entry of a primitive that starts no packet.
 #[cfg(feature = "wide")]
@@ -89,10 +95,7 @@ pub struct Bvh {
     bvh: Bvh2,
     /// The primitives, in BVH leaf order.
     pub prims: Vec<Prim>,
-    centre: [f64; 3],
-    lo: [f64; 3],
-    hi: [f64; 3],
-    pad: f64,
+    frame: Frame,
     /// Lane packets of links, each over consecutive primitives of one leaf.
     #[cfg(feature = "wide")]
     packs: Vec<packet::Packet>,
@@ -108,19 +111,20 @@ impl obvhs::Boundable for BoxOf {
     }
 }
 
-/// The scene-box-clipped form of a ray, ready for obvhs.
-struct Clipped {
-    ray: obvhs::ray::Ray,
-    /// Distance along the unit direction where the obvhs ray starts.
-    s0: f64,
-    /// Length of the user's direction.
-    len: f64,
+/// The scene box in `f64` (padded), its centre (the origin of the `f32` boxes) and the box
+/// padding (see the module docs).
+struct Frame {
+    centre: [f64; 3],
+    lo: [f64; 3],
+    hi: [f64; 3],
+    pad: f64,
+    /// False for an empty scene: every ray misses.
+    any: bool,
 }
 
-impl Bvh {
-    /// Build over `prims` (obvhs PLOC builder, medium quality). An empty list gives a BVH that
-    /// every ray misses.
-    pub fn build(prims: Vec<Prim>) -> Self {
+impl Frame {
+    /// The frame of `prims` and their padded `f32` boxes relative to the centre.
+    fn new(prims: &[Prim]) -> (Self, Vec<BoxOf>) {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
         let boxes: Vec<_> = prims.iter().map(|p| p.aabb()).collect();
@@ -139,6 +143,63 @@ impl Bvh {
             Vec3A::new((v[0] - centre[0] + s) as f32, (v[1] - centre[1] + s) as f32, (v[2] - centre[2] + s) as f32)
         };
         let aabbs: Vec<BoxOf> = boxes.iter().map(|(a, b)| BoxOf(Aabb::new(to32(*a, -pad), to32(*b, pad)))).collect();
+        let lo = std::array::from_fn(|i| lo[i] - 2.0 * pad);
+        let hi = std::array::from_fn(|i| hi[i] + 2.0 * pad);
+        (Self { centre, lo, hi, pad, any: !prims.is_empty() }, aabbs)
+    }
+
+    /// Clip the ray's line restricted to distances `[s_lo, s_hi]` along the unit direction to
+    /// the scene box; `None` when it misses.
+    #[inline]
+    fn clip(&self, ray: &Ray<f64>, s_lo: f64, s_hi: f64) -> Option<Clipped> {
+        if !self.any {
+            return None;
+        }
+        let len = ray.d.length();
+        let dn = ray.d * (1.0 / len);
+        let (o, d) = (ray.o.to_array(), dn.to_array());
+        let (mut a, mut b) = (s_lo, s_hi);
+        for i in 0..3 {
+            if d[i] == 0.0 {
+                if o[i] < self.lo[i] || o[i] > self.hi[i] {
+                    return None;
+                }
+            } else {
+                let t1 = (self.lo[i] - o[i]) / d[i];
+                let t2 = (self.hi[i] - o[i]) / d[i];
+                a = a.max(t1.min(t2));
+                b = b.min(t1.max(t2));
+            }
+        }
+        // Also rejects NaN bounds (a ray the validators let through never has them).
+        if a.is_nan() || b.is_nan() || a > b {
+            return None;
+        }
+        // Start a little before the box so the entry is at t ≥ 0 despite rounding.
+        let s0 = a - 4.0 * self.pad;
+        let p = ray.o + dn * s0;
+        let org =
+            Vec3A::new((p.x - self.centre[0]) as f32, (p.y - self.centre[1]) as f32, (p.z - self.centre[2]) as f32);
+        let dir = Vec3A::new(d[0] as f32, d[1] as f32, d[2] as f32);
+        let tmax = ((b - s0) + 8.0 * self.pad) as f32;
+        Some(Clipped { ray: obvhs::ray::Ray::new(org, dir, 0.0, tmax), s0, len })
+    }
+}
+
+/// The scene-box-clipped form of a ray, ready for obvhs.
+struct Clipped {
+    ray: obvhs::ray::Ray,
+    /// Distance along the unit direction where the obvhs ray starts.
+    s0: f64,
+    /// Length of the user's direction.
+    len: f64,
+}
+
+impl Bvh {
+    /// Build over `prims` (obvhs PLOC builder, medium quality). An empty list gives a BVH that
+    /// every ray misses.
+    pub fn build(prims: Vec<Prim>) -> Self {
+        let (frame, aabbs) = Frame::new(&prims);
         let mut bvh = if prims.is_empty() {
             Bvh2::default()
         } else {
@@ -156,15 +217,10 @@ impl Bvh {
         }
         #[cfg(feature = "wide")]
         let (packs, pack_at) = Self::pack(&bvh, &mut prims);
-        let lo = std::array::from_fn(|i| lo[i] - 2.0 * pad);
-        let hi = std::array::from_fn(|i| hi[i] + 2.0 * pad);
         Self {
             bvh,
             prims,
-            centre,
-            lo,
-            hi,
-            pad,
+            frame,
             #[cfg(feature = "wide")]
             packs,
             #[cfg(feature = "wide")]
@@ -273,42 +329,6 @@ impl Bvh {
         self.bvh.nodes.len()
     }
 
-    /// Clip the ray's line restricted to distances `[s_lo, s_hi]` along the unit direction to
-    /// the scene box; `None` when it misses.
-    fn clip(&self, ray: &Ray<f64>, s_lo: f64, s_hi: f64) -> Option<Clipped> {
-        if self.prims.is_empty() {
-            return None;
-        }
-        let len = ray.d.length();
-        let dn = ray.d * (1.0 / len);
-        let (o, d) = (ray.o.to_array(), dn.to_array());
-        let (mut a, mut b) = (s_lo, s_hi);
-        for i in 0..3 {
-            if d[i] == 0.0 {
-                if o[i] < self.lo[i] || o[i] > self.hi[i] {
-                    return None;
-                }
-            } else {
-                let t1 = (self.lo[i] - o[i]) / d[i];
-                let t2 = (self.hi[i] - o[i]) / d[i];
-                a = a.max(t1.min(t2));
-                b = b.min(t1.max(t2));
-            }
-        }
-        // Also rejects NaN bounds (a ray the validators let through never has them).
-        if a.is_nan() || b.is_nan() || a > b {
-            return None;
-        }
-        // Start a little before the box so the entry is at t ≥ 0 despite rounding.
-        let s0 = a - 4.0 * self.pad;
-        let p = ray.o + dn * s0;
-        let org =
-            Vec3A::new((p.x - self.centre[0]) as f32, (p.y - self.centre[1]) as f32, (p.z - self.centre[2]) as f32);
-        let dir = Vec3A::new(d[0] as f32, d[1] as f32, d[2] as f32);
-        let tmax = ((b - s0) + 8.0 * self.pad) as f32;
-        Some(Clipped { ray: obvhs::ray::Ray::new(org, dir, 0.0, tmax), s0, len })
-    }
-
     /// Distances along the unit direction for a ray's `[t_min, t_max]`.
     fn range(ray: &Ray<f64>) -> (f64, f64) {
         let len = ray.d.length();
@@ -319,17 +339,17 @@ impl Bvh {
     /// inside a primitive). The ray must be valid ([`Ray::validate`]).
     pub fn closest_hit(&self, ray: &Ray<f64>) -> Option<Hit> {
         let (a, b) = Self::range(ray);
-        let c = self.clip(ray, a, b)?;
+        let c = self.frame.clip(ray, a, b)?;
         let mut best: Option<Hit> = None;
         let mut hit = obvhs::ray::RayHit::none();
-        let margin = 8.0 * self.pad;
+        let margin = 8.0 * self.frame.pad;
         let (dn, len) = Self::unit(ray);
         obvhs::fast_stack!(u32, (96, 192), self.bvh.max_depth, stack, {
             self.bvh.ray_traverse_dynamic(&mut stack, c.ray, &mut hit, |node, r, _| {
                 let first = node.first_index as usize;
                 self.visit(first, node.prim_count as usize, ray, dn, len, |test| {
                     let (id, got) = match test {
-                        Test::Prim(id) => (id, self.prims[id].first_hit(ray)),
+                        Test::Prim(id) => (id, self.prims[id].first_hit_unit(ray, dn, len)),
                         Test::Link(id, iv) => {
                             (id, iv.first_hit(ray.t_min, ray.t_max).map(|(t, n, u)| (t, n, u, t == iv.t_in)))
                         }
@@ -359,7 +379,7 @@ impl Bvh {
     /// (shadow and ambient-occlusion rays).
     pub fn any_hit(&self, ray: &Ray<f64>) -> bool {
         let (a, b) = Self::range(ray);
-        let Some(c) = self.clip(ray, a, b) else {
+        let Some(c) = self.frame.clip(ray, a, b) else {
             return false;
         };
         let (dn, len) = Self::unit(ray);
@@ -369,7 +389,7 @@ impl Bvh {
             self.bvh.ray_traverse_dynamic(&mut stack, c.ray, &mut hit, |node, _, _| {
                 let first = node.first_index as usize;
                 found = !self.visit(first, node.prim_count as usize, ray, dn, len, |test| match test {
-                    Test::Prim(id) => !self.prims[id].meets(ray),
+                    Test::Prim(id) => !self.prims[id].meets_unit(ray, dn, len),
                     Test::Link(..) => false,
                 });
                 !found
@@ -383,7 +403,7 @@ impl Bvh {
     /// [`tubecast::csg::union`]. A spline sub-segment contributes one interval per
     /// connected piece ([`Prim::pieces`]), so the union is exact for bent segments too.
     pub fn line_intervals(&self, ray: &Ray<f64>, out: &mut Vec<Tagged<f64>>) {
-        let Some(c) = self.clip(ray, f64::NEG_INFINITY, f64::INFINITY) else {
+        let Some(c) = self.frame.clip(ray, f64::NEG_INFINITY, f64::INFINITY) else {
             return;
         };
         let line = Ray::with_range(ray.o, ray.d, f64::NEG_INFINITY, f64::INFINITY);
@@ -404,20 +424,7 @@ impl Bvh {
     }
 }
 
-/// The `tubecast intersect` table of `rays` (one row of [`HIT_COLUMNS`] columns per ray):
-/// `t_in`, `t_out` of the first component of the union ([`first_component`]), the entry
-/// normal (x, y, z), the entry's scene link, its curve parameter `u`, and 1; a miss is
-/// `+∞, +∞, 0, 0, 0, −1, 0, 0`.
-pub fn hit_table(bvh: &dyn Tracer, rays: &[Ray<f64>]) -> Vec<[f64; HIT_COLUMNS]> {
-    rays.iter()
-        .map(|ray| match first_component(bvh, ray) {
-            Some((e, x)) => [e.t, x.t, e.n.x, e.n.y, e.n.z, bvh.prims()[e.id as usize].link as f64, e.u, 1.0],
-            None => [f64::INFINITY, f64::INFINITY, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0],
-        })
-        .collect()
-}
-
-/// Columns of a [`hit_table`] row.
+/// Columns of a [`hit_table`], [`closest_table`] or [`crossings_table`] row.
 pub const HIT_COLUMNS: usize = 8;
 
 /// The part of the scene's surface union that a ray meets first: the entry and exit

@@ -24,7 +24,7 @@ use tubecast::Ray;
 /// let hit = tracer.closest_hit(&Ray::new(V3::new(2.0, 3.0, 0.0), V3::new(0.0, -1.0, 0.0))).unwrap();
 /// assert_eq!(tracer.prims()[hit.prim as usize].link, 0);
 /// ```
-pub trait Tracer: Sync {
+pub trait Tracer: Send + Sync {
     /// The primitives a [`Hit::prim`] or a [`Tagged::id`] indexes.
     fn prims(&self) -> &[Prim];
     /// The closest surface crossing in `[t_min, t_max]` (entry, or exit when the ray starts

@@ -73,6 +73,36 @@ pub struct Prim {
     pub shape: Shape,
 }
 
+/// True only where the stable link kernel surely misses the local `f32` line `o + τ·d` (`d`
+/// unit to `f32` rounding): the line passes the link's axis segment `[a, b]` farther than
+/// `R = max(ra, rb)` plus a margin `M = (L₁ + R + |o|₁)/16` (`L₁`, `|o|₁`: 1-norms, upper bounds
+/// of the Euclidean ones). A static filter, as in robust predicates: it runs before the kernel
+/// and never changes a hit.
+///
+/// Why it is safe: the solid lies within distance `R` of the segment. The kernel accepts a
+/// stump crossing only where its distance-like residual is `|g| ≤ 8√ε·S` (`StumpSide::polish`,
+/// `S ≤ 2(L + R + |o|)` in its local frame), i.e. at most `5.6·10⁻³·(L + R + |o|)` (f32:
+/// `8·2⁻¹²·2`) off the surface; its sphere chords err by a few `ε` of the same sizes. The distance computed here
+/// errs by a few `ε·(L + |o|)`. `M` exceeds the sum of both by a factor over 10, so a
+/// rejected line is a kernel miss (the test `filter_rejects_only_kernel_misses` below compares
+/// filtered and unfiltered answers bit for bit).
+#[inline(always)]
+pub(crate) fn link_surely_misses(c: &RoundCone<f32>, o: V3<f32>, d: V3<f32>) -> bool {
+    let v = c.b - c.a;
+    let w = c.a - o;
+    // Components perpendicular to the line: the distance at axis parameter s is |w⊥ + s·v⊥|.
+    let wp = w - d * w.dot(d);
+    let vp = v - d * v.dot(d);
+    let vp2 = vp.length2();
+    let s = if vp2 > 0.0 { (-wp.dot(vp) / vp2).clamp(0.0, 1.0) } else { 0.0 };
+    let dist2 = (wp + vp * s).length2();
+    let r = c.ra.max(c.rb);
+    let n1 = |x: V3<f32>| x.x.abs() + x.y.abs() + x.z.abs();
+    let reach = r + (n1(v) + r + n1(o)) * (1.0 / 16.0);
+    // NaN compares false: no rejection.
+    dist2 > reach * reach
+}
+
 /// A sphere of radius `r` at the local origin as a (degenerate) round cone.
 fn sphere_cone(r: f32) -> RoundCone<f32> {
     RoundCone { a: V3::zero(), ra: r, b: V3::zero(), rb: r }
@@ -186,10 +216,26 @@ impl Prim {
     /// cover gaps; [`Self::pieces`] gives the exact pieces.
     #[inline]
     pub fn intersect(&self, ray: &Ray<f64>) -> Interval<f64> {
-        let (rl, tc, len) = self.local_ray(ray);
+        let len = ray.d.length();
+        self.intersect_unit(ray, ray.d * (1.0 / len), len)
+    }
+
+    /// [`Self::intersect`] given the ray's unit direction `dn = d·(1/|d|)` and `len = |d|`,
+    /// computed exactly so (a tracer computes them once per ray; the result is bit-identical).
+    /// A link first goes through [`link_surely_misses`], which rejects only lines the kernel
+    /// misses anyway.
+    #[inline]
+    pub(crate) fn intersect_unit(&self, ray: &Ray<f64>, dn: V3<f64>, len: f64) -> Interval<f64> {
+        let (o, tc) = self.local_origin(ray.o, dn);
+        let rl = Ray::with_range(o, dn.cast::<f32>(), f32::NEG_INFINITY, f32::INFINITY);
         let iv = match &self.shape {
             Shape::Sphere { r } => Sphere { c: V3::zero(), r: *r }.intersect(&rl),
-            Shape::Cylinder(c) | Shape::Cone(c) => c.intersect(&rl),
+            Shape::Cylinder(c) | Shape::Cone(c) => {
+                if link_surely_misses(c, rl.o, rl.d) {
+                    return Interval::miss();
+                }
+                c.intersect(&rl)
+            }
             Shape::Spline { quad, .. } => quad.intersect_with(&rl, Solver::Polynomial),
         };
         Self::to_world(&iv, tc, len, ray)
@@ -223,7 +269,14 @@ impl Prim {
     /// the hull, e.g. a shadow ray leaving a bent segment, may be in a gap between pieces).
     #[inline]
     pub fn first_hit(&self, ray: &Ray<f64>) -> Option<(f64, V3<f64>, f64, bool)> {
-        let iv = self.intersect(ray);
+        let len = ray.d.length();
+        self.first_hit_unit(ray, ray.d * (1.0 / len), len)
+    }
+
+    /// [`Self::first_hit`] given `dn` and `len` as [`Self::intersect_unit`] takes them.
+    #[inline]
+    pub(crate) fn first_hit_unit(&self, ray: &Ray<f64>, dn: V3<f64>, len: f64) -> Option<(f64, V3<f64>, f64, bool)> {
+        let iv = self.intersect_unit(ray, dn, len);
         if !iv.hit {
             return None;
         }
@@ -245,7 +298,14 @@ impl Prim {
     /// True when the primitive's surface or interior meets `[t_min, t_max]` of the ray.
     #[inline]
     pub fn meets(&self, ray: &Ray<f64>) -> bool {
-        let iv = self.intersect(ray);
+        let len = ray.d.length();
+        self.meets_unit(ray, ray.d * (1.0 / len), len)
+    }
+
+    /// [`Self::meets`] given `dn` and `len` as [`Self::intersect_unit`] takes them.
+    #[inline]
+    pub(crate) fn meets_unit(&self, ray: &Ray<f64>, dn: V3<f64>, len: f64) -> bool {
+        let iv = self.intersect_unit(ray, dn, len);
         if !iv.hit {
             return false;
         }
@@ -299,5 +359,75 @@ impl Prim {
             u_out: iv.u_out as f64,
             hit,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::generate::Rng;
+
+    /// The unfiltered answer: the same arithmetic as [`Prim::intersect_unit`] without
+    /// [`link_surely_misses`].
+    fn unfiltered(p: &Prim, ray: &Ray<f64>) -> Interval<f64> {
+        let len = ray.d.length();
+        let dn = ray.d * (1.0 / len);
+        let (o, tc) = p.local_origin(ray.o, dn);
+        let rl = Ray::with_range(o, dn.cast::<f32>(), f32::NEG_INFINITY, f32::INFINITY);
+        Prim::to_world(&p.round_cone().unwrap().intersect(&rl), tc, len, ray)
+    }
+
+    /// Where the filter rejects, the kernel misses: filtered and unfiltered intervals are equal
+    /// (bit for bit, hits included) over links from stubby to needle-thin (L/r from 10⁻² to
+    /// 10⁴), near-degenerate cones (|ra − rb| → L, ra → rb, a zero-radius tip), scales 10⁻³…10³
+    /// and far offsets, and rays passing the axis at r·(1 + δ) for δ from −10⁻³ to 10³ —
+    /// grazing, parallel to the axis and along a generator included.
+    #[test]
+    fn filter_rejects_only_kernel_misses() {
+        let mut rng = Rng::new(14);
+        let (mut rejected, mut near_kept) = (0, 0);
+        for k in 0..20_000 {
+            let scale = 10f64.powf(rng.range(-3.0, 3.0));
+            let ratio = 10f64.powf(rng.range(-2.0, 4.0));
+            let r = scale;
+            let len = r * ratio;
+            let rb = match k % 5 {
+                0 => r,                                 // cylinder
+                1 => r * rng.uniform(),                 // cone
+                2 => 0.0,                               // zero-radius tip
+                3 => (r - len * (1.0 - 1e-6)).max(0.0), // |ra − rb| just under L
+                _ => r * (1.0 - 1e-7),                  // almost a cylinder
+            };
+            let off = V3::from(rng.unit()) * (scale * 10f64.powf(rng.range(0.0, 6.0)));
+            let axis = V3::from(rng.unit());
+            let Ok(link) = RoundCone::new(off, r, off + axis * len, rb) else { continue };
+            let p = Prim::from_link(&link, 0);
+            if !matches!(p.shape, Shape::Cylinder(_) | Shape::Cone(_)) {
+                continue;
+            }
+            // A point on the axis, a direction, and the ray's distance from the axis point.
+            let at = off + axis * (len * rng.range(-0.2, 1.2));
+            let dir = match k % 7 {
+                0 => axis,                                                     // parallel
+                1 => (axis + V3::from(rng.unit()) * 1e-4).normalize_or_zero(), // almost parallel
+                _ => V3::from(rng.unit()),
+            };
+            let side = dir.cross(V3::from(rng.unit())).normalize_or_zero();
+            let delta = [-1e-3, 0.0, 1e-6, 1e-3, 1e-2, 0.1, 1.0, 10.0, 1e3][k % 9];
+            let reach = r.max(rb) * (1.0 + delta) + if k % 3 == 0 { len * rng.uniform() } else { 0.0 };
+            let o = at + side * reach - dir * (scale * 50.0);
+            let ray = Ray::new(o, dir);
+            let (f, u) = (p.intersect(&ray), unfiltered(&p, &ray));
+            assert_eq!(f, u, "case {k}: link {link:?} ray {ray:?}");
+            let len_d = ray.d.length();
+            let (lo, _) = p.local_origin(ray.o, ray.d * (1.0 / len_d));
+            let c = p.round_cone().unwrap();
+            if link_surely_misses(&c, lo, (ray.d * (1.0 / len_d)).cast()) {
+                rejected += 1;
+            } else if delta.abs() <= 1e-2 {
+                near_kept += 1;
+            }
+        }
+        assert!(rejected > 4000 && near_kept > 4000, "rejected {rejected}, kept near the surface {near_kept}");
     }
 }

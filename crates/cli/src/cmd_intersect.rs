@@ -1,0 +1,31 @@
+//! `tubecast intersect --query hit|piece|all` and the `--threads N` pool that it and `render`
+//! run in.
+
+use crate::args::{IntersectArgs, Query};
+use crate::error::CliError;
+use tubecast_render::accel::{closest_table, crossings_table, hit_table};
+use tubecast_render::io::{self, npy::Array2};
+
+/// Run `f` on a rayon pool of `threads` threads (`None`: one per core, rayon's default).
+pub fn with_threads<R: Send>(threads: Option<usize>, f: impl FnOnce() -> R + Send) -> Result<R, CliError> {
+    match threads {
+        None => Ok(f()),
+        Some(n) => Ok(rayon::ThreadPoolBuilder::new().num_threads(n).build().map_err(CliError::Threads)?.install(f)),
+    }
+}
+
+/// `tubecast intersect`: the scene's BVH, the rays, and the table the query asks for.
+pub fn intersect(a: &IntersectArgs) -> Result<(), CliError> {
+    let scene = crate::commands::load(&a.input, a.radius, a.min_radius, "every ray misses")?;
+    let name = a.rays.display().to_string();
+    let rays = io::npy::read(&crate::hits_io::read_input(&a.rays)?, &name, Some(6))?.rays(&name)?;
+    let rows = with_threads(a.threads.map(usize::from), || {
+        let bvh = crate::commands::tracer(a.accel, scene.primitives());
+        match a.query {
+            Query::Hit => closest_table(bvh.as_ref(), &rays),
+            Query::Piece => hit_table(bvh.as_ref(), &rays),
+            Query::All => crossings_table(bvh.as_ref(), &rays),
+        }
+    })?;
+    crate::hits_io::write_hits(&a.out, &Array2::from_rows(&rows), a.csv)
+}

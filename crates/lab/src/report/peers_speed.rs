@@ -1,0 +1,121 @@
+//! The peers report's speed and memory section (feature `embree`): per scene, one run, the same
+//! `f32` camera rays for Embree `ROUND_LINEAR_CURVE` (`rtcIntersect1`, isolated segments: the
+//! same solid) and our trees (the binary [`Bvh`] with lane packets, and the 8-wide
+//! [`WideBvh`] that the CLI uses), on one thread and on all threads; build times; bytes per
+//! link (ours: [`Tracer::memory_bytes`]; Embree's: its device memory monitor after the build).
+
+use super::peers::best_of;
+use super::ReportError;
+use crate::peer::embree::{Device, Scene as EScene};
+use crate::peer::SceneInputs;
+use rayon::prelude::*;
+use std::fmt::Write as _;
+use std::sync::Arc;
+use std::time::Instant;
+use tubecast::Ray;
+use tubecast_render::accel::{Bvh, Tracer, WideBvh};
+use tubecast_render::io::Polyline;
+use tubecast_render::render::Camera;
+use tubecast_render::scene::Scene;
+
+/// One scene's figures.
+pub(super) struct SceneSpeed {
+    name: String,
+    links: usize,
+    /// Build seconds: Embree, Bvh, WideBvh.
+    build: [f64; 3],
+    /// Mrays/s, one thread: Embree, Bvh, WideBvh.
+    one: [f64; 3],
+    /// Mrays/s on all threads: Embree, WideBvh.
+    all: [f64; 2],
+    threads: usize,
+    /// Bytes per link: Embree, Bvh, WideBvh.
+    bytes: [f64; 3],
+    /// Hits: Embree, WideBvh; rays.
+    hits: [usize; 2],
+    rays: usize,
+}
+
+fn count<T: Tracer>(t: &T, rays: &[Ray<f64>]) -> usize {
+    rays.iter().filter(|r| t.closest_hit(r).is_some()).count()
+}
+
+/// Measure `lines` (radius `radius` where a point has none) seen by a fitted camera at
+/// `side × side` pixels.
+pub(super) fn measure(
+    dev: &Arc<Device>,
+    name: &str,
+    lines: &[Polyline],
+    radius: f64,
+    side: u32,
+) -> Result<SceneSpeed, ReportError> {
+    let perr = |e: crate::peer::embree::EmbreeError| ReportError::Peer(e.to_string());
+    let scene = Scene::from_polylines(lines, radius, name).map_err(|e| ReportError::Render(e.to_string()))?;
+    let st = scene.stats();
+    let cam =
+        Camera::fit(st.bounds.0, st.bounds.1, 35.0, side, side).map_err(|e| ReportError::Render(e.to_string()))?;
+    let SceneInputs { rays32, rays64, links32 } = crate::peer::scene_inputs(&scene, &cam, side);
+    let m0 = dev.memory_bytes();
+    let t0 = Instant::now();
+    let emb = EScene::round_linear(dev, &links32).map_err(perr)?;
+    let b_emb = t0.elapsed().as_secs_f64();
+    let emb_bytes = (dev.memory_bytes() - m0).max(0) as f64;
+    let t0 = Instant::now();
+    let bvh = Bvh::build(scene.primitives());
+    let b_bvh = t0.elapsed().as_secs_f64();
+    let t0 = Instant::now();
+    let wide = WideBvh::build(scene.primitives());
+    let b_wide = t0.elapsed().as_secs_f64();
+    let reps = 3;
+    let (t_emb, h_emb) = best_of(reps, || emb.count_hits(&rays32));
+    let (t_bvh, _) = best_of(reps, || count(&bvh, &rays64));
+    let (t_wide, h_wide) = best_of(reps, || count(&wide, &rays64));
+    let chunk = 256;
+    let (a_emb, _) = best_of(reps, || rays32.par_chunks(chunk).map(|c| emb.count_hits(c)).sum());
+    let (a_wide, _) = best_of(reps, || rays64.par_chunks(chunk).map(|c| count(&wide, c)).sum());
+    let nr = rays32.len() as f64;
+    let mr = |t: f64| nr / t / 1e6;
+    let nl = scene.links.len() as f64;
+    Ok(SceneSpeed {
+        name: name.to_string(),
+        links: scene.links.len(),
+        build: [b_emb, b_bvh, b_wide],
+        one: [mr(t_emb), mr(t_bvh), mr(t_wide)],
+        all: [mr(a_emb), mr(a_wide)],
+        threads: rayon::current_num_threads(),
+        bytes: [emb_bytes / nl, bvh.memory_bytes() as f64 / nl, wide.memory_bytes() as f64 / nl],
+        hits: [h_emb, h_wide],
+        rays: rays32.len(),
+    })
+}
+
+/// The markdown table of `rows` and the ratios it implies.
+pub(super) fn table(rows: &[SceneSpeed]) -> String {
+    let mut md = String::from(
+        "| scene | links | rays (hits Embree / ours) | Mrays/s 1 thread: Embree / Bvh / WideBvh | \
+         WideBvh ÷ Embree | Mrays/s all threads: Embree / WideBvh | WideBvh ÷ Embree | build ms: \
+         Embree / Bvh / WideBvh | build WideBvh ÷ Embree | bytes per link: Embree / Bvh / WideBvh |\n\
+         |---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for r in rows {
+        let f = |v: &[f64], p: usize| v.iter().map(|x| format!("{x:.p$}")).collect::<Vec<_>>().join(" / ");
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} ({} / {}) | {} | {:.2} | {} ({} threads) | {:.2} | {} | {:.2} | {} |",
+            r.name,
+            r.links,
+            r.rays,
+            r.hits[0],
+            r.hits[1],
+            f(&r.one, 2),
+            r.one[2] / r.one[0],
+            f(&r.all, 2),
+            r.threads,
+            r.all[1] / r.all[0],
+            f(&r.build.map(|b| b * 1e3), 1),
+            r.build[2] / r.build[0],
+            f(&r.bytes, 0),
+        );
+    }
+    md
+}
