@@ -118,6 +118,8 @@ struct Frame {
     lo: [f64; 3],
     hi: [f64; 3],
     pad: f64,
+    /// obvhs coordinates are `(x − centre)·scale` (a power of two).
+    scale: f64,
     /// False for an empty scene: every ray misses.
     any: bool,
 }
@@ -138,14 +140,22 @@ impl Frame {
         }
         let centre: [f64; 3] = std::array::from_fn(|i| 0.5 * (lo[i] + hi[i]));
         let diag = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
-        let pad = diag.max(f64::MIN_POSITIVE) * 2f64.powi(-16);
+        // (Plus the f64 rounding of ray restart points near a scene far from the world origin,
+        // ≤ ε·|p| per coordinate with |p| ≲ |centre| + diag: see `clip`.)
+        let far = centre.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+        let pad = (diag.max(f64::MIN_POSITIVE) * 2f64.powi(-16)).max(64.0 * f64::EPSILON * far);
+        // obvhs works in a frame scaled by a power of two so the scene is about unit size (exact,
+        // and it keeps every f32 quantity of a traversal far from obvhs's absolute constants:
+        // a scene 1e-6 across was missed by the wide BVH, a fuzz finding).
+        let scale = 2f64.powi(-(diag.max(f64::MIN_POSITIVE).log2().round() as i32).clamp(-1000, 1000));
         let to32 = |v: [f64; 3], s: f64| {
-            Vec3A::new((v[0] - centre[0] + s) as f32, (v[1] - centre[1] + s) as f32, (v[2] - centre[2] + s) as f32)
+            let f = |i: usize| ((v[i] - centre[i] + s) * scale) as f32;
+            Vec3A::new(f(0), f(1), f(2))
         };
         let aabbs: Vec<BoxOf> = boxes.iter().map(|(a, b)| BoxOf(Aabb::new(to32(*a, -pad), to32(*b, pad)))).collect();
         let lo = std::array::from_fn(|i| lo[i] - 2.0 * pad);
         let hi = std::array::from_fn(|i| hi[i] + 2.0 * pad);
-        (Self { centre, lo, hi, pad, any: !prims.is_empty() }, aabbs)
+        (Self { centre, lo, hi, pad, scale, any: !prims.is_empty() }, aabbs)
     }
 
     /// Clip the ray's line restricted to distances `[s_lo, s_hi]` along the unit direction to
@@ -175,24 +185,37 @@ impl Frame {
         if a.is_nan() || b.is_nan() || a > b {
             return None;
         }
-        // Start a little before the box so the entry is at t ≥ 0 despite rounding.
+        // Start a little before the box so the entry is at t ≥ 0 despite rounding. The restart
+        // point is formed with one rounding per coordinate (fused o + d·t₀), so it lies within
+        // ε·|p| of the ray's line — not ε·|o|, which for an origin far from a small scene would
+        // exceed the box padding (a fuzz finding: origin 1e18 away from a 1e-6 scene).
         let s0 = a - 4.0 * self.pad;
-        let p = ray.o + dn * s0;
-        let org =
-            Vec3A::new((p.x - self.centre[0]) as f32, (p.y - self.centre[1]) as f32, (p.z - self.centre[2]) as f32);
-        let dir = Vec3A::new(d[0] as f32, d[1] as f32, d[2] as f32);
-        let tmax = ((b - s0) + 8.0 * self.pad) as f32;
-        Some(Clipped { ray: obvhs::ray::Ray::new(org, dir, 0.0, tmax), s0, len })
+        let t0 = s0 / len;
+        let p = V3::new(ray.d.x.mul_add(t0, ray.o.x), ray.d.y.mul_add(t0, ray.o.y), ray.d.z.mul_add(t0, ray.o.z));
+        let sc = self.scale;
+        let org = Vec3A::new(
+            ((p.x - self.centre[0]) * sc) as f32,
+            ((p.y - self.centre[1]) * sc) as f32,
+            ((p.z - self.centre[2]) * sc) as f32,
+        );
+        // `+ 0.0` turns a −0.0 component (e.g. −sin 0, or a tiny negative rounded to f32) into
+        // +0.0: obvhs takes the octant from the sign bit but the slab order from `d < 0`, and the
+        // two disagree on −0.0 (a fuzz/CLI finding: the wide BVH missed axis-parallel rays).
+        let dir = Vec3A::new(d[0] as f32 + 0.0, d[1] as f32 + 0.0, d[2] as f32 + 0.0);
+        let tmax = (((b - s0) + 8.0 * self.pad) * sc) as f32;
+        Some(Clipped { ray: obvhs::ray::Ray::new(org, dir, 0.0, tmax), t0, len, scale: sc })
     }
 }
 
 /// The scene-box-clipped form of a ray, ready for obvhs.
 struct Clipped {
     ray: obvhs::ray::Ray,
-    /// Distance along the unit direction where the obvhs ray starts.
-    s0: f64,
+    /// Ray parameter (in the user's `t`) where the obvhs ray starts.
+    t0: f64,
     /// Length of the user's direction.
     len: f64,
+    /// The frame's scale (obvhs distances are unit-direction distances times this).
+    scale: f64,
 }
 
 impl Bvh {
@@ -364,7 +387,7 @@ impl Bvh {
                 });
                 // Cull by the best hit so far, loosened by the box margin (see the module docs).
                 if let Some(h) = best {
-                    let tb = ((h.t * c.len - c.s0) + margin) as f32;
+                    let tb = (((h.t - c.t0) * c.len + margin) * c.scale) as f32;
                     if tb < r.tmax {
                         r.tmax = tb;
                     }

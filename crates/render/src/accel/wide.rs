@@ -88,7 +88,7 @@ impl Tracer for WideBvh {
                 if best.map_or(true, |h| t < h.t) {
                     best = Some(Hit { t, n, u, prim: id as u32, link: self.prims[id].link, entering });
                     // Cull by the best hit so far, loosened by the box margin (module docs).
-                    let tb = ((t * c.len - c.s0) + margin) as f32;
+                    let tb = (((t - c.t0) * c.len + margin) * c.scale) as f32;
                     if tb < r.tmax {
                         r.tmax = tb;
                     }
