@@ -9,6 +9,7 @@ pub mod sdf;
 pub mod sphere;
 
 pub mod hermite;
+pub mod mesh;
 pub mod obb;
 pub mod roots;
 pub mod spline;
