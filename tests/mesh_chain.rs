@@ -62,6 +62,15 @@ fn check_chain(nodes: &[(P, f64)], eps: f64) -> Mesh {
     let mesh = tessellate_chain(nodes, eps).unwrap();
     assert!(mesh.certified <= eps, "certified {}", mesh.certified);
     let scale = nodes.iter().map(|n| n.0.max_abs() + n.1).fold(0.0, f64::max);
+    // Tags: every triangle lies within its tagged link's solid (up to ε).
+    assert_eq!(mesh.tags.len(), mesh.triangles.len());
+    for (k, &tag) in mesh.tags.iter().enumerate() {
+        let [a, b, c] = mesh.corners(k);
+        let x = (a + b + c).scale(1.0 / 3.0);
+        let t = (tag as usize).min(nodes.len().saturating_sub(2));
+        let d = union_sdf(nodes, t..=(t + 1).min(nodes.len() - 1))(x);
+        assert!(d <= eps + slack(scale), "triangle {k} tagged {tag} is {d} outside its link");
+    }
     let covered: usize = mesh.parts.iter().map(|p| p.triangles.len()).sum();
     assert_eq!(covered, mesh.triangles.len());
     for part in &mesh.parts {
@@ -199,6 +208,11 @@ fn spline_tubes_within_eps() {
                 assert!(volume(&sub) > 0.0);
             }
             let tol = eps + slack(6.0);
+            for (k, &tag) in mesh.tags.iter().enumerate() {
+                let [a, b, c] = mesh.corners(k);
+                let d = tubes[tag as usize].sdf((a + b + c).scale(1.0 / 3.0));
+                assert!(d <= tol, "case {i}: triangle {k} tagged {tag} is {d} outside its segment");
+            }
             for x in triangle_samples(&mesh, 2) {
                 assert!(sdf(x) <= tol, "case {i}: mesh point outside by {}", sdf(x));
                 if mesh.parts.len() == 1 {

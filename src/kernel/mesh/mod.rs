@@ -43,6 +43,9 @@ pub struct Mesh {
     pub positions: Vec<V3<f64>>,
     /// Triangles as vertex indices, counter-clockwise seen from outside.
     pub triangles: Vec<[u32; 3]>,
+    /// Per triangle: the index of the input link it belongs to (of the chain's links; of the
+    /// spline's segments), for colouring and picking. [`Mesh::append`] keeps them as they are.
+    pub tags: Vec<u32>,
     /// The closed components and the input nodes each stands for (see [`Part`]).
     pub parts: Vec<Part>,
     /// Certified bound on the two-sided Hausdorff distance between the mesh and the exact
@@ -78,6 +81,7 @@ impl Mesh {
         self.triangles.extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
         let shift = |p: &Part| Part { triangles: p.triangles.start + t0..p.triangles.end + t0, nodes: p.nodes.clone() };
         self.parts.extend(other.parts.iter().map(shift));
+        self.tags.extend_from_slice(&other.tags);
         self.certified = self.certified.max(other.certified);
     }
     /// Bytes held by the vertex and index arrays.
@@ -145,8 +149,10 @@ pub fn tessellate_spline<T: Scalar>(tubes: &[QuadTube<T>], eps: T) -> Result<Mes
     let mut start = 0;
     for k in 1..=tubes.len() {
         if k == tubes.len() || (tubes[k - 1].b[2], tubes[k - 1].r[2]) != (tubes[k].b[0], tubes[k].r[0]) {
-            let (nodes, axial) = spline::samples(&tubes[start..k], eps)?;
-            mesh.append(&tessellate_nodes(&nodes, eps, axial, 4)?);
+            let sm = spline::samples(&tubes[start..k], eps)?;
+            let mut run = tessellate_nodes(&sm.nodes, eps, sm.axial, 4)?;
+            run.tags.iter_mut().for_each(|t| *t = start as u32 + sm.owner[*t as usize]);
+            mesh.append(&run);
             start = k;
         }
     }
@@ -198,7 +204,7 @@ fn tessellate_nodes(nodes: &[(V3<f64>, f64)], eps: f64, axial: f64, terms: u32) 
         if split || piece.is_none() {
             if !pieces.is_empty() {
                 let t0 = mesh.triangles.len();
-                tube(&mut mesh, &rel[start..=k], &pieces, &b, origin);
+                tube(&mut mesh, &rel[start..=k], &pieces, &b, origin, start as u32);
                 mesh.parts.push(Part { triangles: t0..mesh.triangles.len(), nodes: start..=k });
                 covered[start..=k].iter_mut().for_each(|c| *c = true);
             }
@@ -215,7 +221,7 @@ fn tessellate_nodes(nodes: &[(V3<f64>, f64)], eps: f64, axial: f64, terms: u32) 
         let swallowed = (k > 0 && inside(k - 1)) || (k + 1 < rel.len() && inside(k + 1));
         if !covered[k] && r > 0.0 && !swallowed {
             let t0 = mesh.triangles.len();
-            ball(&mut mesh, (c, r), &b, origin);
+            ball(&mut mesh, (c, r), &b, origin, k.min(rel.len().saturating_sub(2)) as u32);
             mesh.parts.push(Part { triangles: t0..mesh.triangles.len(), nodes: k..=k });
         }
     }

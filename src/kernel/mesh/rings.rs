@@ -85,24 +85,30 @@ fn push_ring(mesh: &mut Mesh, g: &Ring, n: usize, origin: P) -> u32 {
 
 /// Emits the triangles of a strip of rings between two poles, oriented outward (the forward
 /// axis is `u × v`, the start pole behind the first ring, the end pole ahead of the last).
-fn emit(mesh: &mut Mesh, rings: &[Ring], poles: [P; 2], n: usize, origin: P) {
+/// Ring `i` carries a tag (an input link index) that the triangles between it and ring `i + 1`
+/// get; the end fan gets the last ring's.
+fn emit(mesh: &mut Mesh, rings: &[(Ring, u32)], poles: [P; 2], n: usize, origin: P) {
     let start = mesh.positions.len() as u32;
     mesh.positions.push(origin + poles[0]);
-    let bases: Vec<u32> = rings.iter().map(|g| push_ring(mesh, g, n, origin)).collect();
+    let bases: Vec<u32> = rings.iter().map(|(g, _)| push_ring(mesh, g, n, origin)).collect();
     let end = mesh.positions.len() as u32;
     mesh.positions.push(origin + poles[1]);
     let n32 = n as u32;
     let nx = |j: u32| (j + 1) % n32;
     let (first, last) = (bases[0], bases[bases.len() - 1]);
+    let mut tri = |t: [u32; 3], tag: u32| {
+        mesh.triangles.push(t);
+        mesh.tags.push(tag);
+    };
     for j in 0..n32 {
-        mesh.triangles.push([start, first + nx(j), first + j]);
-        mesh.triangles.push([end, last + j, last + nx(j)]);
+        tri([start, first + nx(j), first + j], rings[0].1);
+        tri([end, last + j, last + nx(j)], rings[rings.len() - 1].1);
     }
-    for pair in bases.windows(2) {
+    for (i, pair) in bases.windows(2).enumerate() {
         let (a, b) = (pair[0], pair[1]);
         for j in 0..n32 {
-            mesh.triangles.push([a + j, a + nx(j), b + nx(j)]);
-            mesh.triangles.push([a + j, b + nx(j), b + j]);
+            tri([a + j, a + nx(j), b + nx(j)], rings[i].1);
+            tri([a + j, b + nx(j), b + j], rings[i].1);
         }
     }
 }
@@ -115,35 +121,35 @@ fn sphere_ring(c: P, r: f64, u: P, v: P, alpha: f64) -> Ring {
 
 /// Rings on the sphere `(c, r)` from polar angle `from` to `to` (both included unless the
 /// radius there is zero), at most `step` apart.
-fn cap(rings: &mut Vec<Ring>, (c, r): (P, f64), (u, v): (P, P), from: f64, to: f64, step: f64) {
+fn cap(rings: &mut Vec<(Ring, u32)>, (c, r): (P, f64), (u, v): (P, P), (from, to): (f64, f64), step: f64, tag: u32) {
     let m = ((from - to).abs() / step).ceil().max(1.0) as usize;
     for i in 0..=m {
         let a = if i == m { to } else { from + (to - from) * i as f64 / m as f64 };
         // The poles are emitted as single vertices, never as rings.
         if r > 0.0 && a != 0.0 && a != core::f64::consts::PI {
-            rings.push(sphere_ring(c, r, u, v, a));
+            rings.push((sphere_ring(c, r, u, v, a), tag));
         }
     }
 }
 
 /// A single ball, meshed as a sphere of revolution about `z`.
-pub fn ball(mesh: &mut Mesh, (c, r): (P, f64), b: &Budget, origin: P) {
+pub fn ball(mesh: &mut Mesh, (c, r): (P, f64), b: &Budget, origin: P, tag: u32) {
     let (u, v) = (V3::new(1.0, 0.0, 0.0), V3::new(0.0, 1.0, 0.0));
     let mut rings = Vec::new();
-    cap(&mut rings, (c, r), (u, v), core::f64::consts::PI, 0.0, b.step);
+    cap(&mut rings, (c, r), (u, v), (core::f64::consts::PI, 0.0), b.step, tag);
     let w = V3::new(0.0, 0.0, r);
     emit(mesh, &rings, [c - w, c + w], b.n, origin);
 }
 
 /// A run of at least two nodes whose consecutive pieces are valid ([`Piece::new`]) and whose
 /// interior nodes have a positive radius. `origin` is added to every vertex.
-pub fn tube(mesh: &mut Mesh, nodes: &[(P, f64)], pieces: &[Piece], b: &Budget, origin: P) {
+pub fn tube(mesh: &mut Mesh, nodes: &[(P, f64)], pieces: &[Piece], b: &Budget, origin: P, tag0: u32) {
     let w0 = pieces[0].w;
     let (u0, _) = orthonormal_basis(w0);
     let (mut u, mut v) = (u0, w0.cross(u0));
     let mut rings = Vec::new();
     let (c0, r0) = nodes[0];
-    cap(&mut rings, nodes[0], (u, v), core::f64::consts::PI, pieces[0].alpha, b.step);
+    cap(&mut rings, nodes[0], (u, v), (core::f64::consts::PI, pieces[0].alpha), b.step, tag0);
     for k in 1..pieces.len() {
         let (prev, next) = (&pieces[k - 1], &pieces[k]);
         let (phi, _) = joint(prev, next);
@@ -155,7 +161,9 @@ pub fn tube(mesh: &mut Mesh, nodes: &[(P, f64)], pieces: &[Piece], b: &Budget, o
             let s = if m == 0 { 0.0 } else { i as f64 / m as f64 };
             let (c, sn) = ((s * phi).cos(), (s * phi).sin());
             let (us, vs) = (rotate(u, e, c, sn), rotate(v, e, c, sn));
-            rings.push(sphere_ring(nodes[k].0, nodes[k].1, us, vs, prev.alpha + s * da));
+            // The first ring ends link k − 1's cone; the rest belong to link k.
+            let tag = tag0 + k as u32 - u32::from(i == 0);
+            rings.push((sphere_ring(nodes[k].0, nodes[k].1, us, vs, prev.alpha + s * da), tag));
         }
         // Transport the frame and re-orthogonalise it against the new axis (no drift).
         let ut = rotate(u, e, phi.cos(), phi.sin());
@@ -164,7 +172,8 @@ pub fn tube(mesh: &mut Mesh, nodes: &[(P, f64)], pieces: &[Piece], b: &Budget, o
     }
     let last = pieces[pieces.len() - 1];
     let (cn, rn) = nodes[nodes.len() - 1];
-    cap(&mut rings, (cn, rn), (u, v), last.alpha, 0.0, b.step);
+    let tag = tag0 + pieces.len() as u32 - 1;
+    cap(&mut rings, (cn, rn), (u, v), (last.alpha, 0.0), b.step, tag);
     let start = if r0 > 0.0 { c0 - w0.scale(r0) } else { c0 };
     let end = if rn > 0.0 { cn + last.w.scale(rn) } else { cn };
     emit(mesh, &rings, [start, end], b.n, origin);

@@ -24,8 +24,15 @@ fn at(q: &QuadTube<f64>, t: f64) -> (V3<f64>, f64) {
     (p, (q.r[0] * w[0] + q.r[1] * w[1] + q.r[2] * w[2]).max(0.0))
 }
 
-/// Nodes `(centre, radius)` and the axial term reached.
-pub type Samples = (Vec<(V3<f64>, f64)>, f64);
+/// The samples of a run.
+pub struct Samples {
+    /// Nodes `(centre, radius)`.
+    pub nodes: Vec<(V3<f64>, f64)>,
+    /// Per interval between consecutive nodes: the tube it samples.
+    pub owner: Vec<u32>,
+    /// The axial term reached.
+    pub axial: f64,
+}
 
 /// The nodes of a run of tubes sharing their end spheres, and the axial term reached.
 pub fn samples(tubes: &[QuadTube<f64>], eps: f64) -> Result<Samples, GeometryError> {
@@ -74,7 +81,7 @@ pub fn samples(tubes: &[QuadTube<f64>], eps: f64) -> Result<Samples, GeometryErr
             .collect();
     }
     let axial = iv.iter().map(|&(j, a, b)| (b - a) * (b - a) / 4.0 * curvature(&tubes[j])).fold(0.0, f64::max);
-    Ok((nodes_of(tubes, &iv), axial))
+    Ok(Samples { nodes: nodes_of(tubes, &iv), owner: iv.iter().map(|i| i.0 as u32).collect(), axial })
 }
 
 fn nodes_of(tubes: &[QuadTube<f64>], iv: &[(usize, f64, f64)]) -> Vec<(V3<f64>, f64)> {
