@@ -77,9 +77,46 @@ pub struct RenderArgs {
     /// stay links).
     #[arg(long)]
     pub splines: bool,
+    /// Surface model: the exact kernels, or a certified triangle mesh (needs --tolerance).
+    #[arg(long, value_enum, default_value_t = Surface::Exact)]
+    pub model: Surface,
+    /// Mesh tolerance ε (scene units): two-sided Hausdorff bound of `--model mesh`.
+    #[arg(long, value_name = "EPS")]
+    pub tolerance: Option<f64>,
     /// Hide the progress bar.
     #[arg(long)]
     pub quiet: bool,
+}
+
+/// `render --model`.
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Surface {
+    /// Exact ray–tube kernels.
+    Exact,
+    /// A triangle mesh within `--tolerance` of the exact surface.
+    Mesh,
+}
+
+/// `tubecast mesh`.
+#[derive(Args)]
+pub struct MeshArgs {
+    /// Input file.
+    pub input: PathBuf,
+    /// Output mesh: .ply (binary), .obj or .glb.
+    #[arg(short, long)]
+    pub out: PathBuf,
+    /// Two-sided Hausdorff bound ε between the mesh and the exact tubes (scene units).
+    #[arg(long, value_name = "EPS")]
+    pub tolerance: f64,
+    /// Tube radius for formats without radii.
+    #[arg(long, default_value_t = 0.2)]
+    pub radius: f64,
+    /// Replace every radius below R (and placeholder radii ≤ 0) by R.
+    #[arg(long, value_name = "R")]
+    pub min_radius: Option<f64>,
+    /// Mesh the C¹ spline tubes of the chains instead of the links.
+    #[arg(long)]
+    pub splines: bool,
 }
 
 /// `tubecast info`.

@@ -1,6 +1,6 @@
 //! Each command: arguments into library calls, results to files or stdout.
 
-use crate::args::{Color, GenerateArgs, InfoArgs, IntersectArgs, Kind, RenderArgs};
+use crate::args::{Color, GenerateArgs, InfoArgs, IntersectArgs, Kind, RenderArgs, Surface};
 use crate::error::CliError;
 use std::path::Path;
 use tubecast_render::accel::{hit_table, Bvh};
@@ -17,7 +17,7 @@ fn warn(msg: &str) {
 
 /// Load the scene at `input`; warn about radii raised to `min_radius` and, with `empty`
 /// (what the command does then), about a scene without nodes.
-fn load(input: &Path, radius: f64, min_radius: Option<f64>, empty: &str) -> Result<Scene, CliError> {
+pub(crate) fn load(input: &Path, radius: f64, min_radius: Option<f64>, empty: &str) -> Result<Scene, CliError> {
     let (scene, rep) = Scene::load_with(input, &LoadOptions { default_radius: radius, min_radius })?;
     if let (Some(r), true) = (min_radius, rep.replaced > 0) {
         warn(&format!(
@@ -49,7 +49,11 @@ pub fn render(a: &RenderArgs) -> Res {
     // scene is viewed as if it were the box [-1, 1]³.
     let st = scene.stats_of(&prims);
     let bounds = if st.is_empty() { ([-1.0; 3], [1.0; 3]) } else { st.bounds };
-    let bvh = Bvh::build(prims);
+    let tol = match (a.model, a.tolerance) {
+        (Surface::Exact, _) => None,
+        (Surface::Mesh, t) => Some(t.ok_or(CliError::MeshTolerance)?),
+    };
+    let bvh = crate::cmd_mesh::tracer(&scene, model(a.splines), prims, tol)?;
     let view = View { eye: a.eye, look_at: a.look_at, up: a.up, fov_deg: a.fov, width: a.width, height: a.height };
     let cam = view.camera(bounds)?;
     let opts = Options {
@@ -65,7 +69,7 @@ pub fn render(a: &RenderArgs) -> Res {
         progress: !a.quiet && (a.width as u64 * a.height as u64) >= 256 * 256,
         ..Options::default()
     };
-    Ok(render::render(&scene, &bvh, &cam, &opts)?.write_png(&a.out)?)
+    Ok(render::render(&scene, bvh.as_ref(), &cam, &opts)?.write_png(&a.out)?)
 }
 
 pub fn info(a: &InfoArgs) -> Res {

@@ -3,6 +3,7 @@
 use std::fmt;
 use std::path::PathBuf;
 use tubecast_render::io::IoError;
+use tubecast_render::mesh::MeshError;
 use tubecast_render::render::RenderError;
 use tubecast_render::scene::SceneError;
 
@@ -24,6 +25,10 @@ pub enum CliError {
     NeuronsPerSide,
     /// `generate neurons` to a file that is not `.swc`.
     NeuronsNeedSwc(PathBuf),
+    /// Tessellating the scene (`mesh`, `render --model mesh`).
+    Mesh(MeshError),
+    /// `render --model mesh` without `--tolerance`.
+    MeshTolerance,
 }
 
 impl fmt::Display for CliError {
@@ -35,6 +40,8 @@ impl fmt::Display for CliError {
             Self::SceneSize { max } => write!(f, "--count × --segments must be between 1 and {max}"),
             Self::NeuronsPerSide => f.write_str("--n must be in 1..=40"),
             Self::NeuronsNeedSwc(p) => write!(f, "{}: neuron assemblies branch; write them as .swc", p.display()),
+            Self::Mesh(e) => e.fmt(f),
+            Self::MeshTolerance => f.write_str("--model mesh needs --tolerance EPS"),
         }
     }
 }
@@ -45,6 +52,7 @@ impl std::error::Error for CliError {
             Self::Io(e) => Some(e),
             Self::Scene(e) => Some(e),
             Self::Render(e) => Some(e),
+            Self::Mesh(e) => Some(e),
             _ => None,
         }
     }
@@ -65,5 +73,11 @@ impl From<SceneError> for CliError {
 impl From<RenderError> for CliError {
     fn from(e: RenderError) -> Self {
         Self::Render(e)
+    }
+}
+
+impl From<MeshError> for CliError {
+    fn from(e: MeshError) -> Self {
+        Self::Mesh(e)
     }
 }

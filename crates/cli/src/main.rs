@@ -1,10 +1,11 @@
 //! The `tubecast` command line: render, info, intersect, generate.
 
 mod args;
+mod cmd_mesh;
 mod commands;
 mod error;
 
-use args::{GenerateArgs, InfoArgs, IntersectArgs, RenderArgs};
+use args::{GenerateArgs, InfoArgs, IntersectArgs, MeshArgs, RenderArgs};
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
@@ -30,6 +31,8 @@ enum Cmd {
     Intersect(IntersectArgs),
     /// Generate a procedural test scene (.swc, .tck, .obj or .trk by extension; neurons: .swc).
     Generate(GenerateArgs),
+    /// Tessellate a scene within a certified tolerance; write .ply, .obj or .glb.
+    Mesh(MeshArgs),
 }
 
 fn main() -> ExitCode {
@@ -38,6 +41,7 @@ fn main() -> ExitCode {
         Cmd::Info(a) => commands::info(&a),
         Cmd::Intersect(a) => commands::intersect(&a),
         Cmd::Generate(a) => commands::generate(&a),
+        Cmd::Mesh(a) => cmd_mesh::mesh(&a),
     };
     match r {
         Ok(()) => ExitCode::SUCCESS,

@@ -27,5 +27,6 @@
 
 pub mod accel;
 pub mod io;
+pub mod mesh;
 pub mod render;
 pub mod scene;
