@@ -123,7 +123,30 @@ pub fn tessellate_link<T: Scalar>(link: &RoundCone<T>, eps: T) -> Result<Mesh, G
 /// ```
 pub fn tessellate_chain<T: Scalar>(nodes: &[(V3<T>, T)], eps: T) -> Result<Mesh, GeometryError> {
     let terms = if nodes.len() > 2 { 3 } else { 2 };
-    tessellate_nodes(&validate(nodes)?, eps.to_f64(), 0.0, terms)
+    tessellate_nodes(&validate(nodes)?, eps.to_f64(), 0.0, terms, true)
+}
+
+/// [`tessellate_chain`] for renderers: joints are never split for their fold, so a bent chain
+/// stays one closed surface (far fewer triangles than split parts with their caps). The
+/// surface folds into itself on the inner side of bends; the certified bound (ring and arc
+/// terms, ε/2 each) then holds for the **boundary of the region the mesh encloses** — what a
+/// ray's first hit sees — while the folded triangles lie inside that region, up to
+/// `r(1 − cos ψ)` deep. That the folds stay inside is checked by ray tests
+/// (`crates/render/tests/mesh_tracer.rs`: every first hit within the bound of the exact
+/// surface), not derived. Joints still split where a cone would not emerge from the fold
+/// (see `budget.rs`) and at zero radii.
+///
+/// ```
+/// use tubecast::{tessellate_chain, tessellate_chain_solid, V3};
+/// let v = |x: f64, y: f64| V3::new(x, y, 0.0);
+/// let chain = [(v(0.0, 0.0), 0.5), (v(3.0, 0.0), 0.5), (v(5.0, 2.0), 0.5)];
+/// let (surface, solid) = (tessellate_chain(&chain, 1e-3)?, tessellate_chain_solid(&chain, 1e-3)?);
+/// assert!(solid.parts.len() == 1 && surface.parts.len() == 2); // the 45° joint splits for its fold
+/// assert!(solid.triangles.len() < surface.triangles.len());
+/// # Ok::<(), tubecast::GeometryError>(())
+/// ```
+pub fn tessellate_chain_solid<T: Scalar>(nodes: &[(V3<T>, T)], eps: T) -> Result<Mesh, GeometryError> {
+    tessellate_nodes(&validate(nodes)?, eps.to_f64(), 0.0, 2, false)
 }
 
 /// Meshes a chain of quadratic sphere-swept segments ([`QuadTube`]; consecutive segments
@@ -150,7 +173,7 @@ pub fn tessellate_spline<T: Scalar>(tubes: &[QuadTube<T>], eps: T) -> Result<Mes
     for k in 1..=tubes.len() {
         if k == tubes.len() || (tubes[k - 1].b[2], tubes[k - 1].r[2]) != (tubes[k].b[0], tubes[k].r[0]) {
             let sm = spline::samples(&tubes[start..k], eps)?;
-            let mut run = tessellate_nodes(&sm.nodes, eps, sm.axial, 4)?;
+            let mut run = tessellate_nodes(&sm.nodes, eps, sm.axial, 4, true)?;
             run.tags.iter_mut().for_each(|t| *t = start as u32 + sm.owner[*t as usize]);
             mesh.append(&run);
             start = k;
@@ -176,7 +199,15 @@ fn validate<T: Scalar>(nodes: &[(V3<T>, T)]) -> Result<Vec<(V3<f64>, f64)>, Geom
 
 /// Splits the chain into runs (see the module docs) and meshes each; the certified bound is
 /// the budget's ring and arc terms, the deepest fold kept, and the axial term.
-fn tessellate_nodes(nodes: &[(V3<f64>, f64)], eps: f64, axial: f64, terms: u32) -> Result<Mesh, GeometryError> {
+/// With `folds = false` a fold never splits a joint and is not counted (the enclosed-region
+/// bound of [`tessellate_chain_solid`]).
+fn tessellate_nodes(
+    nodes: &[(V3<f64>, f64)],
+    eps: f64,
+    axial: f64,
+    terms: u32,
+    folds: bool,
+) -> Result<Mesh, GeometryError> {
     let mut mesh = Mesh::default();
     let Some(&(origin, _)) = nodes.first() else {
         check_eps(eps)?;
@@ -193,8 +224,8 @@ fn tessellate_nodes(nodes: &[(V3<f64>, f64)], eps: f64, axial: f64, terms: u32) 
         let piece = (k + 1 < rel.len()).then(|| Piece::new(rel[k], rel[k + 1])).flatten();
         let split = match (pieces.last(), piece) {
             (Some(prev), Some(next)) => match fold(prev, &next, rel[k].1) {
-                Some(depth) if depth <= b.fold => {
-                    folded = folded.max(depth);
+                Some(depth) if depth <= b.fold || !folds => {
+                    folded = folded.max(if folds { depth } else { 0.0 });
                     false
                 }
                 _ => true,

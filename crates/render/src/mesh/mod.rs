@@ -1,5 +1,5 @@
 //! The mesh path: a scene tessellated within a certified tolerance ([`tessellate`]: every
-//! chain through [`tubecast::tessellate_chain`], or through [`tubecast::tessellate_spline`]
+//! chain through [`tubecast::tessellate_chain_solid`] (one closed surface per chain; its enclosed region is certified), or through [`tubecast::tessellate_spline`]
 //! for the spline model), traced by a triangle BVH ([`MeshTracer`], a [`crate::accel::Tracer`]
 //! beside the exact BVH) and written as PLY, OBJ or binary glTF ([`export`]).
 //!
@@ -100,7 +100,7 @@ pub fn tessellate(scene: &Scene, model: Model, eps: f64) -> Result<SceneMesh, Me
                 .iter()
                 .map(|&n| (V3::from(scene.nodes[n as usize].pos), scene.nodes[n as usize].radius))
                 .collect();
-            tubecast::tessellate_chain(&nodes, eps).map_err(err)?
+            tubecast::tessellate_chain_solid(&nodes, eps).map_err(err)?
         };
         m.tags.iter_mut().for_each(|t| *t = chain.links[(*t as usize).min(chain.links.len() - 1)]);
         let base = out.mesh.parts.len() as u32;
