@@ -119,6 +119,22 @@ pub struct MeshArgs {
     pub splines: bool,
 }
 
+/// `tubecast simplify`.
+#[derive(Args)]
+pub struct SimplifyArgs {
+    /// Input file (.swc, .trk, .tck, .obj).
+    pub input: PathBuf,
+    /// Output file, same format as the input.
+    #[arg(short, long)]
+    pub out: PathBuf,
+    /// Largest Hausdorff distance ε between the merged links and the original union.
+    #[arg(long, value_name = "EPS")]
+    pub tolerance: f64,
+    /// Tube radius for formats without radii (used for the bound).
+    #[arg(long, default_value_t = 0.2)]
+    pub radius: f64,
+}
+
 /// `tubecast info`.
 #[derive(Args)]
 pub struct InfoArgs {

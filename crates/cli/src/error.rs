@@ -29,6 +29,8 @@ pub enum CliError {
     Mesh(MeshError),
     /// `render --model mesh` without `--tolerance`.
     MeshTolerance,
+    /// `simplify --tolerance` not a finite number ≥ 0.
+    Tolerance(f64),
 }
 
 impl fmt::Display for CliError {
@@ -42,6 +44,7 @@ impl fmt::Display for CliError {
             Self::NeuronsNeedSwc(p) => write!(f, "{}: neuron assemblies branch; write them as .swc", p.display()),
             Self::Mesh(e) => e.fmt(f),
             Self::MeshTolerance => f.write_str("--model mesh needs --tolerance EPS"),
+            Self::Tolerance(t) => write!(f, "--tolerance {t} must be a finite number ≥ 0"),
         }
     }
 }

@@ -2,10 +2,11 @@
 
 mod args;
 mod cmd_mesh;
+mod cmd_simplify;
 mod commands;
 mod error;
 
-use args::{GenerateArgs, InfoArgs, IntersectArgs, MeshArgs, RenderArgs};
+use args::{GenerateArgs, InfoArgs, IntersectArgs, MeshArgs, RenderArgs, SimplifyArgs};
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
@@ -33,6 +34,8 @@ enum Cmd {
     Generate(GenerateArgs),
     /// Tessellate a scene within a certified tolerance; write .ply, .obj or .glb.
     Mesh(MeshArgs),
+    /// Merge consecutive links while the merged tube stays within --tolerance; same format out.
+    Simplify(SimplifyArgs),
 }
 
 fn main() -> ExitCode {
@@ -42,6 +45,7 @@ fn main() -> ExitCode {
         Cmd::Intersect(a) => commands::intersect(&a),
         Cmd::Generate(a) => commands::generate(&a),
         Cmd::Mesh(a) => cmd_mesh::mesh(&a),
+        Cmd::Simplify(a) => cmd_simplify::simplify(&a),
     };
     match r {
         Ok(()) => ExitCode::SUCCESS,

@@ -47,3 +47,22 @@ fn mesh_errors_exit_nonzero_with_a_message() {
         assert!(err.contains("tubecast: error:") && err.contains(says), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn simplify_keeps_the_format_and_the_bound() {
+    let trk = tmp("simp.trk");
+    assert!(bin().args(["generate", "bundle", "--count", "5", "-o"]).arg(&trk).status().unwrap().success());
+    let out = tmp("simp_out.trk");
+    let run = bin().arg("simplify").arg(&trk).args(["--tolerance", "0.01", "-o"]).arg(&out).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let said = String::from_utf8_lossy(&run.stdout).to_string();
+    let (kept, total): (usize, usize) = {
+        let w: Vec<&str> = said.split_whitespace().collect();
+        (w[1].parse().unwrap(), w[3].parse().unwrap())
+    };
+    assert!(kept < total, "{said}");
+    let info = bin().arg("info").arg(&out).output().unwrap();
+    assert!(String::from_utf8_lossy(&info.stdout).contains(&format!("nodes      {kept}")));
+    let bad = bin().arg("simplify").arg(&trk).args(["--tolerance", "0.01", "-o"]).arg(tmp("x.tck")).output().unwrap();
+    assert!(!bad.status.success() && String::from_utf8_lossy(&bad.stderr).contains("extension"));
+}

@@ -49,6 +49,7 @@ mod error;
 pub mod generate;
 mod load;
 mod prim;
+pub mod simplify;
 mod stats;
 
 pub use chains::{Chain, SplineSegment};
