@@ -80,9 +80,14 @@ pub struct RenderArgs {
     /// Surface model: the exact kernels, or a certified triangle mesh (needs --tolerance).
     #[arg(long, value_enum, default_value_t = Surface::Exact)]
     pub model: Surface,
-    /// Mesh tolerance ε (scene units): two-sided Hausdorff bound of `--model mesh`.
+    /// Tolerance ε (scene units). With `--model mesh`: the mesh's two-sided Hausdorff bound;
+    /// with the exact model: pick per segment the cheapest primitive within ε (merged links,
+    /// spheres, cylinders, cones).
     #[arg(long, value_name = "EPS")]
     pub tolerance: Option<f64>,
+    /// Like --tolerance, per segment: P pixels of the camera's footprint at its distance.
+    #[arg(long, value_name = "P", conflicts_with = "tolerance")]
+    pub pixel_error: Option<f64>,
     /// Hide the progress bar.
     #[arg(long)]
     pub quiet: bool,
@@ -97,20 +102,28 @@ pub enum Surface {
     Mesh,
 }
 
-/// `tubecast mesh`.
+/// Input, output, tolerance and default radius of `mesh` and `simplify`.
 #[derive(Args)]
-pub struct MeshArgs {
-    /// Input file.
+pub struct TolIo {
+    /// Input file (.swc, .trk, .tck, .obj).
     pub input: PathBuf,
-    /// Output mesh: .ply (binary), .obj or .glb.
+    /// Output file: `mesh` .ply (binary), .obj or .glb; `simplify` the input's format.
     #[arg(short, long)]
     pub out: PathBuf,
-    /// Two-sided Hausdorff bound ε between the mesh and the exact tubes (scene units).
+    /// Tolerance ε (scene units): the two-sided Hausdorff bound between the output and the
+    /// exact tubes of the input.
     #[arg(long, value_name = "EPS")]
     pub tolerance: f64,
     /// Tube radius for formats without radii.
     #[arg(long, default_value_t = 0.2)]
     pub radius: f64,
+}
+
+/// `tubecast mesh`.
+#[derive(Args)]
+pub struct MeshArgs {
+    #[command(flatten)]
+    pub io: TolIo,
     /// Replace every radius below R (and placeholder radii ≤ 0) by R.
     #[arg(long, value_name = "R")]
     pub min_radius: Option<f64>,
@@ -122,17 +135,8 @@ pub struct MeshArgs {
 /// `tubecast simplify`.
 #[derive(Args)]
 pub struct SimplifyArgs {
-    /// Input file (.swc, .trk, .tck, .obj).
-    pub input: PathBuf,
-    /// Output file, same format as the input.
-    #[arg(short, long)]
-    pub out: PathBuf,
-    /// Largest Hausdorff distance ε between the merged links and the original union.
-    #[arg(long, value_name = "EPS")]
-    pub tolerance: f64,
-    /// Tube radius for formats without radii (used for the bound).
-    #[arg(long, default_value_t = 0.2)]
-    pub radius: f64,
+    #[command(flatten)]
+    pub io: TolIo,
 }
 
 /// `tubecast info`.
@@ -150,6 +154,12 @@ pub struct InfoArgs {
     /// Count the primitives of the spline model (as `render --splines` uses them).
     #[arg(long)]
     pub splines: bool,
+    /// Also report the automatic primitive choice within ε (counts, worst certified error).
+    #[arg(long, value_name = "EPS")]
+    pub tolerance: Option<f64>,
+    /// The automatic choice within P pixels of the default fitted 800×600 view's footprint.
+    #[arg(long, value_name = "P", conflicts_with = "tolerance")]
+    pub pixel_error: Option<f64>,
 }
 
 /// `tubecast intersect`.

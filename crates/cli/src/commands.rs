@@ -49,13 +49,13 @@ pub fn render(a: &RenderArgs) -> Res {
     // scene is viewed as if it were the box [-1, 1]³.
     let st = scene.stats_of(&prims);
     let bounds = if st.is_empty() { ([-1.0; 3], [1.0; 3]) } else { st.bounds };
-    let tol = match (a.model, a.tolerance) {
-        (Surface::Exact, _) => None,
-        (Surface::Mesh, t) => Some(t.ok_or(CliError::MeshTolerance)?),
-    };
-    let bvh = crate::cmd_mesh::tracer(&scene, model(a.splines), prims, tol)?;
     let view = View { eye: a.eye, look_at: a.look_at, up: a.up, fov_deg: a.fov, width: a.width, height: a.height };
     let cam = view.camera(bounds)?;
+    let (prims, tol) = match (a.model, a.tolerance) {
+        (Surface::Exact, _) => (crate::cmd_mesh::chosen(&scene, prims, a.tolerance, a.pixel_error, &cam), None),
+        (Surface::Mesh, t) => (prims, Some(t.ok_or(CliError::MeshTolerance)?)),
+    };
+    let bvh = crate::cmd_mesh::tracer(&scene, model(a.splines), prims, tol)?;
     let opts = Options {
         color: match a.color {
             Color::Direction => ColorBy::Direction,
@@ -94,6 +94,7 @@ pub fn info(a: &InfoArgs) -> Res {
         println!("bounds min {:?}", st.bounds.0);
         println!("bounds max {:?}", st.bounds.1);
     }
+    crate::cmd_mesh::info_choice(&scene, a.tolerance, a.pixel_error)?;
     println!(
         "memory     scene {} B, primitives + BVH {} B ({} BVH nodes)",
         scene.memory_bytes(),

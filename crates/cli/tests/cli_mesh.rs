@@ -66,3 +66,25 @@ fn simplify_keeps_the_format_and_the_bound() {
     let bad = bin().arg("simplify").arg(&trk).args(["--tolerance", "0.01", "-o"]).arg(tmp("x.tck")).output().unwrap();
     assert!(!bad.status.success() && String::from_utf8_lossy(&bad.stderr).contains("extension"));
 }
+
+#[test]
+fn info_reports_the_automatic_choice() {
+    let trk = tmp("choice.trk");
+    assert!(bin().args(["generate", "bundle", "--count", "5", "-o"]).arg(&trk).status().unwrap().success());
+    for args in [["--tolerance", "0.01"], ["--pixel-error", "0.5"]] {
+        let out = bin().arg("info").arg(&trk).args(args).output().unwrap();
+        let text = String::from_utf8_lossy(&out.stdout).to_string();
+        let line = text.lines().find(|l| l.starts_with("choice")).expect("a choice line");
+        let worst: f64 = line.rsplit(' ').next().unwrap().parse().unwrap();
+        assert!(worst >= 0.0 && (args[0] != "--tolerance" || worst <= 0.01), "{line}");
+    }
+    let png = tmp("choice.png");
+    let run = bin()
+        .arg("render")
+        .arg(&trk)
+        .args(["--tolerance", "0.01", "--width", "32", "--height", "24", "--quiet", "-o"])
+        .arg(&png)
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+}

@@ -45,6 +45,7 @@
 
 mod build;
 mod chains;
+pub mod choice;
 mod error;
 pub mod generate;
 mod load;
