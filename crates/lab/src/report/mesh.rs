@@ -173,7 +173,7 @@ pub fn run_mesh(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, ReportE
         md,
         "Generated *Furball* scenes (tapering hairs of 78 cone links, radius ≤ r = 0.05·…, seed {}); the exact \
          kernels (BVH over the links), the automatic choice within ε (`scene::choice`: merged links, \
-         spheres, cylinders, cones; exact kernels on fewer primitives) and the certified mesh (`tubecast::tessellate_chain` per hair, obvhs \
+         spheres, cylinders, cones; exact kernels on fewer primitives) and the certified mesh (`tubecast::tessellate_chain_solid` per hair, obvhs \
          triangle BVH, triangles in f32) at ε = 10⁻²·r and 10⁻³·r, r the scene's largest radius. Build = \
          tessellation + BVH; memory = what the tracer holds; one opaque lit {}×{} frame on {} thread(s). \
          Image difference to the exact render: pixels whose coverage differs, and the largest channel \
