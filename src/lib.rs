@@ -41,6 +41,9 @@ pub use error::GeometryError;
 pub use kernel::csg::{self, union, Boundary, Tagged};
 pub use kernel::hermite::HermiteSegment;
 pub use kernel::link::{HanLink, LinkShape, RoundCone};
+pub use kernel::mesh::{
+    tessellate_chain, tessellate_chain_solid, tessellate_link, tessellate_spline, Mesh, Part, MAX_RING,
+};
 pub use kernel::roots::Solver;
 pub use kernel::spline::QuadTube;
 pub use kernel::voxel;

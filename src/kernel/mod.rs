@@ -10,6 +10,7 @@ pub mod sphere;
 pub mod voxel;
 
 pub mod hermite;
+pub mod mesh;
 pub mod obb;
 pub mod roots;
 pub mod spline;

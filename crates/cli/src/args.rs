@@ -163,6 +163,17 @@ pub struct RenderArgs {
     /// stay links).
     #[arg(long)]
     pub splines: bool,
+    /// Surface model: the exact kernels, or a certified triangle mesh (needs --tolerance).
+    #[arg(long, value_enum, default_value_t = Surface::Exact)]
+    pub model: Surface,
+    /// Tolerance ε (scene units). With `--model mesh`: the mesh's two-sided Hausdorff bound;
+    /// with the exact model: pick per segment the cheapest primitive within ε (merged links,
+    /// spheres, cylinders, cones).
+    #[arg(long, value_name = "EPS")]
+    pub tolerance: Option<f64>,
+    /// Like --tolerance, per segment: P pixels of the camera's footprint at its distance.
+    #[arg(long, value_name = "P", conflicts_with = "tolerance")]
+    pub pixel_error: Option<f64>,
     /// Hide the progress bar.
     #[arg(long)]
     pub quiet: bool,
@@ -172,6 +183,52 @@ pub struct RenderArgs {
     /// Worker threads (default: one per core).
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..), value_name = "N")]
     pub threads: Option<u16>,
+}
+
+/// `render --model`.
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Surface {
+    /// Exact ray–tube kernels.
+    Exact,
+    /// A triangle mesh within `--tolerance` of the exact surface.
+    Mesh,
+}
+
+/// Input, output, tolerance and default radius of `mesh` and `simplify`.
+#[derive(Args)]
+pub struct TolIo {
+    /// Input file (.swc, .trk, .tck, .obj).
+    pub input: PathBuf,
+    /// Output file: `mesh` .ply (binary), .obj or .glb; `simplify` the input's format.
+    #[arg(short, long)]
+    pub out: PathBuf,
+    /// Tolerance ε (scene units): the two-sided Hausdorff bound between the output and the
+    /// exact tubes of the input.
+    #[arg(long, value_name = "EPS")]
+    pub tolerance: f64,
+    /// Tube radius for formats without radii.
+    #[arg(long, default_value_t = 0.2)]
+    pub radius: f64,
+}
+
+/// `tubecast mesh`.
+#[derive(Args)]
+pub struct MeshArgs {
+    #[command(flatten)]
+    pub io: TolIo,
+    /// Replace every radius below R (and placeholder radii ≤ 0) by R.
+    #[arg(long, value_name = "R")]
+    pub min_radius: Option<f64>,
+    /// Mesh the C¹ spline tubes of the chains instead of the links.
+    #[arg(long)]
+    pub splines: bool,
+}
+
+/// `tubecast simplify`.
+#[derive(Args)]
+pub struct SimplifyArgs {
+    #[command(flatten)]
+    pub io: TolIo,
 }
 
 /// `tubecast info`.
@@ -192,6 +249,12 @@ pub struct InfoArgs {
     /// Count the primitives of the spline model (as `render --splines` uses them).
     #[arg(long)]
     pub splines: bool,
+    /// Also report the automatic primitive choice within ε (counts, worst certified error).
+    #[arg(long, value_name = "EPS")]
+    pub tolerance: Option<f64>,
+    /// The automatic choice within P pixels of the default fitted 800×600 view's footprint.
+    #[arg(long, value_name = "P", conflicts_with = "tolerance")]
+    pub pixel_error: Option<f64>,
 }
 
 /// `tubecast intersect`.

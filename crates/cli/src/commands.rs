@@ -1,6 +1,6 @@
 //! Each command: arguments into library calls, results to files or stdout.
 
-use crate::args::{Accel, Color, GenerateArgs, InfoArgs, Kind, RenderArgs, Thin};
+use crate::args::{Accel, Color, GenerateArgs, InfoArgs, Kind, RenderArgs, Surface, Thin};
 use crate::error::CliError;
 use crate::render_opts::{check_out, Background, Radius};
 use std::path::Path;
@@ -126,7 +126,14 @@ pub fn render(a: &RenderArgs) -> Res {
     if thin_on(a.thin, &a.input) && render::clamp_thin(&mut scene, &cam, a.min_pixels) > 0 {
         prims = scene.model_primitives(model(a.splines))?;
     }
-    let bvh = crate::cmd_intersect::with_threads(a.threads.map(usize::from), || tracer(a.accel, prims))?;
+    let (prims, tol) = match (a.model, a.tolerance) {
+        (Surface::Exact, _) => (crate::cmd_mesh::chosen(&scene, prims, a.tolerance, a.pixel_error, &cam), None),
+        (Surface::Mesh, t) => (prims, Some(t.ok_or(CliError::MeshTolerance)?)),
+    };
+    let bvh = crate::cmd_intersect::with_threads(a.threads.map(usize::from), || match tol {
+        None => Ok(tracer(a.accel, prims)),
+        Some(_) => crate::cmd_mesh::tracer(&scene, model(a.splines), prims, tol),
+    })??;
     let background = match a.background {
         Background::Color(c) => c,
         Background::Transparent => [0.0; 3],
@@ -213,6 +220,7 @@ pub fn info(a: &InfoArgs) -> Res {
         println!("bounds min {:?}", st.bounds.0);
         println!("bounds max {:?}", st.bounds.1);
     }
+    crate::cmd_mesh::info_choice(&scene, a.tolerance, a.pixel_error)?;
     println!(
         "memory     scene {} B, primitives + BVH {} B ({} 8-wide BVH nodes)",
         scene.memory_bytes(),

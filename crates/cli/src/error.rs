@@ -3,6 +3,7 @@
 use std::fmt;
 use std::path::PathBuf;
 use tubecast_render::io::IoError;
+use tubecast_render::mesh::MeshError;
 use tubecast_render::render::RenderError;
 use tubecast_render::scene::SceneError;
 
@@ -26,6 +27,12 @@ pub enum CliError {
     NeuronsNeedSwc(PathBuf),
     /// `--threads`: the worker pool could not be started.
     Threads(rayon::ThreadPoolBuildError),
+    /// Tessellating the scene (`mesh`, `render --model mesh`).
+    Mesh(MeshError),
+    /// `render --model mesh` without `--tolerance`.
+    MeshTolerance,
+    /// `simplify --tolerance` not a finite number ≥ 0.
+    Tolerance(f64),
 }
 
 impl fmt::Display for CliError {
@@ -38,6 +45,9 @@ impl fmt::Display for CliError {
             Self::NeuronsPerSide => f.write_str("--n must be in 1..=40"),
             Self::NeuronsNeedSwc(p) => write!(f, "{}: neuron assemblies branch; write them as .swc", p.display()),
             Self::Threads(e) => write!(f, "--threads: {e}"),
+            Self::Mesh(e) => e.fmt(f),
+            Self::MeshTolerance => f.write_str("--model mesh needs --tolerance EPS"),
+            Self::Tolerance(t) => write!(f, "--tolerance {t} must be a finite number ≥ 0"),
         }
     }
 }
@@ -48,6 +58,7 @@ impl std::error::Error for CliError {
             Self::Io(e) => Some(e),
             Self::Scene(e) => Some(e),
             Self::Render(e) => Some(e),
+            Self::Mesh(e) => Some(e),
             _ => None,
         }
     }
@@ -68,5 +79,11 @@ impl From<SceneError> for CliError {
 impl From<RenderError> for CliError {
     fn from(e: RenderError) -> Self {
         Self::Render(e)
+    }
+}
+
+impl From<MeshError> for CliError {
+    fn from(e: MeshError) -> Self {
+        Self::Mesh(e)
     }
 }

@@ -2,12 +2,14 @@
 
 mod args;
 mod cmd_intersect;
+mod cmd_mesh;
+mod cmd_simplify;
 mod commands;
 mod error;
 mod hits_io;
 mod render_opts;
 
-use args::{GenerateArgs, InfoArgs, IntersectArgs, RenderArgs};
+use args::{GenerateArgs, InfoArgs, IntersectArgs, MeshArgs, RenderArgs, SimplifyArgs};
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
@@ -36,6 +38,10 @@ enum Cmd {
     Intersect(IntersectArgs),
     /// Generate a procedural test scene (.swc, .tck, .obj or .trk by extension; neurons: .swc).
     Generate(GenerateArgs),
+    /// Tessellate a scene within a certified tolerance; write .ply, .obj or .glb.
+    Mesh(MeshArgs),
+    /// Merge consecutive links while the merged tube stays within --tolerance; same format out.
+    Simplify(SimplifyArgs),
 }
 
 fn main() -> ExitCode {
@@ -44,6 +50,8 @@ fn main() -> ExitCode {
         Cmd::Info(a) => commands::info(&a),
         Cmd::Intersect(a) => cmd_intersect::intersect(&a),
         Cmd::Generate(a) => commands::generate(&a),
+        Cmd::Mesh(a) => cmd_mesh::mesh(&a),
+        Cmd::Simplify(a) => cmd_simplify::simplify(&a),
     };
     match r {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,7 +1,7 @@
 //! `tubecast-lab`: writes the reports (SVG charts, markdown, CSV) into a folder.
 //!
 //! ```text
-//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|peers|all [--out DIR]
+//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|mesh|peers|all [--out DIR]
 //!     [--seed N] [--quick] [--big] [--threads N] [--quiet]
 //! ```
 //!
@@ -49,6 +49,8 @@ enum Which {
     Stability,
     /// Frame time and rays/s against segment count, opaque and transparent.
     Speed,
+    /// The certified mesh path against the exact kernels (Salm's question).
+    Mesh,
     /// Embree 3's round linear curves on the same rays (feature `embree`).
     Peers,
     /// Dynamic line sets: rebuild + render per frame, voxel grid vs BVH.
@@ -73,6 +75,9 @@ fn jobs(which: Which) -> Result<Vec<(&'static str, Job)>, String> {
     }
     if all || which == Which::Voxel {
         jobs.push(("voxel", report::run_voxel));
+    }
+    if all || which == Which::Mesh {
+        jobs.push(("mesh", report::run_mesh));
     }
     #[cfg(feature = "embree")]
     if all || which == Which::Peers {

@@ -27,6 +27,7 @@
 
 pub mod accel;
 pub mod io;
+pub mod mesh;
 pub mod quantized;
 pub mod render;
 pub mod scene;

@@ -12,12 +12,15 @@
 //!   curvature radius, cusps, rays starting inside, …);
 //! * [`run_speed`] — BVH build and frame time and rays/s versus segment count (opaque and
 //!   transparent/CSG) on generated scenes;
+//! * [`run_mesh`] — the certified mesh path against the exact kernels (build, memory, frame,
+//!   image difference) versus segment count;
 //! * `run_peers` (feature `embree`) — Embree 3's round linear curves on the same `f32` rays.
 //!
 //! The accuracy numbers (not the timings) are a pure function of [`ReportOptions`].
 
 pub mod chart;
 pub mod eval;
+mod mesh;
 pub mod oracle;
 #[cfg(feature = "embree")]
 mod peers;
@@ -27,6 +30,7 @@ mod runs;
 mod speed;
 mod voxel;
 
+pub use mesh::run_mesh;
 #[cfg(feature = "embree")]
 pub use peers::run_peers;
 pub use runs::{run_accuracy, run_stability};

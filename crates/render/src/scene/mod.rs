@@ -45,10 +45,12 @@
 
 mod build;
 mod chains;
+pub mod choice;
 mod error;
 pub mod generate;
 mod load;
 mod prim;
+pub mod simplify;
 mod stats;
 
 pub use chains::{Chain, SplineSegment};
