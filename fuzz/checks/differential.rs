@@ -3,7 +3,7 @@
 // bounds derived in tests/link_props.rs (E = tubecast_oracle::link_error_bound):
 // 1. lanes (f32x8, f64x4) equal the scalar calls bit for bit (same IEEE operations, in order);
 // 2. f32 and f64 stable kernels on the same (f32-rounded) problem: the same hit/miss outside
-//    the band |gap| ≤ E₃₂ + E₆₄, and entry/exit t within (E₃₂ + E₆₄)/(γ|d|) + tip term;
+//    the band |gap| ≤ E₃₂ + E₆₄, and entry/exit t within the E-band of the line (`same_t`);
 // 3. Han (faithful) and stable in f64 where Han is well conditioned (apex ≤ 100 sizes away,
 //    r_min ≥ 1e-3 r_max, E_Han = 64ε·D·max(1, D/r_min) < 1e-6 S), within E_Han + E₆₄.
 // Any disagreement outside its bound is a finding. Inputs whose lengths span ≥ 1e12 get only
@@ -94,16 +94,49 @@ fn to64(iv: Interval<f32>) -> Interval<f64> {
     }
 }
 
-/// Entry and exit `t` of two hits within `e/(γ|d|) + tip/|d| + 1e-12|t|` (γ from `a`'s normals).
+/// Both hits' entry and exit `t` inside the band of answers whose points lie within `e` of the
+/// surface: the entry between the line's entries into the sweep dilated by `e` (radii + e, the
+/// exact e-offset) and eroded by `e` (radii − e, the link cut where that reaches 0: every ball
+/// of it lies ≥ e inside),
+/// the exit likewise — the incidence-free form of `e/(γ|d|)`, which stays right where the line
+/// runs along the surface (a fuzz finding: a line along a generator through a cone's tip, where
+/// any point of the generator is an equally good entry). Plus 1e-12·|t| for the oracle's own
+/// rounding.
 pub fn same_t(a: &Interval<f64>, b: &Interval<f64>, link: &RoundCone<f64>, ray: &Ray<f64>, e: f64) -> Result<(), String> {
-    let dl = ray.d.length();
-    let tip = tubecast_oracle::link_tip_term(&olink(link), e) / dl;
-    for (ta, tb, n) in [(a.t_in, b.t_in, a.n_in), (a.t_out, b.t_out, a.n_out)] {
-        let g = n.dot(ray.d).abs() / dl;
-        let tol = e / (g * dl) + tip + 1e-12 * ta.abs();
-        let dt = (ta - tb).abs();
-        if dt.is_nan() || dt > tol {
-            return Err(format!("t {ta} vs {tb} (tol {tol:e})"));
+    let ov = |v: V3<f64>| tubecast_oracle::Vec3::new(v.x, v.y, v.z);
+    let line = tubecast_oracle::Line { o: ov(ray.o), d: ov(ray.d) };
+    let l = olink(link);
+    let dilated = tubecast_oracle::Link { ra: l.ra + e, rb: l.rb + e, ..l };
+    // r(u) − e is linear; where it would go negative the eroded sweep ends (at r(u*) = e), so
+    // the link is cut there rather than given a zero radius (which would keep its old tip).
+    let eroded = if l.ra.max(l.rb) <= e {
+        None
+    } else if l.ra.min(l.rb) >= e {
+        Some(tubecast_oracle::Link { ra: l.ra - e, rb: l.rb - e, ..l })
+    } else {
+        let u = (l.ra - e) / (l.ra - l.rb); // r(u) = e, in (0, 1)
+        let cut = l.a + (l.b - l.a) * u;
+        Some(if l.ra > l.rb {
+            tubecast_oracle::Link { b: cut, ra: l.ra - e, rb: 0.0, ..l }
+        } else {
+            tubecast_oracle::Link { a: cut, ra: 0.0, rb: l.rb - e, ..l }
+        })
+    };
+    let Some(dil) = tubecast_oracle::line_interval(&dilated, &line) else {
+        return Err(format!("a hit where the line misses the sweep dilated by E = {e:e}"));
+    };
+    let ero = eroded.and_then(|l| tubecast_oracle::line_interval(&l, &line));
+    let (in_hi, out_lo) = ero.map_or((dil.t_out, dil.t_in), |c| (c.t_in, c.t_out));
+    let within = |t: f64, lo: f64, hi: f64| {
+        let slack = 1e-12 * (t.abs() + lo.abs() + hi.abs());
+        t >= lo - slack && t <= hi + slack
+    };
+    for (what, iv) in [("first", a), ("second", b)] {
+        if !within(iv.t_in, dil.t_in, in_hi) {
+            return Err(format!("{what} t_in {} outside the E-band [{}, {in_hi}] (E {e:e})", iv.t_in, dil.t_in));
+        }
+        if !within(iv.t_out, out_lo, dil.t_out) {
+            return Err(format!("{what} t_out {} outside the E-band [{out_lo}, {}] (E {e:e})", iv.t_out, dil.t_out));
         }
     }
     Ok(())

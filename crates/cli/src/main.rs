@@ -21,6 +21,8 @@ struct Cli {
 }
 
 #[derive(Subcommand)]
+// Parsed once per process: the size of the largest variant costs nothing worth a Box.
+#[allow(clippy::large_enum_variant)]
 enum Cmd {
     /// Render a scene (.swc, .trk, .tck, .trx, .obj) to a PNG.
     Render(RenderArgs),
