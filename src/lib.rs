@@ -39,7 +39,7 @@ mod vec;
 pub use bounds::{Aabb, Obb};
 pub use error::GeometryError;
 pub use kernel::csg::{self, union, Boundary, Tagged};
-pub use kernel::hermite::HermiteSegment;
+pub use kernel::hermite::{AdaptiveSplit, HermiteSegment};
 pub use kernel::link::{HanLink, LinkShape, RoundCone};
 pub use kernel::roots::Solver;
 pub use kernel::spline::QuadTube;

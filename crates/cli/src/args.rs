@@ -110,6 +110,9 @@ pub struct IntersectArgs {
     /// Output hits, N×8 float64 .npy.
     #[arg(long)]
     pub out: PathBuf,
+    /// Trace the spline model (as `render --splines` does) instead of the links.
+    #[arg(long)]
+    pub splines: bool,
     /// Tube radius for formats without radii.
     #[arg(long, default_value_t = 0.2)]
     pub radius: f64,

@@ -72,6 +72,7 @@ pub fn info(a: &InfoArgs) -> Res {
     let scene = load(&a.input, a.radius, a.min_radius, "counts are zero")?;
     let prims = scene.model_primitives(model(a.splines))?;
     let st = if a.splines { scene.stats_of(&prims) } else { scene.stats() };
+    let pieces = prims.iter().filter(|p| p.kind() == tubecast_render::scene::PrimKind::Spline).count();
     let bvh = Bvh::build(prims);
     println!("file       {}", a.input.display());
     println!("nodes      {}", st.nodes);
@@ -80,7 +81,13 @@ pub fn info(a: &InfoArgs) -> Res {
     println!("cones      {}", st.cones);
     println!("spheres    {}", st.spheres);
     if a.splines {
-        println!("splines    {} ({} quadratic sub-segments)", st.splines, 2 * st.splines);
+        let f = scene.spline_fidelity();
+        println!("splines    {} ({pieces} quadratic sub-segments)", st.splines);
+        println!(
+            "fidelity   traced pair ≤ {:.3e} radii ({:.3e} absolute) from the cubic, certified; \
+             faithful split: {} pieces for ≤ {:.1e} radii",
+            f.pair_relative, f.pair_distance, f.faithful_pieces, f.faithful_relative
+        );
     } else {
         println!("splines    {}", st.splines);
     }
@@ -103,7 +110,7 @@ pub fn intersect(a: &IntersectArgs) -> Res {
     let scene = load(&a.input, a.radius, a.min_radius, "every ray misses")?;
     let name = a.rays.display().to_string();
     let rays = io::npy::read(&io::read_bytes(&a.rays)?, &name, Some(6))?.rays(&name)?;
-    let bvh = Bvh::build(scene.primitives());
+    let bvh = Bvh::build(scene.model_primitives(model(a.splines))?);
     let hits = Array2::from_rows(&hit_table(&bvh, &rays));
     Ok(io::write_bytes(&a.out, &io::npy::write(&hits))?)
 }

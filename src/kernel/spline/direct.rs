@@ -65,23 +65,26 @@ impl<T: Real> Direct<T> {
         self.gap_g(t).1
     }
 
+    /// `(w, r, w', r')` at `t`.
+    #[inline(always)]
+    fn jet(&self, t: T) -> (V3<T>, T, V3<T>, T) {
+        let two = T::cst(2.0);
+        let (w, r) = self.wr(t);
+        (w, r, self.wa * (two * t) + self.wb, two * self.ra * t + self.rb)
+    }
+
     /// `g'(t) = 2(r r' − w·w')`.
     #[inline(always)]
     pub(super) fn g1(&self, t: T) -> T {
-        let two = T::cst(2.0);
-        let (w, r) = self.wr(t);
-        let w1 = self.wa * (two * t) + self.wb;
-        let r1 = two * self.ra * t + self.rb;
-        two * (r * r1 - w.dot(w1))
+        let (w, r, w1, r1) = self.jet(t);
+        T::cst(2.0) * (r * r1 - w.dot(w1))
     }
 
     /// `g''(t) = 2(r'² + r r'' − |w'|² − w·w'')`.
     #[inline(always)]
     pub(super) fn g2(&self, t: T) -> T {
         let two = T::cst(2.0);
-        let (w, r) = self.wr(t);
-        let w1 = self.wa * (two * t) + self.wb;
-        let r1 = two * self.ra * t + self.rb;
+        let (w, r, w1, r1) = self.jet(t);
         two * (r1 * r1 + r * (two * self.ra) - w1.dot(w1) - w.dot(self.wa * two))
     }
 
