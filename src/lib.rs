@@ -39,7 +39,7 @@ mod vec;
 pub use bounds::{Aabb, Obb};
 pub use error::GeometryError;
 pub use kernel::csg::{self, union, Boundary, Tagged};
-pub use kernel::hermite::HermiteSegment;
+pub use kernel::hermite::{AdaptiveSplit, HermiteSegment};
 pub use kernel::link::{HanLink, LinkShape, RoundCone};
 pub use kernel::mesh::{
     tessellate_chain, tessellate_chain_solid, tessellate_link, tessellate_spline, Mesh, Part, MAX_RING,

@@ -22,6 +22,12 @@ pub enum Solver {
     /// bracket. `iters = 10` is Salm's setting; the `t` error is `2^-iters` of the bracket.
     /// The cascade relies on Russig's empirical claim (at most one root of `f'''` per real
     /// interval), which has counterexamples (`tests/spline_claims.rs`); so do `Itp`, `Newton`.
+    ///
+    /// **Approximate below about 30 steps**: a `t` located to `2^-iters` puts a thin tube's
+    /// entry far from the critical point (its width in `t` is `~r/L`) and can lose a real
+    /// interval narrower than `2^-iters` — false misses and late entries outside the kernel's
+    /// band (`tests/spline_approximate.rs` measures them). Never a default; `iters ≥ 40` meets
+    /// the band of the accurate solvers (`tests/spline_conditioning.rs`).
     Bisection {
         /// Bisection steps per bracket.
         iters: u32,

@@ -2,6 +2,8 @@
 //! dense-sampling oracle of the quadratic sphere sweep (f64).
 #![allow(dead_code)]
 
+pub mod thin;
+
 use proptest::prelude::*;
 use tubecast::QuadTube;
 use tubecast::Solver;

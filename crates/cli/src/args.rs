@@ -281,6 +281,9 @@ pub struct IntersectArgs {
     /// Worker threads (default: one per core).
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..), value_name = "N")]
     pub threads: Option<u16>,
+    /// Trace the spline model (as `render --splines` does) instead of the links.
+    #[arg(long)]
+    pub splines: bool,
     /// Tube radius for formats without radii.
     #[arg(long, default_value_t = 0.2)]
     pub radius: f64,

@@ -19,8 +19,9 @@ pub fn intersect(a: &IntersectArgs) -> Result<(), CliError> {
     let scene = crate::commands::load(&a.input, a.radius, a.min_radius, "every ray misses")?;
     let name = a.rays.display().to_string();
     let rays = io::npy::read(&crate::hits_io::read_input(&a.rays)?, &name, Some(6))?.rays(&name)?;
+    let prims = scene.model_primitives(crate::commands::model(a.splines))?;
     let rows = with_threads(a.threads.map(usize::from), || {
-        let bvh = crate::commands::tracer(a.accel, scene.primitives());
+        let bvh = crate::commands::tracer(a.accel, prims);
         match a.query {
             Query::Hit => closest_table(bvh.as_ref(), &rays),
             Query::Piece => hit_table(bvh.as_ref(), &rays),

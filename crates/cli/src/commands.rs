@@ -88,7 +88,7 @@ fn thin_on(t: Thin, input: &Path) -> bool {
     }
 }
 
-fn model(splines: bool) -> Model {
+pub(crate) fn model(splines: bool) -> Model {
     if splines {
         Model::Splines
     } else {
@@ -188,6 +188,7 @@ pub fn info(a: &InfoArgs) -> Res {
     let scene = load(&a.input, radius, a.min_radius, "counts are zero")?;
     let prims = scene.model_primitives(model(a.splines))?;
     let st = if a.splines { scene.stats_of(&prims) } else { scene.stats() };
+    let pieces = prims.iter().filter(|p| p.kind() == tubecast_render::scene::PrimKind::Spline).count();
     let bvh = WideBvh::build(prims);
     if a.json {
         let bounds = (!st.is_empty()).then(|| serde_json::json!({"min": st.bounds.0, "max": st.bounds.1}));
@@ -210,7 +211,13 @@ pub fn info(a: &InfoArgs) -> Res {
     println!("cones      {}", st.cones);
     println!("spheres    {}", st.spheres);
     if a.splines {
-        println!("splines    {} ({} quadratic sub-segments)", st.splines, 2 * st.splines);
+        let f = scene.spline_fidelity();
+        println!("splines    {} ({pieces} quadratic sub-segments)", st.splines);
+        println!(
+            "fidelity   traced pair ≤ {:.3e} radii ({:.3e} absolute) from the cubic, certified; \
+             faithful split: {} pieces for ≤ {:.1e} radii",
+            f.pair_relative, f.pair_distance, f.faithful_pieces, f.faithful_relative
+        );
     } else {
         println!("splines    {}", st.splines);
     }

@@ -7,7 +7,8 @@
 //!
 //! * [`link`]: a link (`p`, `r` linear): exact distance and normal, the line's gap and its
 //!   interval (convex in `u`: bisection and golden section).
-//! * [`spline`]: a quadratic Bézier tube: dense sampling refined by golden section.
+//! * [`spline`]: a quadratic Bézier tube: dense sampling refined by golden section;
+//!   [`spline_fine`]: the same for thin tubes (`L/r` to 10⁵ and beyond), radius offset.
 //! * [`minimise`]: the golden-section and derivative-bisection minimisers.
 //! * [`link_cases`], [`spline_cases`]: the seeded case generators of the reports, aimed at each
 //!   failure region, and the error bound of the stable link they are judged by.
@@ -29,6 +30,8 @@ pub mod minimise;
 pub mod rng;
 pub mod spline;
 pub mod spline_cases;
+pub mod spline_fine;
+pub mod spline_thin;
 mod vec;
 
 pub use link::{line_gap, line_interval, sweep_dist, sweep_normal, Crossing, Link};
@@ -38,4 +41,6 @@ pub use link_cases::{
 pub use minimise::{convex_argmin, golden_min};
 pub use spline::{quad_crossing, quad_gap, quad_hit_measure, Quad, QuadCrossing};
 pub use spline_cases::{spline_case, spline_truth, SplineCase, SplineRegion, SplineTruth, SPLINE_REGIONS};
+pub use spline_fine::quad_crossing_offset;
+pub use spline_thin::{thin_case, ThinCase, ThinFamily, THIN_FAMILIES};
 pub use vec::{line_dist, sphere_crossing, Line, Vec3};

@@ -1,6 +1,7 @@
 //! Ray space of one ray–segment query (Russig §3.2, Salm §3.2): the polynomials `h` and `g`,
 //! the candidates for the entry and exit, and their polish (see the parent module's docs).
 
+use super::direct::Direct;
 use super::QuadTube;
 use crate::math::bezier::bernstein2;
 use crate::math::roots::{cascade_level, default_tol, horner, itp, opposite, poly_breakpoints, poly_mul, Bracket};
@@ -57,9 +58,9 @@ pub(super) struct RaySpace<T: Real> {
     gv: [T; 5],
     /// Expansion point of `hv`, `gv`: the vertex of the centre line (least `|p'|`), in `[0, 1]`.
     tv: T,
-    /// `g(1) = r₂² − |c₂ × d̂|²` formed directly from the end (not as `Σ gᵢ`, which carries
-    /// the rounding of every coefficient): exactly 0 for a zero-radius end on the line.
-    g_end: T,
+    /// `g` and its derivatives from the vectors (the decisions and the values; `g` above
+    /// only feeds `P`'s coefficients).
+    pub(super) dg: Direct<T>,
 }
 
 /// `h` and `g` (ascending powers of the parameter) from the power-basis position
@@ -162,14 +163,11 @@ impl<T: Real> RaySpace<T> {
         let rbv = ((r1 - r0) * sv + (r2 - r1) * tv) * two;
         let (hv, gv) = ray_polys([qa, qbv, qcv], [ra, rbv, rcv], dhat);
         // g at t = 1 from the end itself (fuzz finding regression-tip-on-ray: r(1) = 0 with
-        // p(1) on the ray, g = c(1 − t)⁴; Σ gᵢ came out −2.2e-16, below the tolerance 16ε·Σ|gᵢ|,
-        // which bounds the evaluation of g's coefficients but not their own rounding, and the
-        // tip — the true entry — was dropped). At t = 0 Horner gives g₀ = rc² − |wc|², the
-        // same formula.
-        let w_end = c2.cross(dhat);
-        let g_end = r2 * r2 - w_end.dot(w_end);
+        // p(1) on the ray, g = c(1 − t)⁴; Σ gᵢ came out −2.2e-16 and the tip — the true
+        // entry — was dropped). At t = 0 Horner gives wc, rc exactly.
+        let dg = Direct::new([qa, qb, qc], [ra, rb, rc], dhat, (c2, r2));
         // Ray-space distances are in units of `big`: t = tc + s·big/|d|.
-        Self { h, g, qa, qb, qc, dhat, tc, inv_dlen: inv_dlen * big_s, near, hv, gv, tv, g_end }
+        Self { h, g, qa, qb, qc, dhat, tc, inv_dlen: inv_dlen * big_s, near, hv, gv, tv, dg }
     }
 
     #[inline(always)]
@@ -180,7 +178,7 @@ impl<T: Real> RaySpace<T> {
     /// `σh(t) − √max(g(t), 0)`: the entry (σ = 1) or minus the exit (σ = −1).
     #[inline(always)]
     fn val(&self, t: T, sigma: T) -> T {
-        sigma * horner(&self.h, t) - horner(&self.g, t).max(T::zero()).sqrt()
+        sigma * horner(&self.h, t) - self.dg.g(t).max(T::zero()).sqrt()
     }
 
     /// Entry and exit over `[lo, hi]` by Russig's cascade ([`Self::russig_min`] for `σ = ±1`).
@@ -196,26 +194,23 @@ impl<T: Real> RaySpace<T> {
     #[inline(always)]
     fn russig_min(&self, lo: T, hi: T, sigma: T, m: Bracket) -> (T, T) {
         let two = T::cst(2.0);
-        let g = self.g;
-        let g1 = [g[1], two * g[2], T::cst(3.0) * g[3], T::cst(4.0) * g[4]];
-        let g2 = [two * g[2], T::cst(6.0) * g[3], T::cst(12.0) * g[4]];
-        let g3 = [T::cst(6.0) * g[3], T::cst(24.0) * g[4]];
+        let dg = self.dg;
         let hs = [self.h[0] * sigma, self.h[1] * sigma, self.h[2] * sigma];
         let h1 = [hs[1], two * hs[2]];
         let h2 = two * hs[2];
-        let gg = move |t: T| horner(&g, t).max(T::zero());
+        let gg = move |t: T| dg.g(t).max(T::zero());
         let f3 = move |t: T| {
-            let (gv, d1, d2, d3) = (gg(t), horner(&g1, t), horner(&g2, t), horner(&g3, t));
+            let (gv, d1, d2, d3) = (gg(t), dg.g1(t), dg.g2(t), dg.g3(t));
             -T::cst(4.0) * d3 * gv * gv + T::cst(6.0) * d1 * d2 * gv - T::cst(3.0) * d1 * d1 * d1
         };
         let f2 = move |t: T| {
-            let (gv, d1, d2) = (gg(t), horner(&g1, t), horner(&g2, t));
+            let (gv, d1, d2) = (gg(t), dg.g1(t), dg.g2(t));
             T::cst(4.0) * h2 * gv * gv.sqrt() - two * d2 * gv + d1 * d1
         };
-        let f1 = move |t: T| two * horner(&h1, t) * gg(t).sqrt() - horner(&g1, t);
+        let f1 = move |t: T| two * horner(&h1, t) * gg(t).sqrt() - dg.g1(t);
         let df1 = move |t: T| {
             let sg = gg(t).sqrt();
-            two * h2 * sg + horner(&h1, t) * horner(&g1, t) / sg - horner(&g2, t)
+            two * h2 * sg + horner(&h1, t) * dg.g1(t) / sg - dg.g2(t)
         };
         let none = |_: T| T::zero();
         let (m3, m1) = match m {
@@ -239,25 +234,30 @@ impl<T: Real> RaySpace<T> {
         (best, bt)
     }
 
-    /// Polishes a critical point of `σh − √g` found as a root of `P` (whose coefficients carry
-    /// the cancellation of `4h'²g − g'²`, so its roots can be off for thin, long tubes): ITP on
-    /// `F₁ = 2σh'√g − g'` (evaluated from `g` directly) in the bracket `[a, b]` of the
-    /// neighbouring breakpoints, kept where it lowers the value. Returns `(value, t)`.
+    /// Polishes a candidate `t` (value `v`) for a minimum of `σh − √g` — `P`'s roots carry
+    /// the cancellation of `4h'²g − g'²`'s coefficients and can be far off or missing for thin,
+    /// long tubes: the sign of `F₁ = 2σh'√g − g'` (from the vectors, [`Direct`]) at `t` says on
+    /// which side the minimum lies; ITP on `F₁` between `t` and that side's neighbouring
+    /// candidate (`left`, `right`), kept where the bracket is valid, the point is real (gap
+    /// `≥ −τ`) and it lowers the value. A real interval's ends are candidates, where
+    /// `F₁ = −g'` has the sign that makes the bracket valid. Returns `(value, t)`.
     #[inline(always)]
-    fn polish(&self, t: T, v: T, sigma: T, a: T, b: T) -> (T, T) {
+    fn polish(&self, t: T, v: T, sigma: T, left: T, right: T) -> (T, T) {
         let two = T::cst(2.0);
-        let g = self.g;
-        let g1 = [g[1], two * g[2], T::cst(3.0) * g[3], T::cst(4.0) * g[4]];
+        let dg = self.dg;
         let h1 = [self.h[1] * sigma, two * self.h[2] * sigma];
-        let f1 = move |x: T| two * horner(&h1, x) * horner(&g, x).max(T::zero()).sqrt() - horner(&g1, x);
-        let (fa, fb) = (f1(a), f1(b));
+        let f1 = move |x: T| two * horner(&h1, x) * dg.g(x).max(T::zero()).sqrt() - dg.g1(x);
+        let ft = f1(t);
+        let go_right = ft.lt(T::zero());
+        let (a, b) = (T::select(go_right, t, left), T::select(go_right, right, t));
+        let (fa, fb) = (T::select(go_right, ft, f1(left)), T::select(go_right, f1(right), ft));
         let valid = opposite(fa, fb);
         if valid.none() {
             return (v, t);
         }
         let x = itp(f1, a, b, fa, fb, valid, default_tol::<T>());
         let vx = self.val(x, sigma);
-        let better = valid & vx.lt(v) & horner(&g, x).ge(T::zero());
+        let better = valid & vx.lt(v) & dg.gap_g(x).0.ge(-dg.tau);
         (T::select(better, vx, v), T::select(better, x, t))
     }
 
@@ -311,33 +311,33 @@ impl<T: Real> RaySpace<T> {
     /// ([`Self::polish`]) between its neighbouring candidates. Also returns the lanes with a
     /// real candidate.
     #[inline(always)]
-    pub(super) fn polished_candidates(&self, c: &[T], lo: T, hi: T, all_real: bool) -> (Crossings<T>, T::Mask) {
-        let best = self.best_of_candidates(c, lo, hi, all_real);
+    pub(super) fn polished_candidates(
+        &self,
+        c: &[T],
+        extra: &[T],
+        lo: T,
+        hi: T,
+        all_real: bool,
+    ) -> (Crossings<T>, T::Mask) {
+        let best = self.best_of_candidates(c, extra, lo, hi, all_real);
         let (vi, ui) = self.polish(best.at.u_in, best.at.s_in, T::one(), best.in_bracket[0], best.in_bracket[1]);
         let (vo, uo) = self.polish(best.at.u_out, -best.at.s_out, -T::one(), best.out_bracket[0], best.out_bracket[1]);
         (Crossings { s_in: vi, u_in: ui, s_out: -vo, u_out: uo }, best.any)
     }
 
-    /// Entry/exit from candidate parameters (clamped to `[lo, hi]`), keeping only those with
-    /// `g ≥ 0` unless `all_real`.
+    /// Entry/exit from candidate parameters `c ∪ extra` (clamped to `[lo, hi]`), keeping only
+    /// real ones (gap `r − |w| ≥ −τ`, [`Direct`]) unless `all_real`; with each winner's nearest
+    /// candidates on either side (or `lo`, `hi`) as its polish brackets.
     #[inline(always)]
-    fn best_of_candidates(&self, c: &[T], lo: T, hi: T, all_real: bool) -> Candidates<T> {
+    fn best_of_candidates(&self, c: &[T], extra: &[T], lo: T, hi: T, all_real: bool) -> Candidates<T> {
         let inf = T::infinity();
         let (mut bi, mut ti, mut bo, mut to) = (inf, lo, inf, lo);
-        // Neighbouring candidates of the best ones: brackets for `polish`.
-        let mut nb = [lo, hi, lo, hi];
         let mut any = T::Mask::splat(false);
-        let n = c.len();
-        // g within its own rounding of 0 counts as real (e.g. r = 0 at an end on the ray:
-        // g = 0 exactly, computed as −1e-18): 16ε·Σ|gᵢ| bounds g's evaluation error on [0, 1].
-        let g = self.g;
-        let gtol = T::epsilon() * T::cst(16.0) * (g[0].abs() + g[1].abs() + g[2].abs() + g[3].abs() + g[4].abs());
-        for (k, &t) in c.iter().enumerate() {
+        for &t in c.iter().chain(extra) {
             let t = t.clamp(lo, hi);
-            let left = c[k.saturating_sub(1)].clamp(lo, hi);
-            let right = c[(k + 1).min(n - 1)].clamp(lo, hi);
-            let gv = T::select(t.ge(T::one()), self.g_end, horner(&self.g, t));
-            let ok = if all_real { T::Mask::splat(true) } else { gv.ge(-gtol) };
+            let (gap, gv) = self.dg.gap_g(t);
+            // Within the gap's rounding τ of 0 counts as real (e.g. r = 0 at an end on the ray).
+            let ok = if all_real { T::Mask::splat(true) } else { gap.ge(-self.dg.tau) };
             let hv = horner(&self.h, t);
             let sq = gv.max(T::zero()).sqrt();
             let (vi, vo) = (hv - sq, -hv - sq);
@@ -347,13 +347,16 @@ impl<T: Real> RaySpace<T> {
             ti = T::select(bi_, t, ti);
             bo = T::select(bo_, vo, bo);
             to = T::select(bo_, t, to);
-            nb = [
-                T::select(bi_, left, nb[0]),
-                T::select(bi_, right, nb[1]),
-                T::select(bo_, left, nb[2]),
-                T::select(bo_, right, nb[3]),
-            ];
             any = any | ok;
+        }
+        // Nearest candidates strictly left and right of each winner.
+        let mut nb = [lo, hi, lo, hi];
+        for &t in c.iter().chain(extra) {
+            let t = t.clamp(lo, hi);
+            nb[0] = T::select(t.lt(ti) & t.gt(nb[0]), t, nb[0]);
+            nb[1] = T::select(t.gt(ti) & t.lt(nb[1]), t, nb[1]);
+            nb[2] = T::select(t.lt(to) & t.gt(nb[2]), t, nb[2]);
+            nb[3] = T::select(t.gt(to) & t.lt(nb[3]), t, nb[3]);
         }
         Candidates {
             at: Crossings { s_in: bi, u_in: ti, s_out: -bo, u_out: to },

@@ -5,6 +5,27 @@ use std::cmp::Ordering;
 use tubecast::HermiteSegment;
 use tubecast::V3;
 
+/// Default tolerance of the spline model: certified distance to the cubic Hermite sweep over
+/// the local radius (issue 10).
+pub const SPLINE_TOLERANCE: f64 = 1e-3;
+/// Most halvings of one Hermite segment (at most 2⁷ = 128 quadratic pieces; their index is a `u8`).
+pub const SPLINE_MAX_DEPTH: u32 = 7;
+
+/// [`Scene::spline_fidelity`]: how far the traced pieces are from the cubic segments.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SplineFidelity {
+    /// Russig's pair: greatest certified distance (scene units).
+    pub pair_distance: f64,
+    /// Russig's pair: greatest certified distance over the segment's least node radius.
+    pub pair_relative: f64,
+    /// The faithful split: greatest certified distance over the local radius.
+    pub faithful_relative: f64,
+    /// The faithful split: quadratic pieces in all.
+    pub faithful_pieces: usize,
+    /// Curved segments.
+    pub segments: usize,
+}
+
 /// A chain of links: a maximal path whose interior nodes have exactly two links.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Chain {
@@ -148,8 +169,40 @@ impl Scene {
         out
     }
 
+    /// How faithful the spline models are to the cubic Hermite segments, over the curved
+    /// segments (straight ones are their links, exactly): the greatest certified distance
+    /// ([`HermiteSegment::pair_distance`]) of Russig's pair — what [`Self::spline_primitives`]
+    /// traces — absolute and over the segment's least node radius, and the number of pieces the
+    /// faithful split ([`Self::faithful_spline_primitives`], [`SPLINE_TOLERANCE`]) needs and the
+    /// greatest relative distance it reaches. `info --splines` reports it.
+    pub fn spline_fidelity(&self) -> SplineFidelity {
+        let mut f = SplineFidelity::default();
+        for s in self.spline_segments() {
+            if s.is_straight() {
+                continue;
+            }
+            let d = s.seg.pair_distance();
+            f.pair_distance = f.pair_distance.max(d);
+            f.pair_relative = f.pair_relative.max(d / s.seg.r0.min(s.seg.r1));
+            if let Ok(split) = s.seg.split_adaptive(SPLINE_TOLERANCE, SPLINE_MAX_DEPTH) {
+                f.faithful_relative = f.faithful_relative.max(split.relative);
+                f.faithful_pieces += split.quads.len();
+            }
+            f.segments += 1;
+        }
+        f
+    }
+
+    /// [`Self::spline_primitives`] with every curved segment split adaptively
+    /// ([`HermiteSegment::split_adaptive`]) until its certified distance to the cubic is within
+    /// [`SPLINE_TOLERANCE`] of the local radius (or [`SPLINE_MAX_DEPTH`] halvings).
+    pub fn faithful_spline_primitives(&self) -> Result<Vec<Prim>, SceneError> {
+        self.spline_primitives_impl(true, true)
+    }
+
     /// Primitives of the spline model (see the module docs): two [`super::PrimKind::Spline`]
-    /// sub-segments per curved chain link, the link's own primitive for straight ones and for
+    /// sub-segments per curved chain link (Russig's pair, [`Self::spline_fidelity`] says how far
+    /// from the cubic; [`Self::faithful_spline_primitives`] for the certified split), the link's own primitive for straight ones and for
     /// isolated nodes. Errors (a guard; see [`Prim::from_quad`]) when a segment cannot be stored
     /// as an `f32` spline primitive.
     pub fn spline_primitives(&self) -> Result<Vec<Prim>, SceneError> {
@@ -159,6 +212,10 @@ impl Scene {
     /// [`Self::spline_primitives`], optionally keeping straight segments as splines too
     /// (`straight_as_links = false`; for comparing the two models on the same surface).
     pub fn spline_primitives_with(&self, straight_as_links: bool) -> Result<Vec<Prim>, SceneError> {
+        self.spline_primitives_impl(straight_as_links, false)
+    }
+
+    fn spline_primitives_impl(&self, straight_as_links: bool, faithful: bool) -> Result<Vec<Prim>, SceneError> {
         let mut done = vec![false; self.links.len()];
         let mut out = Vec::with_capacity(2 * self.links.len());
         for s in self.spline_segments() {
@@ -169,9 +226,14 @@ impl Scene {
             }
             let [a, b] = self.links[s.link as usize];
             let err = |cause| SceneError::Spline { link: s.link, nodes: [a, b], cause };
-            let [q0, q1] = s.seg.split().map_err(err)?;
-            out.push(Prim::from_quad(&q0, s.link, 0).map_err(err)?);
-            out.push(Prim::from_quad(&q1, s.link, 1).map_err(err)?);
+            let quads = if faithful {
+                s.seg.split_adaptive(SPLINE_TOLERANCE, SPLINE_MAX_DEPTH).map_err(err)?.quads
+            } else {
+                s.seg.split().map_err(err)?.to_vec()
+            };
+            for (k, q) in quads.iter().enumerate() {
+                out.push(Prim::from_quad(q, s.link, k as u8).map_err(err)?);
+            }
         }
         for (k, d) in done.iter().enumerate() {
             if !d {

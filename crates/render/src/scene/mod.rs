@@ -28,8 +28,9 @@
 //!   negative or identically zero radius (a tapering tip stays a tip). Uniform Catmull–Rom
 //!   assumes roughly even node spacing (streamlines and most reconstructions): very uneven
 //!   spacing can overshoot, as any interpolating cubic does.
-//! * **Split.** Each segment is split by [`HermiteSegment::split`] into two quadratic
-//!   sphere-swept sub-segments ([`QuadTube`]), each one [`Prim`] of kind
+//! * **Split.** Each segment is split by [`HermiteSegment::split_adaptive`] into quadratic
+//!   sphere-swept pieces ([`QuadTube`]) until the certified distance to the cubic's sweep is
+//!   ≤ [`SPLINE_TOLERANCE`] of the local radius ([`Scene::spline_fidelity`]), each one [`Prim`] of kind
 //!   [`Shape::Spline`], stored in `f32` relative to its midpoint like the links.
 //! * **Straight runs stay links** ("model no more than a scene needs"): a segment whose
 //!   five control points `(bₖ, ρₖ)` lie on the chord with the link's affine radius — defect
@@ -53,7 +54,7 @@ mod prim;
 pub mod simplify;
 mod stats;
 
-pub use chains::{Chain, SplineSegment};
+pub use chains::{Chain, SplineFidelity, SplineSegment, SPLINE_MAX_DEPTH, SPLINE_TOLERANCE};
 pub use error::SceneError;
 pub use load::{LoadOptions, LoadReport};
 pub use prim::{Prim, PrimKind, Shape};

@@ -1,0 +1,122 @@
+//! `g` and its derivatives evaluated from the ray-space **vectors** (see "Conditioning" in the
+//! parent module): `g = (r − |w|)(r + |w|)`, `w = q × d̂`, never from `g`'s expanded
+//! coefficients, whose rounding (`ε` of terms of size 1 in units of the bounding radius) is
+//! `ε·(L/r)²` of the values `≈ (r/L)²` that decide a thin tube's hits.
+
+use crate::math::roots::{cascade_level, Bracket};
+use crate::real::Real;
+use crate::vec::V3;
+
+/// The power-basis vectors `w = wa t² + wb t + wc` (`w = q × d̂`, the centre's offset from the
+/// line), the radius `r = ra t² + rb t + rc` (units of the bounding radius), their values at
+/// `t = 1` formed from the end itself, and the gap tolerance `τ`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Direct<T: Real> {
+    wa: V3<T>,
+    wb: V3<T>,
+    wc: V3<T>,
+    ra: T,
+    rb: T,
+    rc: T,
+    /// `w(1) = c₂ × d̂` and `r(1) = r₂` from the end (exact 0 for a zero-radius end on the line,
+    /// fuzz finding regression-tip-on-ray); `t = 0` is exact anyway (`wc`, `rc`).
+    w_end: V3<T>,
+    r_end: T,
+    /// Bound on the rounding of the computed gap `r(t) − |w(t)|` on `[0, 1]` (see the parent
+    /// module's "Conditioning"): `16ε·(Σ|r_k| + Σ|w_k|)`.
+    pub(super) tau: T,
+}
+
+impl<T: Real> Direct<T> {
+    /// From the power-basis position `q = qa t² + qb t + qc` (re-centred, in units of the
+    /// bounding radius), the radius coefficients, the unit direction and the end `c₂`, `r₂`.
+    #[inline(always)]
+    pub(super) fn new(q: [V3<T>; 3], r: [T; 3], dhat: V3<T>, end: (V3<T>, T)) -> Self {
+        let [wa, wb, wc] = [q[0].cross(dhat), q[1].cross(dhat), q[2].cross(dhat)];
+        let [ra, rb, rc] = r;
+        let sw = wa.length() + wb.length() + wc.length();
+        let sr = ra.abs() + rb.abs() + rc.abs();
+        let tau = T::epsilon() * T::cst(16.0) * (sw + sr);
+        Self { wa, wb, wc, ra, rb, rc, w_end: end.0.cross(dhat), r_end: end.1, tau }
+    }
+
+    /// `w(t)` and `r(t)` (Horner; the end values at `t ≥ 1`).
+    #[inline(always)]
+    fn wr(&self, t: T) -> (V3<T>, T) {
+        let w = (self.wa * t + self.wb) * t + self.wc;
+        let r = (self.ra * t + self.rb) * t + self.rc;
+        let end = t.ge(T::one());
+        (V3::select(end, self.w_end, w), T::select(end, self.r_end, r))
+    }
+
+    /// `(r − |w|, g)` at `t`: the signed gap of the line to the sphere `t` and `g = r² − |w|²`
+    /// formed as `(r − |w|)(r + |w|)`.
+    #[inline(always)]
+    pub(super) fn gap_g(&self, t: T) -> (T, T) {
+        let (w, r) = self.wr(t);
+        let lw = w.length();
+        let gap = r - lw;
+        (gap, gap * (r + lw))
+    }
+
+    /// `g(t)`.
+    #[inline(always)]
+    pub(super) fn g(&self, t: T) -> T {
+        self.gap_g(t).1
+    }
+
+    /// `(w, r, w', r')` at `t`.
+    #[inline(always)]
+    fn jet(&self, t: T) -> (V3<T>, T, V3<T>, T) {
+        let two = T::cst(2.0);
+        let (w, r) = self.wr(t);
+        (w, r, self.wa * (two * t) + self.wb, two * self.ra * t + self.rb)
+    }
+
+    /// `g'(t) = 2(r r' − w·w')`.
+    #[inline(always)]
+    pub(super) fn g1(&self, t: T) -> T {
+        let (w, r, w1, r1) = self.jet(t);
+        T::cst(2.0) * (r * r1 - w.dot(w1))
+    }
+
+    /// `g''(t) = 2(r'² + r r'' − |w'|² − w·w'')`.
+    #[inline(always)]
+    pub(super) fn g2(&self, t: T) -> T {
+        let two = T::cst(2.0);
+        let (w, r, w1, r1) = self.jet(t);
+        two * (r1 * r1 + r * (two * self.ra) - w1.dot(w1) - w.dot(self.wa * two))
+    }
+
+    /// `g'''(t) = 6(r' r'' − w'·w'') = 12((ra rb − wa·wb) + 2t(ra² − |wa|²))`.
+    #[inline(always)]
+    pub(super) fn g3(&self, t: T) -> T {
+        let (c0, c1) = self.g3_coeffs();
+        T::cst(12.0) * (c0 + T::cst(2.0) * t * c1)
+    }
+
+    #[inline(always)]
+    fn g3_coeffs(&self) -> (T, T) {
+        (self.ra * self.rb - self.wa.dot(self.wb), self.ra * self.ra - self.wa.dot(self.wa))
+    }
+
+    /// Breakpoints `0 = z₀ ≤ … ≤ z₅ = 1` with `g` monotone between them (its real intervals
+    /// are unions of pieces): the derivative cascade `g'''` (linear, solved) → `g''` → `g'` →
+    /// `g`, every level evaluated from the vectors ([`Self::g2`], [`Self::g1`], [`Self::g`]).
+    #[inline(always)]
+    pub(super) fn g_breakpoints(&self, m: Bracket) -> [T; 6] {
+        let (zero, one) = (T::zero(), T::one());
+        let (c0, c1) = self.g3_coeffs();
+        let den = T::cst(2.0) * c1;
+        let ok = !den.eq(zero) & den.is_finite();
+        let t3 = -c0 / T::select(ok, den, one);
+        let t3 = T::select(ok & t3.gt(zero) & t3.lt(one), t3, one);
+        let mut bp = [one; 8];
+        bp[0] = zero;
+        bp[1] = t3;
+        let bp = cascade_level(&bp, 3, |t| self.g2(t), |t| self.g3(t), m);
+        let bp = cascade_level(&bp, 4, |t| self.g1(t), |t| self.g2(t), m);
+        let bp = cascade_level(&bp, 5, |t| self.g(t), |t| self.g1(t), m);
+        [bp[0], bp[1], bp[2], bp[3], bp[4], bp[5]]
+    }
+}
