@@ -8,37 +8,17 @@ mod common;
 use common::{bin, tmp};
 use tubecast_render::io::npy::{read, write, Array2};
 
-/// nibabel's `empty.tck` (count 0, data at byte 67: one Inf triplet).
-fn empty_tck() -> Vec<u8> {
-    let mut d = b"mrtrix tracks\ncount: 0000000000\ndatatype: Float32LE\nfile: . 67\nEND\n".to_vec();
-    for _ in 0..3 {
-        d.extend_from_slice(&f32::INFINITY.to_le_bytes());
-    }
-    d
-}
-
-/// A TrackVis header with n_count 0 and no records (nibabel's `empty.trk`).
-fn empty_trk() -> Vec<u8> {
-    let mut d = vec![0u8; 1000];
-    d[0..6].copy_from_slice(b"TRACK\0");
-    for k in 0..3 {
-        d[6 + 2 * k..8 + 2 * k].copy_from_slice(&1i16.to_le_bytes());
-        d[12 + 4 * k..16 + 4 * k].copy_from_slice(&1f32.to_le_bytes());
-    }
-    for i in 0..4 {
-        d[440 + 20 * i..444 + 20 * i].copy_from_slice(&1f32.to_le_bytes());
-    }
-    d[948..951].copy_from_slice(b"RAS");
-    d[992..996].copy_from_slice(&2i32.to_le_bytes());
-    d[996..1000].copy_from_slice(&1000i32.to_le_bytes());
-    d
+/// nibabel's own test file `name` (committed under `reference/readers/nibabel`, MIT).
+fn nibabel_file(name: &str) -> Vec<u8> {
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../reference/readers/nibabel").join(name);
+    std::fs::read(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
 }
 
 /// The three empty files, named `{prefix}-empty.*` (each test its own, as tests run in parallel).
 fn empty_files(prefix: &str) -> Vec<std::path::PathBuf> {
     let files = [
-        ("empty.tck", empty_tck()),
-        ("empty.trk", empty_trk()),
+        ("empty.tck", nibabel_file("empty.tck")),
+        ("empty.trk", nibabel_file("empty.trk")),
         ("empty.swc", b"# NeuroMorpho header\n# no nodes\n".to_vec()),
     ];
     files
@@ -123,7 +103,7 @@ fn intersect_on_an_empty_file_writes_misses() {
 fn a_malformed_empty_file_is_still_an_error() {
     // A .tck header without the Inf end marker, an OBJ without line elements.
     let tck = tmp("cut.tck");
-    std::fs::write(&tck, &empty_tck()[..67]).unwrap();
+    std::fs::write(&tck, &nibabel_file("empty.tck")[..67]).unwrap();
     let obj = tmp("mesh.obj");
     std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
     for (f, what) in [(tck, "without the Inf end marker"), (obj, "no line elements")] {

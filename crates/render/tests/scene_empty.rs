@@ -9,33 +9,19 @@ use tubecast_render::accel::{hit_table, Bvh};
 use tubecast_render::render::{render, Camera, Options};
 use tubecast_render::scene::{Model, Scene};
 
-/// nibabel's `empty.trk`, field by field: magic, dim (1, 1, 1), voxel size (1, 1, 1), identity
-/// `vox_to_ras`, voxel order "RAS", n_count 0, version 2, hdr_size 1000, little endian.
-fn nibabel_empty_trk() -> Vec<u8> {
-    let mut d = vec![0u8; 1000];
-    d[0..6].copy_from_slice(b"TRACK\0");
-    for k in 0..3 {
-        d[6 + 2 * k..8 + 2 * k].copy_from_slice(&1i16.to_le_bytes());
-        d[12 + 4 * k..16 + 4 * k].copy_from_slice(&1f32.to_le_bytes());
-    }
-    for i in 0..4 {
-        let o = 440 + 4 * (5 * i);
-        d[o..o + 4].copy_from_slice(&1f32.to_le_bytes());
-    }
-    d[948..951].copy_from_slice(b"RAS");
-    d[992..996].copy_from_slice(&2i32.to_le_bytes());
-    d[996..1000].copy_from_slice(&1000i32.to_le_bytes());
-    d
+/// nibabel's own `empty.trk` and `empty.tck` test files (committed under `reference/readers/`,
+/// MIT; see the COPYING there).
+fn nibabel_file(name: &str) -> Vec<u8> {
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../reference/readers/nibabel").join(name);
+    std::fs::read(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
 }
 
-/// nibabel's `empty.tck`: the header (count 0, data at byte 67) and one Inf triplet.
+fn nibabel_empty_trk() -> Vec<u8> {
+    nibabel_file("empty.trk")
+}
+
 fn nibabel_empty_tck() -> Vec<u8> {
-    let mut d = b"mrtrix tracks\ncount: 0000000000\ndatatype: Float32LE\nfile: . 67\nEND\n".to_vec();
-    assert_eq!(d.len(), 67);
-    for _ in 0..3 {
-        d.extend_from_slice(&f32::INFINITY.to_le_bytes());
-    }
-    d
+    nibabel_file("empty.tck")
 }
 
 #[test]
