@@ -1,7 +1,9 @@
 //! Chart readability: zero and infinity marked, precision series by shape in the legend,
 //! long category labels cut, colliding point labels moved apart; markdown tables as JSON.
 
-use tubecast_lab::report::chart::{precision_shape, write_svg, Chart, Marker, Pt, Series, XAxis};
+mod common;
+
+use tubecast_lab::report::chart::{precision_shape, write_svg, Chart, Marker, Pt, Series, Shape, XAxis};
 use tubecast_lab::report::tables_json;
 
 fn pt(x: f64, y: f64, text: Option<&str>) -> Pt {
@@ -31,6 +33,7 @@ fn zero_infinity_shapes_labels_and_collisions() {
                 line: false,
             },
             Series { label: "stable/f32x8".into(), color: 2, points: vec![pt(1.0, 2.0, None)], line: false },
+            Series { label: "stable/f64x4".into(), color: 3, points: vec![pt(1.0, 3.0, None)], line: false },
         ],
         note: None,
     };
@@ -51,12 +54,20 @@ fn zero_infinity_shapes_labels_and_collisions() {
     // Zero is marked "0", +∞ "∞" (neither dropped).
     assert!(has("0"), "zero not marked");
     assert!(has("∞"), "infinity not marked");
-    // Precision shapes: f32 circle, f64 square (rect), lanes triangle (polygon), in the legend too.
+    // Precision shapes: f32 circle, f64 square (rect), f32x8 triangle, f64x4 diamond (polygons),
+    // in the legend too, one shape per precision and no shape shared.
     assert_eq!(
-        [precision_shape("x/f32"), precision_shape("x/f64"), precision_shape("x/f32x8"), precision_shape("cone")],
-        [Some("circle"), Some("square"), Some("triangle"), None]
+        [
+            precision_shape("x/f32"),
+            precision_shape("x/f64"),
+            precision_shape("x/f32x8"),
+            precision_shape("x/f64x4"),
+            precision_shape("cone")
+        ],
+        [Some(Shape::Circle), Some(Shape::Square), Some(Shape::Triangle), Some(Shape::Diamond), None]
     );
     assert!(svg.contains("<rect") && svg.contains("<polygon"), "square and triangle markers drawn");
+    common::assert_precision_shapes(&svg, 800.0, &["f32", "f64", "f32x8", "f64x4"], "synthetic chart");
     // The long category label is cut with an ellipsis, never written whole.
     assert!(!svg.contains(long) && svg.contains('…'));
     // The two point labels at the same spot are moved apart by at least one text line.

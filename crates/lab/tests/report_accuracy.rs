@@ -1,6 +1,8 @@
 //! The accuracy report: a tiny seeded run writes its files; the numbers read back from the
 //! markdown obey the error analysis of `tests/link_props.rs`; seeded runs reproduce them.
 
+mod common;
+
 use std::path::PathBuf;
 use tubecast_lab::report::{self, parse_num, table_rows, ReportOptions};
 
@@ -44,6 +46,8 @@ fn accuracy_report_writes_files_and_sane_numbers() {
         // Labels are SVG text, not rasterised glyphs from a system font.
         assert!(svg.contains("<text"), "{} has no text elements", c.display());
         assert!(svg.contains("ns per ray"), "{} lacks its axis description", c.display());
+        // Every precision its own marker shape, in the plot and the legend.
+        common::assert_precision_shapes(&svg, 1000.0, &["f32", "f64", "f32x8", "f64x4"], &c.display().to_string());
     }
     let md = std::fs::read_to_string(&files.markdown).expect("markdown written");
     let rows = table_rows(&md, "method");

@@ -4,6 +4,8 @@
 //! digits where the apex goes to infinity (near-equal radii: apex distance p₂ = L·r/|Δr| ≈ 10⁷·L,
 //! so its coefficient errors grow like ε·p₂² instead of ε·S²).
 
+mod common;
+
 use tubecast_lab::report::{self, parse_num, table_rows, ReportOptions};
 
 fn col(md: &str, first: &str, name: &str) -> usize {
@@ -19,6 +21,8 @@ fn stability_report_shows_where_methods_break() {
     for c in &files.charts {
         let svg = std::fs::read_to_string(c).unwrap();
         assert!(svg.contains("<svg") && svg.contains("<text"), "{}", c.display());
+        // The charts show the scalar precisions, each with its own marker shape.
+        common::assert_precision_shapes(&svg, 1000.0, &["f32", "f64"], &c.display().to_string());
     }
     let md = std::fs::read_to_string(&files.markdown).unwrap();
     let rows = table_rows(&md, "region");

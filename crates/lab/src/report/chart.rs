@@ -8,7 +8,7 @@
 //! Category labels are cut to 28 characters and the label area sized to the longest, so
 //! they never cross the axis; point labels that would overlap are moved down until they do
 //! not. Series whose label names a precision get a shape as well as a colour (f32 circle, f64
-//! square, SIMD lanes triangle), shown in the legend.
+//! square, f32x8 lanes triangle, f64x4 lanes diamond), drawn in the plot and in the legend.
 
 use super::ReportError;
 use plotters::prelude::*;
@@ -108,16 +108,34 @@ fn lg(v: f64, floor: f64) -> f64 {
     }
 }
 
-/// The marker shape of a series whose label names a precision: lanes (`x8`, `x4`, `lane`)
-/// triangle, `f64` square, `f32` circle; `None` otherwise.
-pub fn precision_shape(label: &str) -> Option<&'static str> {
+/// A precision's marker shape.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Shape {
+    /// `f32`.
+    Circle,
+    /// `f64`.
+    Square,
+    /// `f32x8` lanes.
+    Triangle,
+    /// `f64x4` lanes.
+    Diamond,
+}
+
+/// The marker shape of a series whose label names a precision: `f32` circle, `f64` square,
+/// `f32x8` lanes triangle, `f64x4` lanes diamond (any other `lane` label triangle); `None`
+/// otherwise. The precision is the label's last `/`-separated part when it has one.
+pub fn precision_shape(label: &str) -> Option<Shape> {
     let l = label.to_ascii_lowercase();
-    if l.contains("x8") || l.contains("x4") || l.contains("lane") {
-        Some("triangle")
-    } else if l.contains("f64") {
-        Some("square")
-    } else if l.contains("f32") {
-        Some("circle")
+    let last = l.rsplit('/').next().unwrap_or(&l);
+    let has = |k: &str| last.contains(k);
+    if has("x4") {
+        Some(Shape::Diamond)
+    } else if has("x8") || has("lane") {
+        Some(Shape::Triangle)
+    } else if has("f64") {
+        Some(Shape::Square)
+    } else if has("f32") {
+        Some(Shape::Circle)
     } else {
         None
     }
@@ -263,16 +281,16 @@ pub fn write_svg(path: &Path, chart: &Chart, size: (u32, u32)) -> Result<(), Rep
     }
     // Legend in its own area (plotters' series legend needs per-series draw handles; this is
     // simpler and never overlaps the data).
+    // Rows shrink (to 12 px) when there are many series, so the legend fits beside the plot.
+    let n = chart.series.len().max(1) as i32;
+    let step = ((size.1 as i32 - 140) / n).clamp(12, 18);
     let mut yy = 30;
     for s in &chart.series {
         let c = color(s.color);
-        match precision_shape(&s.label) {
-            Some("square") => legend.draw(&Rectangle::new([(8, yy - 4), (16, yy + 4)], c.filled())).map_err(&e)?,
-            Some("triangle") => legend.draw(&TriangleMarker::new((12, yy), 6, c.filled())).map_err(&e)?,
-            _ => legend.draw(&Circle::new((12, yy), 5, c.filled())).map_err(&e)?,
-        }
+        let m = precision_shape(&s.label).map_or(Mark::Plain(Marker::Dot), Mark::Shape);
+        draw_mark(&legend, (12, yy), m, c.filled()).map_err(&e)?;
         legend.draw(&Text::new(s.label.clone(), (24, yy - 6), ("sans-serif", 12).into_font())).map_err(&e)?;
-        yy += 18;
+        yy += step;
     }
     if let Some(n) = &chart.note {
         for line in n.lines() {
@@ -291,6 +309,36 @@ type Cc<'a, 'b> = ChartContext<
     Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
 >;
 
+/// What a marker looks like: a precision's shape, or a statistic's marker.
+#[derive(Clone, Copy)]
+enum Mark {
+    Shape(Shape),
+    Plain(Marker),
+}
+
+/// Draw mark `m` centred at pixel `p` of `area`.
+fn draw_mark<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    p: (i32, i32),
+    m: Mark,
+    style: ShapeStyle,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    match m {
+        Mark::Shape(Shape::Square) => area.draw(&Rectangle::new([(p.0 - 4, p.1 - 4), (p.0 + 4, p.1 + 4)], style)),
+        Mark::Shape(Shape::Triangle) | Mark::Plain(Marker::Triangle) => area.draw(&TriangleMarker::new(p, 5, style)),
+        Mark::Shape(Shape::Diamond) => {
+            let d = [(p.0, p.1 - 6), (p.0 + 6, p.1), (p.0, p.1 + 6), (p.0 - 6, p.1)];
+            if style.filled {
+                area.draw(&Polygon::new(d.to_vec(), style))
+            } else {
+                area.draw(&PathElement::new(vec![d[0], d[1], d[2], d[3], d[0]], style))
+            }
+        }
+        Mark::Shape(Shape::Circle) | Mark::Plain(Marker::Dot) => area.draw(&Circle::new(p, 4, style)),
+        Mark::Plain(Marker::Cross) => area.draw(&Cross::new(p, 4, style)),
+    }
+}
+
 /// One point's marker: the point's own marker (a statistic: dot, cross, triangle) for series
 /// without a precision; for precision series the precision's shape, filled for a dot and
 /// hollow for a cross (so both distinctions survive).
@@ -298,20 +346,12 @@ fn draw_marker(
     cc: &mut Cc<'_, '_>,
     at: (f64, f64),
     m: Marker,
-    shape: Option<&str>,
+    shape: Option<Shape>,
     c: RGBColor,
 ) -> Result<(), DrawingAreaErrorKind<std::io::Error>> {
     let style = if m == Marker::Cross { c.stroke_width(2) } else { c.filled() };
     let (px, py) = cc.backend_coord(&at);
     let area = cc.plotting_area().strip_coord_spec();
     let (ox, oy) = cc.plotting_area().get_base_pixel();
-    let p = (px - ox, py - oy);
-    match (shape, m) {
-        (Some("square"), _) => area.draw(&Rectangle::new([(p.0 - 4, p.1 - 4), (p.0 + 4, p.1 + 4)], style)),
-        (Some("triangle"), _) => area.draw(&TriangleMarker::new(p, 5, style)),
-        (Some(_), _) => area.draw(&Circle::new(p, 4, style)),
-        (None, Marker::Dot) => area.draw(&Circle::new(p, 4, style)),
-        (None, Marker::Cross) => area.draw(&Cross::new(p, 4, style)),
-        (None, Marker::Triangle) => area.draw(&TriangleMarker::new(p, 5, style)),
-    }
+    draw_mark(&area, (px - ox, py - oy), shape.map_or(Mark::Plain(m), Mark::Shape), style)
 }

@@ -71,21 +71,20 @@ fn budget(opts: &ReportOptions) -> Duration {
 }
 
 fn accuracy_chart(title: &str, rows: &[(String, usize, f64, &Score)], floor: f64, note: &str) -> Chart {
-    // One series per colour group; p99 as dots (labelled with the precision), max as crosses.
-    let mut series: Vec<Series> = Vec::new();
-    for (name, col, ns, s) in rows {
-        let (group, prec) = name.rsplit_once('/').unwrap_or((name.as_str(), ""));
-        let i = match series.iter().position(|x| x.label == group) {
-            Some(i) => i,
-            None => {
-                series.push(Series { label: group.to_string(), color: *col, points: Vec::new(), line: false });
-                series.len() - 1
-            }
-        };
-        let pts = &mut series[i].points;
-        pts.push(Pt { x: *ns, y: s.p99_r(), marker: Marker::Dot, text: Some(prec.to_string()) });
-        pts.push(Pt { x: *ns, y: s.max_r(), marker: Marker::Cross, text: None });
-    }
+    // One series per method (`kernel/precision`): colour from the kernel or solver, marker shape
+    // from the precision (chart::precision_shape); p99 filled, max hollow.
+    let series: Vec<Series> = rows
+        .iter()
+        .map(|(name, col, ns, s)| Series {
+            label: name.clone(),
+            color: *col,
+            points: vec![
+                Pt { x: *ns, y: s.p99_r(), marker: Marker::Dot, text: None },
+                Pt { x: *ns, y: s.max_r(), marker: Marker::Cross, text: None },
+            ],
+            line: false,
+        })
+        .collect();
     Chart {
         title: title.into(),
         x_desc: "ns per ray–primitive test (log)".into(),
@@ -158,7 +157,7 @@ pub fn run_accuracy(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Rep
     let mdp = out.join("accuracy.md");
     write_text(&mdp, &md)?;
 
-    let note = "● p99 (label: precision)\n✕ max";
+    let note = "filled: p99, hollow: max\n● f32 ■ f64 ▲ f32x8 ◆ f64x4";
     let lr: Vec<(String, usize, f64, &Score)> =
         lrows.iter().map(|(m, ns, s)| (m.name(), kernel_color(m.kernel), *ns, s)).collect();
     let sr: Vec<(String, usize, f64, &Score)> =
@@ -198,7 +197,7 @@ fn error_only_chart(title: &str, rows: &[(String, usize, f64, &Score)]) -> Chart
         x: XAxis::Categories(names),
         y_floor: 1e-18,
         series,
-        note: Some("● p99  ✕ max".into()),
+        note: Some("filled: p99, hollow: max\n● f32 ■ f64 ▲ f32x8 ◆ f64x4".into()),
     }
 }
 
@@ -229,7 +228,7 @@ fn stability_chart(
                 .map(|r| Pt {
                     x: r.2 as f64 + (j as f64 - (k - 1.0) / 2.0) * 0.7 / k,
                     y: r.3,
-                    marker: if m.ends_with("f32") { Marker::Triangle } else { Marker::Dot },
+                    marker: Marker::Dot,
                     text: None,
                 })
                 .collect(),
@@ -243,7 +242,7 @@ fn stability_chart(
         x: XAxis::Categories(regions.iter().map(|s| s.to_string()).collect()),
         y_floor: floor,
         series,
-        note: Some(format!("▲ f32  ● f64\nvalues ≤ {floor:e}\ndrawn at the floor")),
+        note: Some(format!("● f32 ■ f64 (shape)\nvalues ≤ {floor:e}\ndrawn at the floor")),
     }
 }
 
