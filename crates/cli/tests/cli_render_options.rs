@@ -60,6 +60,19 @@ fn background_colour_solid_colour_and_transparency() {
     assert_eq!((ct, w2), (png::ColorType::Rgba, w));
     assert_eq!(px[3], 0);
     assert!(px.chunks(4).any(|p| p[3] == 255));
+    // Transparent tubes: alpha is the accumulated opacity. Every line through the tube
+    // crosses two surfaces of opacity 0.5 (entry, exit): α = 1 − 0.5² = 0.75, byte 191 ± 1
+    // (f32 compositing, 1/255 quantisation); the background stays 0. (--thin off: no fade.)
+    let o = run(
+        &input,
+        &out,
+        &["--radius", "2%", "--background", "transparent", "--opacity", "0.5", "--thin", "off", "--force"],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (ct, _, _, px) = decode(&out);
+    assert_eq!(ct, png::ColorType::Rgba);
+    assert!(px.chunks(4).all(|p| p[3] == 0 || (190..=192).contains(&p[3])), "alpha not 0 or 0.75");
+    assert!(px.chunks(4).any(|p| p[3] == 191), "no transparent tube pixel");
     let o = run(&input, &out, &["--background", "#12", "--force"]);
     assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("#rrggbb"));
 }
@@ -105,12 +118,16 @@ fn info_json_with_units() {
 
 #[test]
 fn thin_tubes_stay_visible_by_default_for_tractograms() {
-    // Radius 0.01 on a 1000-unit line: about 1/2000 of a pixel at 40 px; on by default for
-    // .tck (wireframe-like), so some pixels differ from the background; --thin off: none do.
+    // Radius 2 on a 1000-unit line: a pixel at 40 px is ≈ 26 units, so the pixel-centre lines
+    // (±½ pixel from the axis) miss the tube; on by default for .tck (wireframe-like), the
+    // tube is widened to 1 pixel and faded by its coverage ≈ 2/13, so some pixels differ from
+    // the background; --thin off: none do. (A radius of 0.01 has coverage ≈ 8·10⁻⁴: composited
+    // correctly, α·surface + (1 − α)·background, it stays under one 8-bit step of the
+    // background, as a wire that thin should.)
     let input = line_tck("thin.tck");
     let (on, off) = (tmp("thin-on.png"), tmp("thin-off.png"));
-    assert!(run(&input, &on, &["--radius", "0.01", "--view", "xy"]).status.success());
-    assert!(run(&input, &off, &["--radius", "0.01", "--view", "xy", "--thin", "off"]).status.success());
+    assert!(run(&input, &on, &["--radius", "2", "--view", "xy"]).status.success());
+    assert!(run(&input, &off, &["--radius", "2", "--view", "xy", "--thin", "off"]).status.success());
     let covered = |p: &Path| decode(p).3.chunks(3).filter(|c| c != &[255, 255, 255]).count();
     assert_eq!(covered(&off), 0);
     assert!(covered(&on) >= 20, "{} pixels show the thin line", covered(&on));

@@ -124,7 +124,14 @@ fn flat_render_shows_the_colour_map_ends() {
 fn legend_bar_runs_from_low_to_high_with_its_labels() {
     let (w, h) = (200u32, 100u32);
     let n = (w * h) as usize;
-    let mut img = render::Image { width: w, height: h, rgb: vec![[1.0; 3]; n], depth: vec![f64::INFINITY; n] };
+    let mut img = render::Image {
+        width: w,
+        height: h,
+        rgb: vec![[1.0; 3]; n],
+        alpha: vec![0.0; n],
+        depth: vec![f64::INFINITY; n],
+        background: [1.0; 3],
+    };
     img.draw_legend(Colormap::Viridis, -0.5, 2.0, [0.0; 3]);
     // Layout (documented): bar over rows h/5 .. h − h/5, top row the map's high end, bottom
     // row its low end; find the bar's columns by the top row's viridis(1) colour.

@@ -58,7 +58,11 @@ fn text(img: &mut Image, x: i64, y: i64, s: i64, t: &str, color: [f32; 3]) {
 fn fill(img: &mut Image, x: i64, y: i64, w: i64, h: i64, color: [f32; 3]) {
     for yy in y.max(0)..(y + h).min(img.height as i64) {
         for xx in x.max(0)..(x + w).min(img.width as i64) {
-            img.rgb[(yy as u32 * img.width + xx as u32) as usize] = color;
+            let i = (yy as u32 * img.width + xx as u32) as usize;
+            img.rgb[i] = color;
+            if let Some(a) = img.alpha.get_mut(i) {
+                *a = 1.0;
+            }
         }
     }
 }
@@ -71,9 +75,13 @@ impl Image {
     ///
     /// ```
     /// use tubecast_render::render::{Colormap, Image};
-    /// let mut img = Image { width: 200, height: 100, rgb: vec![[1.0; 3]; 20_000], depth: vec![f64::INFINITY; 20_000] };
+    /// let n = 20_000;
+    /// let (rgb, alpha, depth) = (vec![[1.0; 3]; n], vec![0.0; n], vec![f64::INFINITY; n]);
+    /// let mut img = Image { width: 200, height: 100, rgb, alpha, depth, background: [1.0; 3] };
     /// img.draw_legend(Colormap::Viridis, 0.0, 1.0, [0.0; 3]);
     /// assert!(img.rgb.iter().any(|p| *p != [1.0; 3]));
+    /// // The bar is opaque in an RGBA image.
+    /// assert!(img.alpha.iter().any(|a| *a == 1.0));
     /// ```
     pub fn draw_legend(&mut self, map: Colormap, lo: f64, hi: f64, ink: [f32; 3]) {
         let (w, h) = (self.width as i64, self.height as i64);

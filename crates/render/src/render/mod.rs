@@ -11,6 +11,11 @@
 //!   per connected piece to the union, so the joints between sub-segments and between
 //!   segments (where neighbouring sweeps overlap in the joint sphere) add no boundary.
 //!
+//! Every pixel is composited front to back over transparent black (premultiplied colour and an
+//! alpha: the accumulated opacity, including the coverage of faded thin tubes), then over
+//! `Options::background` into [`Image::rgb`]; [`Image::alpha`] keeps the alpha for an RGBA PNG
+//! with a transparent background ([`Image::write_png_rgba`], straight alpha).
+//!
 //! Colours are linear RGB in `[0, 1]`; [`Image::to_srgb8`] encodes them for PNG.
 
 mod camera;
@@ -52,18 +57,23 @@ pub fn render(scene: &Scene, bvh: &dyn Tracer, cam: &Camera, opts: &Options) -> 
     let light = (cam.up * 0.6 - cam.right * 0.4 - cam.forward * 0.7).normalize_or_zero();
     let st = scene.stats();
     let diag = (V3::from(st.bounds.1) - V3::from(st.bounds.0)).length();
-    let ctx = Ctx { scene, bvh, cam, opts, pal: Palette::new(scene, opts.background), light, ao_dist: 0.1 * diag };
+    let ctx = Ctx { scene, bvh, cam, opts, pal: Palette::new(scene), light, ao_dist: 0.1 * diag };
     let bar = if opts.progress { indicatif::ProgressBar::new(h as u64) } else { indicatif::ProgressBar::hidden() };
-    let mut rgb = vec![[0.0f32; 3]; (w * h) as usize];
-    let mut depth = vec![f64::INFINITY; (w * h) as usize];
-    rgb.par_chunks_mut(w as usize).zip(depth.par_chunks_mut(w as usize)).enumerate().for_each(|(y, (row, drow))| {
-        for x in 0..w {
-            let (c, d) = ctx.pixel(x, y as u32);
-            row[x as usize] = c;
-            drow[x as usize] = d;
+    let n = (w * h) as usize;
+    let (mut rgb, mut alpha, mut depth) = (vec![[0.0f32; 3]; n], vec![0.0f32; n], vec![f64::INFINITY; n]);
+    let bg = opts.background;
+    let rows =
+        rgb.par_chunks_mut(w as usize).zip(alpha.par_chunks_mut(w as usize)).zip(depth.par_chunks_mut(w as usize));
+    rows.enumerate().for_each(|(y, ((row, arow), drow))| {
+        for x in 0..w as usize {
+            let p = ctx.pixel(x as u32, y as u32);
+            // Over the background: premultiplied colour + (1 − α)·background.
+            row[x] = std::array::from_fn(|k| p.premul[k] + (1.0 - p.alpha) * bg[k]);
+            arow[x] = p.alpha;
+            drow[x] = p.depth;
         }
         bar.inc(1);
     });
     bar.finish_and_clear();
-    Ok(Image { width: w, height: h, rgb, depth })
+    Ok(Image { width: w, height: h, rgb, alpha, depth, background: bg })
 }

@@ -9,8 +9,6 @@ pub(super) struct Palette {
     r_hi: f64,
     /// Finite range of the scene's data values.
     v_range: Option<(f64, f64)>,
-    /// The background, which faded thin tubes are mixed with ([`super::clamp_thin`]).
-    bg: [f32; 3],
 }
 
 fn colormap(x: f64) -> [f32; 3] {
@@ -36,26 +34,26 @@ fn type_color(t: i32) -> [f32; 3] {
 }
 
 impl Palette {
-    pub(super) fn new(scene: &Scene, bg: [f32; 3]) -> Self {
+    pub(super) fn new(scene: &Scene) -> Self {
         let (mut r_lo, mut r_hi) = (f64::INFINITY, f64::NEG_INFINITY);
         for n in &scene.nodes {
             r_lo = r_lo.min(n.radius);
             r_hi = r_hi.max(n.radius);
         }
-        Self { r_lo, r_hi, v_range: super::value_range(&scene.values), bg }
+        Self { r_lo, r_hi, v_range: super::value_range(&scene.values) }
     }
-    /// Colour of primitive `prim` at its curve parameter `u`, faded toward the background by
-    /// the scene's coverage where thin tubes were widened ([`super::clamp_thin`]).
-    pub(super) fn color(&self, scene: &Scene, by: ColorBy, prim: &Prim, u: f64) -> [f32; 3] {
+    /// Colour of primitive `prim` at its curve parameter `u`, and its coverage in `[0, 1]`:
+    /// the scene's coverage where thin tubes were widened ([`super::clamp_thin`]), interpolated
+    /// along the link, 1 elsewhere. The renderer treats the coverage as an opacity.
+    pub(super) fn color(&self, scene: &Scene, by: ColorBy, prim: &Prim, u: f64) -> ([f32; 3], f32) {
         let c = self.base_color(scene, by, prim, u);
         let l = scene.links[prim.link as usize];
         match (scene.coverage.get(l[0] as usize), scene.coverage.get(l[1] as usize)) {
             (Some(&a), Some(&b)) => {
                 let t = u.clamp(0.0, 1.0) as f32;
-                let alpha = a + (b - a) * t;
-                std::array::from_fn(|k| alpha * c[k] + (1.0 - alpha) * self.bg[k])
+                (c, (a + (b - a) * t).clamp(0.0, 1.0))
             }
-            _ => c,
+            _ => (c, 1.0),
         }
     }
 

@@ -7,8 +7,11 @@
 //! each node is raised to `r_min = ½·min_px·s(d)`, with `s(d)` the width of a pixel at the
 //! node's depth `d` along the view axis (`2·d·tan(fov/2)/height`; orthographic:
 //! `2·ortho/height`), and the node's coverage `α` is kept in [`Scene::coverage`]. The renderer
-//! mixes a faded surface's colour with the background, `α·c + (1 − α)·bg`: exact for a wire
-//! over the background, an approximation where a faded wire lies in front of another surface.
+//! treats the coverage as the surface's opacity: an opaque render gives the pixel the shaded
+//! colour `c` with alpha `α`, composited `α·c + (1 − α)·bg` (exact for a wire over the
+//! background, an approximation where a faded wire lies in front of another surface, which
+//! it hides by `α` but does not show through); a transparent render multiplies each surface's
+//! opacity by its coverage.
 
 use super::Camera;
 use crate::scene::Scene;

@@ -43,19 +43,21 @@ impl Ctx<'_> {
         1e-3 * pr.max_radius() as f64 + 1e-12 * p.max_abs()
     }
 
-    pub(super) fn pixel(&self, x: u32, y: u32) -> ([f32; 3], f64) {
+    /// The pixel's colour premultiplied by its alpha (composited over transparent black), its
+    /// alpha (accumulated opacity) and its depth.
+    pub(super) fn pixel(&self, x: u32, y: u32) -> Px {
         let ray = self.cam.ray(x, y);
         let view = ray.d.normalize_or_zero();
-        let bg = self.opts.background;
         if self.opts.opacity < 1.0 {
             return self.transparent(&ray, view);
         }
         let Some(hit) = self.bvh.closest_hit(&ray) else {
-            return (bg, f64::INFINITY);
+            return Px { premul: [0.0; 3], alpha: 0.0, depth: f64::INFINITY };
         };
-        let base = self.pal.color(self.scene, self.opts.color, &self.bvh.prims()[hit.prim as usize], hit.u);
+        let (base, cov) = self.pal.color(self.scene, self.opts.color, &self.bvh.prims()[hit.prim as usize], hit.u);
+        let px = |c: [f32; 3]| Px { premul: c.map(|v| v * cov), alpha: cov, depth: hit.t };
         if self.opts.shading == Shading::Flat {
-            return (base, hit.t);
+            return px(base);
         }
         let p = ray.at(hit.t);
         let nf = if hit.n.dot(view) > 0.0 { -hit.n } else { hit.n };
@@ -70,7 +72,7 @@ impl Ctx<'_> {
             ambient = self.ambient(x, y, q, nf);
             lit *= 0.5 + 0.5 * ambient;
         }
-        (self.shade(base, hit.n, view, lit, ambient), hit.t)
+        px(self.shade(base, hit.n, view, lit, ambient))
     }
 
     /// The unoccluded fraction of `self.opts.ao` cosine-weighted hemisphere rays from `q`
@@ -94,24 +96,33 @@ impl Ctx<'_> {
         1.0 - occ as f64 / self.opts.ao as f64
     }
 
-    fn transparent(&self, ray: &Ray<f64>, view: V3<f64>) -> ([f32; 3], f64) {
+    /// Front-to-back compositing of the union's exterior boundaries, each of opacity
+    /// `opacity · coverage`: premultiplied colour `Σ Tᵢ·aᵢ·cᵢ` and alpha `1 − Π(1 − aᵢ)`, with
+    /// `Tᵢ = Π_{j<i}(1 − aⱼ)` the transmittance in front of boundary `i`.
+    fn transparent(&self, ray: &Ray<f64>, view: V3<f64>) -> Px {
         let mut ivs: Vec<Tagged<f64>> = Vec::new();
         self.bvh.line_intervals(ray, &mut ivs);
         let mut bounds: Vec<Boundary<f64>> = Vec::new();
         union(&mut ivs, ray.t_min, ray.t_max, |b| bounds.push(b));
-        let a = self.opts.opacity as f32;
         let mut acc = [0.0f32; 3];
         let mut trans = 1.0f32;
         for b in &bounds {
-            let base = self.pal.color(self.scene, self.opts.color, &self.bvh.prims()[b.id as usize], b.u);
+            let (base, cov) = self.pal.color(self.scene, self.opts.color, &self.bvh.prims()[b.id as usize], b.u);
+            let a = self.opts.opacity as f32 * cov;
             let c = self.shade(base, b.n, view, 1.0, 1.0);
             for (acc, c) in acc.iter_mut().zip(c) {
                 *acc += trans * a * c;
             }
             trans *= 1.0 - a;
         }
-        let bg = self.opts.background;
         let depth = bounds.first().map_or(f64::INFINITY, |b| b.t);
-        (std::array::from_fn(|k| acc[k] + trans * bg[k]), depth)
+        Px { premul: acc, alpha: 1.0 - trans, depth }
     }
+}
+
+/// One pixel's result: colour premultiplied by alpha, alpha, depth.
+pub(super) struct Px {
+    pub(super) premul: [f32; 3],
+    pub(super) alpha: f32,
+    pub(super) depth: f64,
 }
