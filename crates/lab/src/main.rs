@@ -1,7 +1,7 @@
 //! `tubecast-lab`: writes the reports (SVG charts, markdown, CSV) into a folder.
 //!
 //! ```text
-//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|mesh|peers|all [--out DIR]
+//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|mesh|mesh-real|peers|voxel|all|tables [--out DIR]
 //!     [--seed N] [--quick] [--big] [--threads N] [--quiet]
 //! ```
 //!
@@ -55,6 +55,10 @@ enum Which {
     Peers,
     /// Dynamic line sets: rebuild + render per frame, voxel grid vs BVH.
     Voxel,
+    /// Mesh and automatic choice on real-world-like scenes: cost against certified error.
+    MeshReal,
+    /// Write `<name>.tables.json` beside every markdown report in --out (measures nothing).
+    Tables,
     /// Every report this build has (peers only with feature `embree`).
     All,
 }
@@ -78,6 +82,9 @@ fn jobs(which: Which) -> Result<Vec<(&'static str, Job)>, String> {
     }
     if all || which == Which::Mesh {
         jobs.push(("mesh", report::run_mesh));
+    }
+    if all || which == Which::MeshReal {
+        jobs.push(("mesh-real", report::run_mesh_real));
     }
     #[cfg(feature = "embree")]
     if all || which == Which::Peers {
@@ -103,6 +110,18 @@ fn main() -> ExitCode {
         opts.threads = t;
     }
     opts.progress = !a.quiet;
+    if a.which == Which::Tables {
+        return match report::write_tables_json(&a.out) {
+            Ok(f) => {
+                f.iter().for_each(|p| println!("tables: wrote {}", p.display()));
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("tubecast-lab tables: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
     let jobs = match jobs(a.which) {
         Ok(j) => j,
         Err(e) => {

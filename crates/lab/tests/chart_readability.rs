@@ -4,7 +4,7 @@
 mod common;
 
 use tubecast_lab::report::chart::{precision_shape, write_svg, Chart, Marker, Pt, Series, Shape, XAxis};
-use tubecast_lab::report::tables_json;
+use tubecast_lab::report::{tables_json, write_tables_json};
 
 fn pt(x: f64, y: f64, text: Option<&str>) -> Pt {
     Pt { x, y, marker: Marker::Dot, text: text.map(String::from) }
@@ -84,4 +84,20 @@ fn markdown_tables_as_json() {
     assert_eq!(j[0]["columns"], serde_json::json!(["a", "b"]));
     assert_eq!(j[0]["rows"], serde_json::json!([["1", "x"], ["2", "-"]]));
     assert_eq!(j[1]["rows"], serde_json::json!([["3"]]));
+}
+
+#[test]
+fn committed_reports_get_their_json_without_rerunning() {
+    let dir = std::env::temp_dir().join(format!("tubecast-tables-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("r.md"), "# R\n\n| a |\n|---|\n| 1 |\n").unwrap();
+    std::fs::write(dir.join("README.md"), "| x |\n|---|\n| y |\n").unwrap();
+    std::fs::write(dir.join("plain.md"), "no tables\n").unwrap();
+    let files = write_tables_json(&dir).unwrap();
+    assert_eq!(files, vec![dir.join("r.tables.json")]);
+    let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&files[0]).unwrap()).unwrap();
+    assert_eq!(j[0]["rows"], serde_json::json!([["1"]]));
+    assert!(!dir.join("README.tables.json").exists() && !dir.join("plain.tables.json").exists());
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -42,7 +42,7 @@ pub struct MeshRow {
     pub max_rgb_diff: f64,
 }
 
-fn err(e: impl std::fmt::Display) -> ReportError {
+pub(super) fn err(e: impl std::fmt::Display) -> ReportError {
     ReportError::Render(e.to_string())
 }
 
@@ -63,7 +63,8 @@ fn diff(a: &Image, b: &Image) -> (f64, f64) {
     (cov as f64 / a.rgb.len().max(1) as f64, worst)
 }
 
-/// One scene: the exact row and a row per tolerance (or a skipped note).
+/// One Furball scene of about `n` links: the exact row and a row per tolerance (or a skipped
+/// note).
 fn measure(
     n: usize,
     opts: &ReportOptions,
@@ -72,12 +73,39 @@ fn measure(
 ) -> Result<Vec<MeshRow>, ReportError> {
     let lines = generate::furball(n.div_ceil(78), 78, opts.seed);
     let scene = Scene::from_polylines(&lines, 0.05, "furball").map_err(err)?;
+    let one = Scene::from_polylines(&lines[..1], 0.05, "one").map_err(err)?;
+    let est = |eps: f64| -> Result<f64, ReportError> {
+        Ok(tessellate(&one, Model::Links, eps).map_err(err)?.mesh.triangles.len() as f64 * lines.len() as f64)
+    };
+    let plan = Plan { chosen: &RELATIVE_EPS, mesh: &RELATIVE_EPS, max_triangles: MAX_TRIANGLES };
+    measure_scene(&scene, &plan, &est, opts, pool, notes)
+}
+
+/// What to measure on one scene: the automatic choice at `chosen`·r and the mesh at `mesh`·r
+/// (r the scene's largest radius), a mesh only where the estimated triangle count is at most
+/// `max_triangles`.
+pub(super) struct Plan<'a> {
+    pub(super) chosen: &'a [f64],
+    pub(super) mesh: &'a [f64],
+    pub(super) max_triangles: f64,
+}
+
+/// One scene: the exact row, a row per choice tolerance and per mesh tolerance (or a skipped
+/// note); `est(ε)` estimates the mesh's triangle count at absolute tolerance ε.
+pub(super) fn measure_scene(
+    scene: &Scene,
+    plan: &Plan<'_>,
+    est: &dyn Fn(f64) -> Result<f64, ReportError>,
+    opts: &ReportOptions,
+    pool: &rayon::ThreadPool,
+    notes: &mut String,
+) -> Result<Vec<MeshRow>, ReportError> {
     let st = scene.stats();
     let cam = Camera::fit(st.bounds.0, st.bounds.1, 35.0, opts.image, opts.image).map_err(err)?;
     let r_max = scene.nodes.iter().map(|n| n.radius).fold(0.0, f64::max);
     let frame = |t: &dyn Tracer| -> Result<(Image, f64), ReportError> {
         let t0 = Instant::now();
-        let img = pool.install(|| render(&scene, t, &cam, &Options::default())).map_err(err)?;
+        let img = pool.install(|| render(scene, t, &cam, &Options::default())).map_err(err)?;
         Ok((img, t0.elapsed().as_secs_f64()))
     };
     let t0 = Instant::now();
@@ -98,10 +126,10 @@ fn measure(
         max_rgb_diff: 0.0,
     }];
     drop(bvh);
-    for k in RELATIVE_EPS {
+    for &k in plan.chosen {
         // The automatic choice: merged links, spheres, cylinders, cones within ε.
         let t0 = Instant::now();
-        let c = choose(&scene, &Tolerance::Absolute(k * r_max));
+        let c = choose(scene, &Tolerance::Absolute(k * r_max));
         let bvh = pool.install(|| Bvh::build(c.prims.clone()));
         let build_s = t0.elapsed().as_secs_f64();
         let (img, frame_s) = frame(&bvh)?;
@@ -118,16 +146,15 @@ fn measure(
             max_rgb_diff,
         });
     }
-    for k in RELATIVE_EPS {
+    for &k in plan.mesh {
         let eps = k * r_max;
-        let one = Scene::from_polylines(&lines[..1], 0.05, "one").map_err(err)?;
-        let est = tessellate(&one, Model::Links, eps).map_err(err)?.mesh.triangles.len() as f64 * lines.len() as f64;
-        if est > MAX_TRIANGLES {
+        let est = est(eps)?;
+        if est > plan.max_triangles {
             let _ = writeln!(notes, "- {segments} segments at ε = {k}·r skipped: about {est:.1e} triangles.");
             continue;
         }
         let t0 = Instant::now();
-        let m = pool.install(|| tessellate(&scene, Model::Links, eps)).map_err(err)?;
+        let m = pool.install(|| tessellate(scene, Model::Links, eps)).map_err(err)?;
         let tracer = pool.install(|| MeshTracer::build(&m, scene.primitives()));
         let build_s = t0.elapsed().as_secs_f64();
         let (img, frame_s) = frame(&tracer)?;
@@ -145,6 +172,31 @@ fn measure(
         });
     }
     Ok(rows)
+}
+
+/// The markdown table of `rows` (frame / exact against the exact row of the same size).
+pub(super) fn table(rows: &[MeshRow]) -> String {
+    let mut md = String::new();
+    md.push_str("| segments | model | certified error | triangles | build (ms) | memory (MB) | frame (ms) | frame / exact | coverage diff | max Δrgb |\n|---|---|---|---|---|---|---|---|---|---|\n");
+    for r in rows {
+        let exact =
+            rows.iter().find(|e| e.segments == r.segments && e.model == "exact").map_or(f64::NAN, |e| e.frame_s);
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {}% | {} |",
+            r.segments,
+            r.model,
+            fmt_num(r.certified),
+            r.triangles,
+            fmt_num(r.build_s * 1e3),
+            fmt_num(r.bytes as f64 / 1e6),
+            fmt_num(r.frame_s * 1e3),
+            fmt_num(r.frame_s / exact),
+            fmt_num(100.0 * r.coverage_diff),
+            fmt_num(r.max_rgb_diff)
+        );
+    }
+    md
 }
 
 /// The mesh report: writes `mesh.md` and `mesh.svg` into `out`. Scenes as the speed report's
@@ -181,25 +233,7 @@ pub fn run_mesh(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, ReportE
          rounding.\n\n",
         opts.seed, opts.image, opts.image, opts.threads
     );
-    md.push_str("| segments | model | certified error | triangles | build (ms) | memory (MB) | frame (ms) | frame / exact | coverage diff | max Δrgb |\n|---|---|---|---|---|---|---|---|---|---|\n");
-    for r in &rows {
-        let exact =
-            rows.iter().find(|e| e.segments == r.segments && e.model == "exact").map_or(f64::NAN, |e| e.frame_s);
-        let _ = writeln!(
-            md,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {}% | {} |",
-            r.segments,
-            r.model,
-            fmt_num(r.certified),
-            r.triangles,
-            fmt_num(r.build_s * 1e3),
-            fmt_num(r.bytes as f64 / 1e6),
-            fmt_num(r.frame_s * 1e3),
-            fmt_num(r.frame_s / exact),
-            fmt_num(100.0 * r.coverage_diff),
-            fmt_num(r.max_rgb_diff)
-        );
-    }
+    md.push_str(&table(&rows));
     if !notes.is_empty() {
         md.push('\n');
         md.push_str(&notes);

@@ -14,6 +14,8 @@
 //!   transparent/CSG) on generated scenes;
 //! * [`run_mesh`] — the certified mesh path against the exact kernels (build, memory, frame,
 //!   image difference) versus segment count;
+//! * [`run_mesh_real`] — the same trade-off on real-world-like scenes (nibabel's `standard.trk`,
+//!   a fibre bundle, the README's neuron assembly), frame time and memory against certified error;
 //! * `run_peers` (feature `embree`) — Embree 3's round linear curves on the same `f32` rays.
 //!
 //! The accuracy numbers (not the timings) are a pure function of [`ReportOptions`].
@@ -21,6 +23,7 @@
 pub mod chart;
 pub mod eval;
 mod mesh;
+mod mesh_real;
 pub mod oracle;
 #[cfg(feature = "embree")]
 mod peers;
@@ -31,6 +34,7 @@ mod speed;
 mod voxel;
 
 pub use mesh::run_mesh;
+pub use mesh_real::run_mesh_real;
 #[cfg(feature = "embree")]
 pub use peers::run_peers;
 pub use runs::{run_accuracy, run_stability};
@@ -167,6 +171,29 @@ pub(crate) fn write_text(path: &Path, text: &str) -> Result<(), ReportError> {
         std::fs::write(&jp, json + "\n").map_err(|e| ReportError::Io(format!("{}: {e}", jp.display())))?;
     }
     Ok(())
+}
+
+/// Write `<name>.tables.json` beside every `<name>.md` in `dir` from its tables
+/// ([`tables_json`]), measuring nothing: for reports committed before the JSON was written.
+/// Returns the JSON files written.
+pub fn write_tables_json(dir: &Path) -> Result<Vec<PathBuf>, ReportError> {
+    let io = |p: &Path, e: std::io::Error| ReportError::Io(format!("{}: {e}", p.display()));
+    let mut out = Vec::new();
+    let mut mds: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| io(dir, e))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "md") && !p.ends_with("README.md"))
+        .collect();
+    mds.sort();
+    for p in mds {
+        let md = std::fs::read_to_string(&p).map_err(|e| io(&p, e))?;
+        if tables_json(&md).as_array().is_some_and(|a| a.is_empty()) {
+            continue;
+        }
+        write_text(&p, &md)?;
+        out.push(p.with_extension("tables.json"));
+    }
+    Ok(out)
 }
 
 /// Every markdown table of `markdown`, for machines: a JSON array of
