@@ -57,3 +57,41 @@ fn thick_tubes_and_bad_footprints_are_left_alone() {
     assert_eq!(clamp_thin(&mut thin, &o, 1.0), 3);
     assert!(thin.nodes.iter().all(|n| (n.radius - 0.5 * 2.0 * o.ortho / 100.0).abs() < 1e-12));
 }
+
+#[test]
+fn a_faded_line_in_front_of_a_tube_shows_the_tube_through_it() {
+    // The camera of the test above (a pixel at depth 10 is 0.2 wide). A red (type 3) line of
+    // radius 0.05 along x at z = 0, clamped to 2 pixels: r_min = 0.2, coverage α = 0.25. Behind
+    // it a blue (type 2) tube of radius 1 along y at z = −3 (its pixel is 0.26 wide: left alone).
+    let cam = Camera::look_at(V3::new(0.0, 0.0, 10.0), V3::zero(), V3::new(0.0, 1.0, 0.0), 90.0, 100, 100).unwrap();
+    let n = |p: [f64; 3], radius: f64, kind: i32| Node { pos: p, radius, kind };
+    let mut scene = Scene {
+        nodes: vec![
+            n([-4.0, 0.0, 0.0], 0.05, 3),
+            n([4.0, 0.0, 0.0], 0.05, 3),
+            n([0.0, -6.0, -3.0], 1.0, 2),
+            n([0.0, 6.0, -3.0], 1.0, 2),
+        ],
+        links: vec![[0, 1], [2, 3]],
+        ..Scene::default()
+    };
+    assert_eq!(clamp_thin(&mut scene, &cam, 2.0), 2);
+    let opts = Options { color: ColorBy::Type, shading: Shading::Flat, ..Options::default() };
+    let img = render::render(&scene, &Bvh::build(scene.primitives()), &cam, &opts).unwrap();
+    let (red, blue) = ([0.9f32, 0.25, 0.2], [0.25f32, 0.45, 0.95]);
+    let mix = |under: [f32; 3]| -> [f32; 3] { std::array::from_fn(|k| 0.25 * red[k] + 0.75 * under[k]) };
+    let close = |p: [f32; 3], w: [f32; 3]| p.iter().zip(w).all(|(a, b)| (a - b).abs() < 1e-5);
+    // Columns 49 and 50 (centres ±0.1 at depth 10, ±0.13 at the tube's depth 13, inside its
+    // radius 1): the line over the tube, α·red + (1 − α)·blue (hand-computed from the type
+    // palette). Columns 35 and 65 (centres ∓2.9 at depth 10, ∓3.77 at depth 13: beside the tube):
+    // the line over the white background.
+    for y in [49, 50] {
+        for x in [49, 50] {
+            assert!(close(img.at(x, y), mix(blue)), "over the tube ({x}, {y}) = {:?}", img.at(x, y));
+            assert!((img.alpha[(y * 100 + x) as usize] - 1.0).abs() < 1e-6);
+        }
+        for x in [35, 65] {
+            assert!(close(img.at(x, y), mix([1.0; 3])), "over the background ({x}, {y}) = {:?}", img.at(x, y));
+        }
+    }
+}

@@ -7,11 +7,11 @@
 //! each node is raised to `r_min = ½·min_px·s(d)`, with `s(d)` the width of a pixel at the
 //! node's depth `d` along the view axis (`2·d·tan(fov/2)/height`; orthographic:
 //! `2·ortho/height`), and the node's coverage `α` is kept in [`Scene::coverage`]. The renderer
-//! treats the coverage as the surface's opacity: an opaque render gives the pixel the shaded
-//! colour `c` with alpha `α`, composited `α·c + (1 − α)·bg` (exact for a wire over the
-//! background, an approximation where a faded wire lies in front of another surface, which
-//! it hides by `α` but does not show through); a transparent render multiplies each surface's
-//! opacity by its coverage.
+//! treats the coverage as the surface's opacity: an opaque render composites the surfaces the
+//! ray enters front to back, each with its shaded colour `cᵢ` and weight `αᵢ`, down to the
+//! first fully covered one, so a wire over the background gives `α·c + (1 − α)·bg` and a wire
+//! in front of another tube shows that tube in the share it leaves uncovered; a transparent
+//! render multiplies each surface's opacity by its coverage.
 
 use super::Camera;
 use crate::scene::Scene;

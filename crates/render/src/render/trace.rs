@@ -55,13 +55,30 @@ impl Ctx<'_> {
             return Px { premul: [0.0; 3], alpha: 0.0, depth: f64::INFINITY };
         };
         let (base, cov) = self.pal.color(self.scene, self.opts.color, &self.bvh.prims()[hit.prim as usize], hit.u);
-        let px = |c: [f32; 3]| Px { premul: c.map(|v| v * cov), alpha: cov, depth: hit.t };
-        if self.opts.shading == Shading::Flat {
-            return px(base);
+        if cov < 1.0 {
+            return self.faded(x, y, &ray, view);
         }
-        let p = ray.at(hit.t);
-        let nf = if hit.n.dot(view) > 0.0 { -hit.n } else { hit.n };
-        let eps = self.eps(hit.prim, p);
+        Px { premul: self.surface(x, y, &ray, view, (hit.prim, hit.t, hit.n), base), alpha: 1.0, depth: hit.t }
+    }
+
+    /// The shaded colour of an opaque surface point `(prim, t, n)` of `ray` with base colour
+    /// `base`: lighting, shadow and ambient occlusion.
+    fn surface(
+        &self,
+        x: u32,
+        y: u32,
+        ray: &Ray<f64>,
+        view: V3<f64>,
+        hit: (u32, f64, V3<f64>),
+        base: [f32; 3],
+    ) -> [f32; 3] {
+        let (prim, t, n) = hit;
+        if self.opts.shading == Shading::Flat {
+            return base;
+        }
+        let p = ray.at(t);
+        let nf = if n.dot(view) > 0.0 { -n } else { n };
+        let eps = self.eps(prim, p);
         let q = p + nf * eps;
         let mut lit = 1.0;
         if self.opts.shadows && nf.dot(self.light) > 0.0 && self.bvh.any_hit(&Ray::new(q, self.light)) {
@@ -72,7 +89,38 @@ impl Ctx<'_> {
             ambient = self.ambient(x, y, q, nf);
             lit *= 0.5 + 0.5 * ambient;
         }
-        px(self.shade(base, hit.n, view, lit, ambient))
+        self.shade(base, n, view, lit, ambient)
+    }
+
+    /// An opaque render whose nearest surface is a faded thin tube (coverage `α < 1`,
+    /// [`super::clamp_thin`]): the exterior entries of the union along the ray are composited
+    /// front to back, each shaded as an opaque surface and weighted by its coverage, until a
+    /// fully covered surface (or transmittance below 2⁻¹², under half an 8-bit step) ends
+    /// the walk. So a faded wire in front of another tube shows that tube through it, in the
+    /// share `1 − α` it leaves uncovered, exactly as over the background.
+    fn faded(&self, x: u32, y: u32, ray: &Ray<f64>, view: V3<f64>) -> Px {
+        let mut ivs: Vec<Tagged<f64>> = Vec::new();
+        self.bvh.line_intervals(ray, &mut ivs);
+        let mut entries: Vec<Boundary<f64>> = Vec::new();
+        union(&mut ivs, ray.t_min, ray.t_max, |b| {
+            if b.entering {
+                entries.push(b)
+            }
+        });
+        let (mut acc, mut trans) = ([0.0f32; 3], 1.0f32);
+        for b in &entries {
+            let (base, cov) = self.pal.color(self.scene, self.opts.color, &self.bvh.prims()[b.id as usize], b.u);
+            let c = self.surface(x, y, ray, view, (b.id, b.t, b.n), base);
+            for (acc, c) in acc.iter_mut().zip(c) {
+                *acc += trans * cov * c;
+            }
+            trans *= 1.0 - cov;
+            if trans < 1.0 / 4096.0 {
+                break;
+            }
+        }
+        let depth = entries.first().map_or(f64::INFINITY, |b| b.t);
+        Px { premul: acc, alpha: 1.0 - trans, depth }
     }
 
     /// The unoccluded fraction of `self.opts.ao` cosine-weighted hemisphere rays from `q`
