@@ -12,6 +12,8 @@
 //!   curvature radius, cusps, rays starting inside, …);
 //! * [`run_speed`] — BVH build and frame time and rays/s versus segment count (opaque and
 //!   transparent/CSG) on generated scenes;
+//! * [`run_thin`] — the spline kernel's length/radius sweep (`L/r = 10 … 10⁵`): max error in
+//!   radii and false-hit / false-miss rates per solver and precision, with the kernel's band;
 //! * [`run_mesh`] — the certified mesh path against the exact kernels (build, memory, frame,
 //!   image difference) versus segment count;
 //! * `run_peers` (feature `embree`) — Embree 3's round linear curves on the same `f32` rays.
@@ -28,6 +30,7 @@ mod peers;
 mod peers_speed;
 mod runs;
 mod speed;
+mod thin;
 mod voxel;
 
 pub use mesh::run_mesh;
@@ -35,6 +38,7 @@ pub use mesh::run_mesh;
 pub use peers::run_peers;
 pub use runs::{run_accuracy, run_stability};
 pub use speed::run_speed;
+pub use thin::run_thin;
 pub use voxel::run_voxel;
 
 use std::path::{Path, PathBuf};
