@@ -2,9 +2,10 @@
 //! kernel `RoundCone::intersect` on the same rays in the same run (the unit of cost).
 //!
 //! `cargo bench --bench spline` (add `RUSTFLAGS="-C target-cpu=x86-64-v3"` for full-width
-//! lanes). Every benchmark runs the same fixed set of 64 (segment, ray) pairs, ~70% hits,
-//! and reports the time per ray (lane benches: per ray, i.e. divided by the lane count via
-//! `Throughput::Elements`).
+//! lanes). Every benchmark of a group runs the same fixed set of 64 (segment, ray) pairs —
+//! `spline/*`: the first 64 generated, ~70% hits; `spline_hits/*`, `spline_misses/*`: the first
+//! 64 that hit / miss — and reports the time per ray (lane benches: per ray, i.e. divided by
+//! the lane count via `Throughput::Elements`); the link runs on the same rays in each group.
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use rand::{Rng, SeedableRng};
@@ -15,7 +16,18 @@ use tubecast::{Ray, RoundCone, V3};
 
 const N: usize = 64;
 
-fn cases() -> Vec<(QuadTube<f64>, RoundCone<f64>, Ray<f64>)> {
+/// Which rays a group runs.
+#[derive(Clone, Copy, PartialEq)]
+enum Mix {
+    /// The first 64 generated (~70% hits).
+    All,
+    /// The first 64 that hit the spline (f64, default solver).
+    Hits,
+    /// The first 64 that miss it.
+    Misses,
+}
+
+fn cases(mix: Mix) -> Vec<(QuadTube<f64>, RoundCone<f64>, Ray<f64>)> {
     let mut rng = rand::rngs::StdRng::seed_from_u64(7);
     let mut v = || V3::new(rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0));
     let mut out = Vec::new();
@@ -28,7 +40,11 @@ fn cases() -> Vec<(QuadTube<f64>, RoundCone<f64>, Ray<f64>)> {
         let t = QuadTube::new([a, m, b], [0.3, 0.4, 0.2]).unwrap();
         let l = RoundCone::new(a, 0.3, b, 0.2).unwrap();
         let o = tgt - dir * (5.0 / dir.length());
-        out.push((t, l, Ray::new(o, dir)));
+        let ray = Ray::new(o, dir);
+        let hit = t.intersect(&ray).hit;
+        if mix == Mix::All || (mix == Mix::Hits) == hit {
+            out.push((t, l, ray));
+        }
     }
     out
 }
@@ -42,11 +58,11 @@ const SOLVERS: [(&str, Solver); 5] = [
 ];
 
 /// One group per precision; scalars are the one-lane case (`T::LANES == 1`).
-fn lanes<T: Real>(c: &mut Criterion, name: &str)
+fn lanes<T: Real>(c: &mut Criterion, name: &str, mix: Mix)
 where
     T::Elem: Scalar,
 {
-    let cs = cases();
+    let cs = cases(mix);
     let w = T::LANES;
     let packs: Vec<(QuadTube<T>, RoundCone<T>, Ray<T>)> = (0..N / w)
         .map(|k| {
@@ -56,7 +72,12 @@ where
             (t, l, r)
         })
         .collect();
-    let mut g = c.benchmark_group(format!("spline/{name}"));
+    let group = match mix {
+        Mix::All => "spline",
+        Mix::Hits => "spline_hits",
+        Mix::Misses => "spline_misses",
+    };
+    let mut g = c.benchmark_group(format!("{group}/{name}"));
     g.throughput(Throughput::Elements(N as u64));
     g.bench_function("round_cone_link", |b| {
         b.iter(|| {
@@ -82,10 +103,12 @@ where
 }
 
 fn benches(c: &mut Criterion) {
-    lanes::<f32>(c, "f32");
-    lanes::<f64>(c, "f64");
-    lanes::<WideF32x8>(c, "f32x8");
-    lanes::<WideF64x4>(c, "f64x4");
+    for mix in [Mix::All, Mix::Hits, Mix::Misses] {
+        lanes::<f32>(c, "f32", mix);
+        lanes::<f64>(c, "f64", mix);
+        lanes::<WideF32x8>(c, "f32x8", mix);
+        lanes::<WideF64x4>(c, "f64x4", mix);
+    }
 }
 
 criterion_group! {

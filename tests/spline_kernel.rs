@@ -5,11 +5,13 @@
 //! (read by `common_spline::config`) for a long run.
 
 mod common_spline;
+use common_spline::thin::{band, judge, kernel, Wrong, ACCURATE};
 use common_spline::*;
 use proptest::prelude::*;
 use tubecast::Solver;
 use tubecast::{GeometryError, Ray, RoundCone, V3};
 use tubecast::{Primitive, QuadTube};
+use tubecast_oracle::{thin_case, ThinCase, ThinFamily, THIN_FAMILIES};
 
 proptest! {
     #![proptest_config(config(64))]
@@ -249,6 +251,49 @@ proptest! {
         }
         prop_assert!(phi <= best + 1e-12, "{phi} > sampled {best}");
         prop_assert!(phi >= best - 2e-3, "{phi} far below sampled {best}");
+    }
+}
+
+/// The families of `tests/spline_conditioning.rs` (issue 10 and issue 15's region) as a
+/// generator: any seed, any family, `L/r` log-uniform over `1 … 10⁵`.
+fn thin_strategy() -> impl Strategy<Value = (ThinCase, f64, ThinFamily)> {
+    (any::<u64>(), 0.0f64..5.0, 0..THIN_FAMILIES.len()).prop_map(|(seed, lg, k)| {
+        let ratio = 10f64.powf(lg);
+        (thin_case(seed, ratio, THIN_FAMILIES[k]), ratio, THIN_FAMILIES[k])
+    })
+}
+
+/// Judges every solver in precision `T` on a thin-family case with the backward-error band
+/// `E` (derived in `src/kernel/spline.rs`, "Conditioning"): the accurate solvers must be right
+/// up to `E` (no phantom hit, no false miss, entry/exit between the inflated and deflated
+/// tubes'); the approximate `Bisection{10}` must never report a phantom hit (its reality test
+/// is the same gap from the vectors; its misses are measured in `tests/spline_approximate.rs`).
+fn judge_all<T: tubecast::Scalar>(c: &ThinCase) -> Result<(), String> {
+    let e = band(T::EPS.to_f64(), c);
+    for solver in SOLVERS {
+        let wrong = judge(kernel::<T>(c, solver), c, e);
+        let accurate = ACCURATE.contains(&solver);
+        if let Some((kind, why)) = wrong {
+            if accurate || kind == Wrong::Phantom {
+                return Err(format!("{} {solver:?}: {why}", std::any::type_name::<T>()));
+            }
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(config(96))]
+
+    /// Thin and long (`L/r` to 10⁵), bulge, cusp, taper to `r ≈ 0`, grazing, far origins,
+    /// inside, pinched `r(½) = 0`, scales `2^±50`, direction ratios `2⁴⁰`: every solver in
+    /// `f32` and `f64` within the band `E` (approximate solvers: no phantom hit).
+    #[test]
+    fn thin_families_within_the_band((c, ratio, family) in thin_strategy()) {
+        let ctx = |why: String| format!("{family:?} L/r={ratio:e}: {why}\n  {c:?}");
+        if let Err(why) = judge_all::<f64>(&c).and(judge_all::<f32>(&c)) {
+            prop_assert!(false, "{}", ctx(why));
+        }
     }
 }
 

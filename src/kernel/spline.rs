@@ -78,6 +78,14 @@
 //! side its sign points to (at a real interval's ends `F₁ = −g'` has the sign that closes the
 //! bracket).
 //!
+//! *Cost (exact early exits).* A line is rejected before any polynomial is formed when it is
+//! farther than the largest control radius from the control triangle (`ray_space::hull_misses`,
+//! exact: its proof is there), and the Polynomial solver forms `P` only when one of `g`'s
+//! breakpoints is real (they hold `g`'s maxima, so otherwise the line misses the tube deflated
+//! by `E`: a miss is right). At `t_v = 0` the two expansions of `P` coincide bit for bit and
+//! one cascade serves both. Lanes take an exit only when every lane does, and mask the same
+//! lanes otherwise, so a lane still equals the scalar call.
+//!
 //! The kernel returns the hull `[first entry, last exit]` ([`QuadTube::intersect_with`]). A strongly
 //! bent segment can be crossed more than once; [`QuadTube::intersect_pieces`] returns one
 //! interval per real interval of `g` (each exact: the part of the sweep over a connected
@@ -234,18 +242,27 @@ impl<T: Real> QuadTube<T> {
     /// chosen solver; [`Self::intersect_with`] clips it to the ray.
     #[inline(always)]
     pub fn line_interval_with(&self, ray: &Ray<T>, solver: Solver) -> Interval<T> {
-        let rs = RaySpace::new(self, ray);
-        if rs.near.none() {
+        let Some(rs) = RaySpace::new(self, ray) else {
             return Interval::miss();
-        }
+        };
         match solver {
             Solver::Polynomial => {
-                let (bp, n) = rs.p_breakpoints();
                 // g's breakpoints hold its maxima: a candidate in every real interval, whatever
-                // the rounding of P's coefficients does to P's roots.
+                // the rounding of P's coefficients does to P's roots. None of them real (gap
+                // ≥ −τ): the line misses the tube deflated by the band (see "Conditioning"), a
+                // miss is a right answer and P's cascade is skipped.
                 let z = rs.dg.g_breakpoints(Bracket::Newton);
+                let mut real = T::Mask::splat(false);
+                for &t in &z {
+                    real = real | rs.dg.gap_g(t).0.ge(-rs.dg.tau);
+                }
+                if (real & rs.near).none() {
+                    return Interval::miss();
+                }
+                let (bp, n) = rs.p_breakpoints();
                 let (x, any) = rs.polished_candidates(&bp[..n], &z, T::zero(), T::one(), false);
-                rs.interval(ray, x, any, false)
+                // `& real`: a lane decides as the scalar call does (which returned above).
+                rs.interval(ray, x, any & real, false)
             }
             _ => {
                 // Hull of the line pieces (a piece behind the origin still belongs to the line
@@ -266,10 +283,9 @@ impl<T: Real> QuadTube<T> {
     /// the candidates from `P`'s roots.
     #[inline(always)]
     pub fn intersect_pieces(&self, ray: &Ray<T>, solver: Solver) -> [Interval<T>; 5] {
-        let rs = RaySpace::new(self, ray);
-        if rs.near.none() {
+        let Some(rs) = RaySpace::new(self, ray) else {
             return [Interval::miss(); 5];
-        }
+        };
         self.pieces_in(&rs, ray, solver, true)
     }
 

@@ -214,9 +214,9 @@ pub fn info(a: &InfoArgs) -> Res {
         let f = scene.spline_fidelity();
         println!("splines    {} ({pieces} quadratic sub-segments)", st.splines);
         println!(
-            "fidelity   traced pair ≤ {:.3e} radii ({:.3e} absolute) from the cubic, certified; \
-             faithful split: {} pieces for ≤ {:.1e} radii",
-            f.pair_relative, f.pair_distance, f.faithful_pieces, f.faithful_relative
+            "fidelity   traced: faithful split, {} pieces for ≤ {:.1e} radii from the cubic, certified; \
+             Russig's pair would be ≤ {:.3e} radii ({:.3e} absolute)",
+            f.faithful_pieces, f.faithful_relative, f.pair_relative, f.pair_distance
         );
     } else {
         println!("splines    {}", st.splines);

@@ -25,8 +25,8 @@ fn intersect_traces_the_spline_model_and_info_reports_its_fidelity() {
     assert_eq!(r0[7], 1.0, "{r0:?}");
     assert!(r0[0] <= 9.575 + 1e-5 && r0[1] > r0[0], "{r0:?}");
     assert_eq!(r1[7], 0.0, "{r1:?}");
-    // info --splines: the certified distance of the traced pair to the cubic, and the
-    // faithful split's piece count and relative distance (≤ its 1e-3 tolerance).
+    // info --splines: the traced faithful split's piece count and certified relative distance
+    // to the cubic (≤ its 1e-3 tolerance), and Russig's pair's for comparison.
     let out = bin().arg("info").arg(&swc).arg("--splines").output().unwrap();
     let text = String::from_utf8(out.stdout).unwrap();
     let line = text.lines().find(|l| l.starts_with("fidelity")).unwrap_or_else(|| panic!("{text}"));

@@ -1,7 +1,7 @@
 //! `tubecast-lab`: writes the reports (SVG charts, markdown, CSV) into a folder.
 //!
 //! ```text
-//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|mesh|mesh-real|peers|voxel|all|tables [--out DIR]
+//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|thin|mesh|mesh-real|peers|voxel|all|tables [--out DIR]
 //!     [--seed N] [--quick] [--big] [--threads N] [--quiet]
 //! ```
 //!
@@ -53,6 +53,8 @@ enum Which {
     Mesh,
     /// Embree 3's round linear curves on the same rays (feature `embree`).
     Peers,
+    /// Spline kernel: error and false answers against length/radius, per solver.
+    Thin,
     /// Dynamic line sets: rebuild + render per frame, voxel grid vs BVH.
     Voxel,
     /// Mesh and automatic choice on real-world-like scenes: cost against certified error.
@@ -76,6 +78,9 @@ fn jobs(which: Which) -> Result<Vec<(&'static str, Job)>, String> {
     }
     if all || which == Which::Speed {
         jobs.push(("speed", report::run_speed));
+    }
+    if all || which == Which::Thin {
+        jobs.push(("thin", report::run_thin));
     }
     if all || which == Which::Voxel {
         jobs.push(("voxel", report::run_voxel));

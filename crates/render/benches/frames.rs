@@ -3,8 +3,8 @@
 //! * `frame/{scene}/{links|splines}/{opaque|transparent}`: one frame of a generated scene at
 //!   64×48 (3072 primary rays; throughput in rays/s), camera fitted to the scene, lit
 //!   shading, no AO or shadows; transparent = opacity 0.4 (CSG union of every interval along
-//!   each ray). Links: [`Scene::primitives`]; splines: [`Scene::spline_primitives`] (two
-//!   quadratic sub-segments per curved link). Rows run on rayon's pool (all cores).
+//!   each ray). Links: [`Scene::primitives`]; splines: [`Scene::spline_primitives`] (the
+//!   certified split of each curved link into quadratic pieces). Rows run on rayon's pool (all cores).
 //! * `bvh_build/{links|splines}/{segments}`: [`Bvh::build`] over a bundle of 1k … 100k links
 //!   (splines: twice as many primitives); throughput in primitives/s.
 //!

@@ -1,17 +1,19 @@
-//! Spline-tube renders checked against direct kernel calls: the depth buffer against f64
-//! spline-kernel calls on independently built Hermite segments, a straight polyline against
-//! its link rendering, and transparent compositing without interior surfaces at joints.
+//! Spline-tube renders checked against direct kernel calls and the cubic itself: the depth
+//! buffer against f64 spline-kernel calls on the certified split of independently built
+//! Hermite segments and against the cubic Hermite sweep sampled by the oracle (within the
+//! certified distance), a straight polyline against its link rendering, and transparent
+//! compositing without interior surfaces at joints.
 
 mod common;
 
 use common::{compare_depth, flat};
 use tubecast::csg::{union, Tagged};
-use tubecast::HermiteSegment;
-use tubecast::{Primitive, Ray, V3};
+use tubecast::{HermiteSegment, Primitive, QuadTube, Ray, V3};
+use tubecast_oracle::{golden_min, line_dist, sphere_crossing, Line, Vec3};
 use tubecast_render::accel::{first_component, Bvh};
 use tubecast_render::io::Polyline;
 use tubecast_render::render::{render, Camera, ColorBy};
-use tubecast_render::scene::{generate, PrimKind, Scene};
+use tubecast_render::scene::{generate, PrimKind, Scene, SPLINE_MAX_DEPTH, SPLINE_TOLERANCE};
 
 /// Hermite segments of one open polyline, written out here from the documented rule (not
 /// the scene code): uniform Catmull–Rom central differences inside, one-sided at the ends,
@@ -33,17 +35,87 @@ fn catmull_rom(l: &Polyline) -> Vec<HermiteSegment<f64>> {
         .collect()
 }
 
-/// First entry along `ray` (t ≥ 0) over all segments, by the f64 spline kernel (each segment
-/// split, no BVH, no f32), with the normal there.
-fn reference_hit(segs: &[HermiteSegment<f64>], ray: &Ray<f64>) -> Option<(f64, V3<f64>)> {
+/// The pieces the faithful model traces, computed here from the independently built segments
+/// with the kernel's certified split (tested against the cubic in `tests/spline_hermite.rs`),
+/// in `f64`, and the greatest certified distance to the cubic's sweep among them.
+fn pieces(segs: &[HermiteSegment<f64>]) -> (Vec<QuadTube<f64>>, f64) {
+    let mut out = Vec::new();
+    let mut dist: f64 = 0.0;
+    for s in segs {
+        let split = s.split_adaptive(SPLINE_TOLERANCE, SPLINE_MAX_DEPTH).unwrap();
+        assert!(split.relative <= SPLINE_TOLERANCE, "the helix needs no more than the maximal depth");
+        dist = dist.max(split.distance);
+        out.extend(split.quads);
+    }
+    (out, dist)
+}
+
+/// First entry along `ray` (t ≥ 0) over all pieces, by the f64 spline kernel (no BVH, no
+/// f32), with the normal there.
+fn reference_hit(pieces: &[QuadTube<f64>], ray: &Ray<f64>) -> Option<(f64, V3<f64>)> {
+    let mut best: Option<(f64, V3<f64>)> = None;
+    for q in pieces {
+        if let Some((t, n, _)) = q.intersect(ray).first_hit(0.0, f64::INFINITY) {
+            if best.map_or(true, |b| t < b.0) {
+                best = Some((t, n));
+            }
+        }
+    }
+    best
+}
+
+/// The cubic Hermite segment's centre and radius at `u`, from the Hermite basis written out
+/// here (`h₀₀ = 2u³ − 3u² + 1`, `h₁₀ = u³ − 2u² + u`, `h₀₁ = 3u² − 2u³`, `h₁₁ = u³ − u²`).
+fn hermite_at(s: &HermiteSegment<f64>, u: f64) -> (Vec3, f64) {
+    let (u2, u3) = (u * u, u * u * u);
+    let (h00, h10, h01, h11) = (2.0 * u3 - 3.0 * u2 + 1.0, u3 - 2.0 * u2 + u, 3.0 * u2 - 2.0 * u3, u3 - u2);
+    let o = |v: V3<f64>| Vec3::from(v.to_array());
+    let c = o(s.p0) * h00 + o(s.m0) * h10 + o(s.p1) * h01 + o(s.m1) * h11;
+    (c, s.r0 * h00 + s.dr0 * h10 + s.r1 * h01 + s.dr1 * h11)
+}
+
+/// Samples per segment of the cubic oracle ([`cubic_hit`]).
+const CUBIC_SAMPLES: usize = 1024;
+
+/// First entry (t ≥ 0) of the ray into the **cubic** Hermite sweeps themselves, independent of
+/// the kernel: per segment (culled by the sphere around its Bézier control polygon, which holds
+/// the curve) the oracle's sphere crossings at `CUBIC_SAMPLES + 1` parameters, the best
+/// refined by golden section over the two neighbouring spacings; the normal is the entry
+/// sphere's (the sweep's envelope is tangent to it there).
+fn cubic_hit(segs: &[HermiteSegment<f64>], ray: &Ray<f64>) -> Option<(f64, V3<f64>)> {
+    let o = |v: V3<f64>| Vec3::from(v.to_array());
+    let line = Line { o: o(ray.o), d: o(ray.d) };
     let mut best: Option<(f64, V3<f64>)> = None;
     for s in segs {
-        for q in s.split().unwrap() {
-            if let Some((t, n, _)) = q.intersect(ray).first_hit(0.0, f64::INFINITY) {
-                if best.map_or(true, |b| t < b.0) {
-                    best = Some((t, n));
-                }
-            }
+        let ctrl = [s.p0, s.p0 + s.m0 * (1.0 / 3.0), s.p1 - s.m1 * (1.0 / 3.0), s.p1];
+        let rad = [s.r0, s.r0 + s.dr0 / 3.0, s.r1 - s.dr1 / 3.0, s.r1];
+        let mid = (ctrl[0] + ctrl[3]) * 0.5;
+        let reach =
+            ctrl.iter().map(|c| (*c - mid).length()).fold(0.0, f64::max) + rad.iter().fold(0.0f64, |a, b| a.max(*b));
+        if line_dist(&line, o(mid)) > reach {
+            continue;
+        }
+        let entry = |u: f64| {
+            let (c, r) = hermite_at(s, u.clamp(0.0, 1.0));
+            sphere_crossing(&line, c, r).map_or(f64::INFINITY, |x| if x.0 >= 0.0 { x.0 } else { f64::INFINITY })
+        };
+        let n = CUBIC_SAMPLES;
+        let (k, v) =
+            (0..=n)
+                .map(|k| (k, entry(k as f64 / n as f64)))
+                .fold((0, f64::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
+        if !v.is_finite() {
+            continue;
+        }
+        let (lo, hi) = ((k as f64 - 1.0) / n as f64, (k as f64 + 1.0) / n as f64);
+        let (u, t) = match golden_min(entry, lo.max(0.0), hi.min(1.0)) {
+            (u, t) if t < v => (u, t),
+            _ => (k as f64 / n as f64, v),
+        };
+        if best.map_or(true, |b| t < b.0) {
+            let (c, _) = hermite_at(s, u.clamp(0.0, 1.0));
+            let nrm = (line.at(t) - c).normalize_or_zero();
+            best = Some((t, V3::new(nrm.x, nrm.y, nrm.z)));
         }
     }
     best
@@ -65,25 +137,45 @@ fn depth_tol(s: f64, r_min: f64, c: f64) -> f64 {
     64.0 * eps * s * s / (2.0 * r_min * c) + 12.0 * eps * s
 }
 
+/// The depth tolerance against the **cubic** (the oracle [`cubic_hit`]) on top of `tol`
+/// against the traced pieces: the pieces' sweep lies between the cubic's sweeps with radii
+/// `r ∓ D` (`D` the certified distance, [`HermiteSegment::split_adaptive`]), and the sweep
+/// with `r ± D` is the cubic's offset by `D`, whose entry a non-grazing ray (`|n·d̂| ≥ c`,
+/// `|d| ≥ 1`) reaches within `D/c` of the cubic's to first order; the second order is
+/// `≲ D/(ρ c²)` of it (ρ ≥ r_min the surface's curvature radius: ≤ 0.1 relative for
+/// `D ≤ 1e-3`, `ρ ≥ 0.25`, `c = 0.1`), so a factor 2 covers it. The oracle's own error is the
+/// rounding of its f64 sphere crossings, refined by golden section to the value's rounding.
+fn cubic_tol(tol: f64, dist: f64, c: f64) -> f64 {
+    tol + 2.0 * dist / c
+}
+
 #[test]
 fn spline_depth_buffer_equals_direct_f64_spline_kernel_calls() {
     let lines = generate::helix(24);
     let scene = Scene::from_polylines(&lines, 1.0, "helix").unwrap();
     let prims = scene.spline_primitives().unwrap();
-    // Every helix segment is curved: 2 strands × 24 segments × 2 sub-segments.
-    assert_eq!(prims.iter().filter(|p| p.kind() == PrimKind::Spline).count(), 96);
+    let segs: Vec<_> = lines.iter().flat_map(catmull_rom).collect();
+    let (quads, dist) = pieces(&segs);
+    // Every helix segment is curved (2 strands × 24 segments), each split into the certified
+    // split's pieces, more than Russig's two (the pair is off the cubic by ~1e-2 R here).
+    assert_eq!(prims.iter().filter(|p| p.kind() == PrimKind::Spline).count(), quads.len());
+    assert!(quads.len() > 96, "{}", quads.len());
     let st = scene.stats_of(&prims);
     assert_eq!(st.splines, 48);
     let bvh = Bvh::build(prims);
     let cam = Camera::fit(st.bounds.0, st.bounds.1, 40.0, 32, 32).unwrap();
     let img = render(&scene, &bvh, &cam, &flat(ColorBy::Direction, 1.0)).unwrap();
-    let segs: Vec<_> = lines.iter().flat_map(catmull_rom).collect();
-    // Sub-segment size: a helix segment spans 3 turns·2π·4/24 ≈ 3.14 of arc, so a half is
-    // ≤ 1.6 long and lies within 0.8 of its midpoint; plus the radius ≤ 0.6: s = 1.4. Radii
-    // ≥ 0.25; non-grazing means |n·d̂| ≥ 0.1.
+    // Piece size: a helix segment spans 3 turns·2π·4/24 ≈ 3.14 of arc, so a piece (at most a
+    // half) is ≤ 1.6 long and lies within 0.8 of its midpoint; plus the radius ≤ 0.6: s = 1.4.
+    // Radii ≥ 0.25; non-grazing means |n·d̂| ≥ 0.1.
     let tol = depth_tol(1.4, 0.25, 0.1);
-    let depth = compare_depth(&img, &cam, 0.1, tol, |_, _, r| reference_hit(&segs, r));
+    let depth = compare_depth(&img, &cam, 0.1, tol, |_, _, r| reference_hit(&quads, r));
     depth.assert_covers("helix splines", tol, 100, 4);
+    // Against the cubic sweep itself, by the oracle: within the certified distance.
+    assert!(dist <= SPLINE_TOLERANCE * 0.6, "certified distance {dist:e}");
+    let tol_c = cubic_tol(tol, dist, 0.1);
+    let cubic = compare_depth(&img, &cam, 0.1, tol_c, |_, _, r| cubic_hit(&segs, r));
+    cubic.assert_covers("helix splines vs the cubic", tol_c, 100, 4);
 }
 
 #[test]
@@ -118,13 +210,20 @@ fn bifurcation_splits_chains_and_matches_per_branch_splines() {
     };
     let segs: Vec<_> =
         [chain(&[1, 2, 3, 4]), chain(&[4, 5, 6, 7]), chain(&[4, 8, 9, 10])].iter().flat_map(catmull_rom).collect();
+    let (quads, dist) = pieces(&segs);
+    assert_eq!(prims.iter().filter(|p| p.kind() == PrimKind::Spline).count(), quads.len());
     let bvh = Bvh::build(prims);
     let cam = Camera::fit(st.bounds.0, st.bounds.1, 40.0, 32, 32).unwrap();
     let img = render(&scene, &bvh, &cam, &flat(ColorBy::Type, 1.0)).unwrap();
-    // Half segments ≤ 1.3 from their midpoints plus radius ≤ 0.9: s = 2.2; radii ≥ 0.35.
+    // Pieces (at most half segments) ≤ 1.3 from their midpoints plus radius ≤ 0.9: s = 2.2;
+    // radii ≥ 0.35.
     let tol = depth_tol(2.2, 0.35, 0.1);
-    let depth = compare_depth(&img, &cam, 0.1, tol, |_, _, r| reference_hit(&segs, r));
+    let depth = compare_depth(&img, &cam, 0.1, tol, |_, _, r| reference_hit(&quads, r));
     depth.assert_covers("bifurcation", tol, 60, 4);
+    assert!(dist <= SPLINE_TOLERANCE * 0.9, "certified distance {dist:e}");
+    let tol_c = cubic_tol(tol, dist, 0.1);
+    let cubic = compare_depth(&img, &cam, 0.1, tol_c, |_, _, r| cubic_hit(&segs, r));
+    cubic.assert_covers("bifurcation vs the cubic", tol_c, 60, 4);
 }
 
 #[test]
@@ -140,13 +239,16 @@ fn straight_polyline_with_splines_matches_links() {
         points: ss.iter().map(|&s| (c + u * s).to_array()).collect(),
         radii: ss.iter().map(|&s| 0.3 + 0.05 * s).collect(),
     };
-    let scene = Scene::from_polylines(&[line], 1.0, "straight").unwrap();
+    let scene = Scene::from_polylines(std::slice::from_ref(&line), 1.0, "straight").unwrap();
     let links = scene.primitives();
     // The default rule keeps them links (the sweep is the same); forcing splines must not.
     let kept = scene.spline_primitives().unwrap();
     assert_eq!(kept, links, "straight segments stay links");
     let forced = scene.spline_primitives_with(false).unwrap();
-    assert_eq!(forced.iter().filter(|p| p.kind() == PrimKind::Spline).count(), 12);
+    // Six segments, each split into the certified split's pieces (at least one each).
+    let (quads, _) = pieces(&catmull_rom(&line));
+    assert!(quads.len() >= 6);
+    assert_eq!(forced.iter().filter(|p| p.kind() == PrimKind::Spline).count(), quads.len());
 
     let side = V3::new(2.0, -1.0, 0.0).normalize_or_zero();
     let cam = Camera::look_at(c + u * 3.5 + side * 4.5, c + u * 3.5, V3::new(0.0, 0.0, 1.0), 50.0, 48, 32).unwrap();
@@ -277,10 +379,11 @@ fn far_from_origin_spline_render_keeps_its_depth() {
     // in the helix depth test); the shifted inputs and camera rays carry f64 rounding of
     // ~10⁶·2⁻⁵³ ≈ 1e-10, negligible. Grazing pixels (|n·d̂| < 0.1 by the f64 kernels) skipped.
     let segs: Vec<_> = generate::helix(24).iter().flat_map(catmull_rom).collect();
+    let (quads, _) = pieces(&segs);
     let tol = 2.0 * depth_tol(1.4, 0.25, 0.1) + 1e-9;
     let w = cam.width;
     let common::DepthCheck { hits, worst, .. } = compare_depth(&far, &cam, 0.1, tol, |x, y, r| {
-        reference_hit(&segs, r).map(|(_, n)| (near.depth[(y * w + x) as usize], n))
+        reference_hit(&quads, r).map(|(_, n)| (near.depth[(y * w + x) as usize], n))
     });
     eprintln!("far: {hits} hits, worst |Δt| far vs near {worst:e} (tol {tol:e})");
     assert!(hits > 60, "{hits}");

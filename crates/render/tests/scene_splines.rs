@@ -6,7 +6,13 @@ use tubecast::QuadTube;
 use tubecast::{GeometryError, V3};
 use tubecast_render::io::swc::SwcNode;
 use tubecast_render::io::Polyline;
-use tubecast_render::scene::{Chain, Node, Prim, PrimKind, Scene};
+use tubecast_render::scene::{Chain, Node, Prim, PrimKind, Scene, SPLINE_MAX_DEPTH, SPLINE_TOLERANCE};
+
+/// Pieces of the certified split over the scene's spline segments (all curved here).
+fn pieces(s: &Scene) -> usize {
+    let split = |g: &tubecast_render::scene::SplineSegment| g.seg.split_adaptive(SPLINE_TOLERANCE, SPLINE_MAX_DEPTH);
+    s.spline_segments().iter().map(|g| split(g).unwrap().quads.len()).sum()
+}
 
 fn line(points: &[[f64; 3]], radii: &[f64]) -> Polyline {
     Polyline { points: points.to_vec(), radii: radii.to_vec() }
@@ -101,8 +107,11 @@ fn radius_derivative_limit_keeps_every_sub_segment_valid() {
     let g = s.spline_segments();
     assert_eq!((g[1].seg.dr0, g[1].seg.dr1), (-0.1, 0.0));
     let prims = s.spline_primitives().unwrap();
-    assert_eq!(prims.len(), 4);
-    for q in prims.iter().map(|p| p.quad().expect("both links are curved: four spline sub-segments")) {
+    // Both links are curved: each split into its certified split's pieces (the segments' own
+    // derivatives are checked just above).
+    assert_eq!(prims.len(), pieces(&s));
+    assert!(prims.len() >= 4, "the taper needs more than one piece per segment ({})", prims.len());
+    for q in prims.iter().map(|p| p.quad().expect("both links are curved: spline pieces only")) {
         assert!(q.min_radius() >= 0.0 && q.r.iter().any(|&r| r > 0.0), "{q:?}");
     }
 }
@@ -148,7 +157,9 @@ fn link_model_counts_match_and_f32_storage_is_guarded() {
     let big =
         Scene::from_polylines(&[line(&[[0.0; 3], [1e9, 0.0, 0.0], [2e9, 1e9, 0.0]], &[1.0; 3])], 1.0, "big").unwrap();
     let prims = big.spline_primitives().unwrap();
-    assert_eq!(prims.len(), 4);
+    // L/r ~ 1e9: the split stops at its maximal depth, 2⁷ pieces per segment.
+    assert_eq!(prims.len(), pieces(&big));
+    assert_eq!(prims.len(), 2 << SPLINE_MAX_DEPTH);
     assert!(prims.iter().all(|p| {
         let (a, b) = p.aabb();
         a.iter().chain(&b).all(|v| v.is_finite())

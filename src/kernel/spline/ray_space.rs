@@ -77,6 +77,45 @@ fn ray_polys<T: Real>(q: [V3<T>; 3], r: [T; 3], dhat: V3<T>) -> ([T; 3], [T; 5])
     (h, g)
 }
 
+/// Lanes whose line surely misses the sweep (an exact early rejection, issue 10's cost): the
+/// centre curve lies in the triangle of its control points `cᵢ` (Bernstein weights are a
+/// convex combination) and `r(t) ≤ ρ = max rᵢ` (likewise), so the sweep lies in the triangle
+/// dilated by `ρ`, and a line farther than `ρ` from the triangle misses it. Viewed along the
+/// line (`d̂`) the line is the origin (the re-centred origin is on it) and the triangle that of
+/// `Wᵢ = cᵢ × d̂` (the projection onto the plane ⊥ `d̂`, turned by 90°: an isometry there).
+///
+/// *Exactness.* Everything is in units of the bounding radius, `|cᵢ| ≤ 2`, `|Wᵢ| ≤ 2`. A lane
+/// is rejected only if the origin is **outside** the projected triangle — every edge's
+/// orientation `(Wᵢ × Wᵢ₊₁)·d̂` beyond its rounding `16ε(|Wᵢ|² + |Wᵢ₊₁|²)` ≥ `32ε|Wᵢ||Wᵢ₊₁|` on
+/// both sides, so a truly inside origin always passes — and its distance to every edge
+/// segment exceeds `ρ + 128ε`. Outside a triangle the distance to it is the least distance to
+/// its edge segments; each computed distance is within `28ε` (the rounding of `a + e·s`,
+/// `|W| ≤ 2`) plus `16ε` (a parameter `s` off by `4ε`: `|e|·δs`, the distance being flat at
+/// the optimum) of the true one. So a rejected line is more than `ρ + 84ε > ρ` from the
+/// triangle of the (rounded, re-centred) control points: it misses the tube the kernel
+/// models (the rounding of `cᵢ`, `rᵢ` is the input perturbation inside the band `E`), and
+/// the exact answer is a miss.
+#[inline(always)]
+fn hull_misses<T: Real>(c: [V3<T>; 3], rho: T, dhat: V3<T>) -> T::Mask {
+    let (zero, one, eps) = (T::zero(), T::one(), T::epsilon());
+    let w = [c[0].cross(dhat), c[1].cross(dhat), c[2].cross(dhat)];
+    let lim = rho + T::cst(128.0) * eps;
+    let lim2 = lim * lim;
+    let (mut far, mut pos, mut neg) = (T::Mask::splat(true), T::Mask::splat(true), T::Mask::splat(true));
+    for i in 0..3 {
+        let (a, b) = (w[i], w[(i + 1) % 3]);
+        let e = b - a;
+        let ee = e.length2();
+        let s = (-a.dot(e) / T::select(ee.gt(zero), ee, one)).clamp(zero, one);
+        far = far & (a + e * s).length2().gt(lim2);
+        let o = a.cross(b).dot(dhat);
+        let k = T::cst(16.0) * eps * (a.length2() + b.length2());
+        pos = pos & o.ge(-k);
+        neg = neg & o.le(k);
+    }
+    far & !(pos | neg) & lim.gt(zero)
+}
+
 /// `P = 4h'²g − g'²` from `h`, `g` in powers of one variable.
 #[inline(always)]
 fn p_of<T: Real>(h: &[T; 3], g: &[T; 5]) -> [T; 7] {
@@ -94,9 +133,10 @@ fn p_of<T: Real>(h: &[T; 3], g: &[T; 5]) -> [T; 7] {
 }
 
 impl<T: Real> RaySpace<T> {
-    /// Set up the query of `ray` against `tube`.
+    /// Set up the query of `ray` against `tube`; `None` when no lane's line can meet the sweep
+    /// (the bounding sphere and [`hull_misses`], both exact rejections).
     #[inline(always)]
-    pub(super) fn new(tube: &QuadTube<T>, ray: &Ray<T>) -> Self {
+    pub(super) fn new(tube: &QuadTube<T>, ray: &Ray<T>) -> Option<Self> {
         let two = T::cst(2.0);
         let quarter = T::cst(0.25);
         let [b0, b1, b2] = tube.b;
@@ -143,6 +183,10 @@ impl<T: Real> RaySpace<T> {
         let qb = (c1 - c0) * two;
         let qc = c0;
         let [r0, r1, r2] = [(tube.r[0] * up) * inv, (tube.r[1] * up) * inv, (tube.r[2] * up) * inv];
+        let near = near & !hull_misses([c0, c1, c2], r0.max(r1).max(r2), dhat);
+        if near.none() {
+            return None;
+        }
         let (ra, rb, rc) = (r0 - r1 * two + r2, (r1 - r0) * two, r0);
         let (h, g) = ray_polys([qa, qb, qc], [ra, rb, rc], dhat);
         // The same about the vertex tv of the centre line (|p'|² = |qb + 2qa·t|² least), from
@@ -167,7 +211,7 @@ impl<T: Real> RaySpace<T> {
         // entry — was dropped). At t = 0 Horner gives wc, rc exactly.
         let dg = Direct::new([qa, qb, qc], [ra, rb, rc], dhat, (c2, r2));
         // Ray-space distances are in units of `big`: t = tc + s·big/|d|.
-        Self { h, g, qa, qb, qc, dhat, tc, inv_dlen: inv_dlen * big_s, near, hv, gv, tv, dg }
+        Some(Self { h, g, qa, qb, qc, dhat, tc, inv_dlen: inv_dlen * big_s, near, hv, gv, tv, dg })
     }
 
     #[inline(always)]
@@ -270,8 +314,14 @@ impl<T: Real> RaySpace<T> {
     #[inline(always)]
     pub(super) fn p_breakpoints(&self) -> ([T; 16], usize) {
         let (lo, hi) = (-self.tv, T::one() - self.tv);
-        let (bv, nv) = poly_breakpoints(&self.p_poly(), lo, hi, Bracket::Newton);
         let (bt, nt) = poly_breakpoints(&self.p_poly_t(), T::zero(), T::one(), Bracket::Newton);
+        // At tv = 0 both expansions are the same numbers (hv = h, gv = g bit for bit: the
+        // Bernstein weights at 0 are exactly 1, 0, 0), so their roots are too: reuse them.
+        let (bv, nv) = if self.tv.eq(T::zero()).all() {
+            (bt, nt)
+        } else {
+            poly_breakpoints(&self.p_poly(), lo, hi, Bracket::Newton)
+        };
         debug_assert!(nv == 8 && nt == 8);
         let mut out = [T::one(); 16];
         // out = bt ascending, then the shifted bv descending: a bitonic sequence.

@@ -460,16 +460,16 @@ pub fn score_links(prec: Precision, cases: &[LinkCase], truth: &[LinkTruth], out
     s
 }
 
-/// Score spline outcomes against the dense oracle. Band: `64·ε·(S + D)` with `S` the segment's
-/// extent plus radius and `D` the ray origin's distance to `b₀` (the error model of the spline
-/// kernel's ray-space coordinates), plus `1e-9·S` for the sampled oracle.
+/// Score spline outcomes against the dense oracle. Band: the kernel's derived backward-error
+/// band (`src/kernel/spline.rs`, "Conditioning") `E = 1024·ε·R + 8·ε·|o − p(½)|`, `R =
+/// max|bᵢ − p(½)| + max rᵢ`, plus `1e-9·R` for the sampled oracle.
 pub fn score_splines(prec: Precision, cases: &[SplineCase], truth: &[SplineTruth], out: &[Outcome]) -> Score {
     let mut s = Score { n: cases.len(), ..Score::default() };
     for ((c, tr), o) in cases.iter().zip(truth).zip(out) {
-        let b = c.tube.b;
-        let ext = (b[1] - b[0]).length().max((b[2] - b[0]).length()) + c.radius;
-        let dist = (c.ray.o - b[0]).length();
-        let band = 64.0 * prec.eps() * (ext + dist) + 1e-9 * ext;
+        let m = c.tube.point(0.5);
+        let ext = c.tube.b.iter().map(|&p| (p - m).length()).fold(0.0, f64::max) + c.radius;
+        let dist = (c.ray.o - m).length();
+        let band = 1024.0 * prec.eps() * ext + 8.0 * prec.eps() * dist + 1e-9 * ext;
         let dl = c.ray.d.length();
         let must_hit = tr.gap < -band && tr.iv.is_some_and(|iv| iv.1 > band / dl);
         let must_miss = tr.gap > band || tr.iv.is_some_and(|iv| iv.1 < -band / dl);

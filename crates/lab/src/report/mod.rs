@@ -12,6 +12,8 @@
 //!   curvature radius, cusps, rays starting inside, …);
 //! * [`run_speed`] — BVH build and frame time and rays/s versus segment count (opaque and
 //!   transparent/CSG) on generated scenes;
+//! * [`run_thin`] — the spline kernel's length/radius sweep (`L/r = 10 … 10⁵`): max error in
+//!   radii and false-hit / false-miss rates per solver and precision, with the kernel's band;
 //! * [`run_mesh`] — the certified mesh path against the exact kernels (build, memory, frame,
 //!   image difference) versus segment count;
 //! * [`run_mesh_real`] — the same trade-off on real-world-like scenes (nibabel's `standard.trk`,
@@ -31,6 +33,7 @@ mod peers;
 mod peers_speed;
 mod runs;
 mod speed;
+mod thin;
 mod voxel;
 
 pub use mesh::run_mesh;
@@ -39,6 +42,7 @@ pub use mesh_real::run_mesh_real;
 pub use peers::run_peers;
 pub use runs::{run_accuracy, run_stability};
 pub use speed::run_speed;
+pub use thin::run_thin;
 pub use voxel::run_voxel;
 
 use std::path::{Path, PathBuf};

@@ -297,7 +297,7 @@ pub fn run_stability(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Re
     let mut md = header("Stability per failure region", opts, "cargo run --release -p tubecast-lab -- stability");
     md.push_str(
         "Per region and method: cases the oracle says must hit / must miss (outside the method's error band \
-         `E` of `tests/link_props.rs` for links, `64·ε·(S + D)` for splines), how many of them were answered \
+         `E` of `tests/link_props.rs` for links, `1024·ε·R + 8·ε·|o − p(½)|` for splines (`src/kernel/spline.rs`)), how many of them were answered \
          wrongly, and the distribution of the `t` error on robust hits (units of the largest radius, and ulps). \
          `max err/bound` > 1 means the method exceeds the stable kernel's proven bound in that region.\n\n## Links\n\n",
     );

@@ -171,9 +171,9 @@ impl Scene {
 
     /// How faithful the spline models are to the cubic Hermite segments, over the curved
     /// segments (straight ones are their links, exactly): the greatest certified distance
-    /// ([`HermiteSegment::pair_distance`]) of Russig's pair — what [`Self::spline_primitives`]
-    /// traces — absolute and over the segment's least node radius, and the number of pieces the
-    /// faithful split ([`Self::faithful_spline_primitives`], [`SPLINE_TOLERANCE`]) needs and the
+    /// ([`HermiteSegment::pair_distance`]) of Russig's pair ([`Self::pair_spline_primitives`]),
+    /// absolute and over the segment's least node radius, and the number of pieces the
+    /// faithful split ([`Self::spline_primitives`], [`SPLINE_TOLERANCE`]) needs and the
     /// greatest relative distance it reaches. `info --splines` reports it.
     pub fn spline_fidelity(&self) -> SplineFidelity {
         let mut f = SplineFidelity::default();
@@ -193,18 +193,20 @@ impl Scene {
         f
     }
 
-    /// [`Self::spline_primitives`] with every curved segment split adaptively
-    /// ([`HermiteSegment::split_adaptive`]) until its certified distance to the cubic is within
-    /// [`SPLINE_TOLERANCE`] of the local radius (or [`SPLINE_MAX_DEPTH`] halvings).
+    /// The same as [`Self::spline_primitives`] (the faithful split is the default since issue
+    /// 10; kept for callers that named it).
     pub fn faithful_spline_primitives(&self) -> Result<Vec<Prim>, SceneError> {
-        self.spline_primitives_impl(true, true)
+        self.spline_primitives()
     }
 
-    /// Primitives of the spline model (see the module docs): two [`super::PrimKind::Spline`]
-    /// sub-segments per curved chain link (Russig's pair, [`Self::spline_fidelity`] says how far
-    /// from the cubic; [`Self::faithful_spline_primitives`] for the certified split), the link's own primitive for straight ones and for
-    /// isolated nodes. Errors (a guard; see [`Prim::from_quad`]) when a segment cannot be stored
-    /// as an `f32` spline primitive.
+    /// Primitives of the spline model (see the module docs), what the renderer, `intersect
+    /// --splines` and the reports trace: every curved chain link split adaptively
+    /// ([`HermiteSegment::split_adaptive`]) into [`super::PrimKind::Spline`] pieces until the
+    /// certified distance to the cubic's sweep is within [`SPLINE_TOLERANCE`] of the local
+    /// radius (or [`SPLINE_MAX_DEPTH`] halvings; [`Self::spline_fidelity`] reports what is
+    /// reached), the link's own primitive for straight ones and for isolated nodes. Errors (a
+    /// guard; see [`Prim::from_quad`]) when a segment cannot be stored as an `f32` spline
+    /// primitive.
     pub fn spline_primitives(&self) -> Result<Vec<Prim>, SceneError> {
         self.spline_primitives_with(true)
     }
@@ -212,7 +214,13 @@ impl Scene {
     /// [`Self::spline_primitives`], optionally keeping straight segments as splines too
     /// (`straight_as_links = false`; for comparing the two models on the same surface).
     pub fn spline_primitives_with(&self, straight_as_links: bool) -> Result<Vec<Prim>, SceneError> {
-        self.spline_primitives_impl(straight_as_links, false)
+        self.spline_primitives_impl(straight_as_links, true)
+    }
+
+    /// The old model: Russig's C¹ pair of quadratics per curved link ([`HermiteSegment::split`]),
+    /// not faithful to the cubic ([`Self::spline_fidelity`] says by how much); for comparisons.
+    pub fn pair_spline_primitives(&self) -> Result<Vec<Prim>, SceneError> {
+        self.spline_primitives_impl(true, false)
     }
 
     fn spline_primitives_impl(&self, straight_as_links: bool, faithful: bool) -> Result<Vec<Prim>, SceneError> {
