@@ -175,3 +175,78 @@ fn placeholder_radii_are_refused_with_a_hint_and_replaced_with_min_radius() {
     assert_eq!(r[7], 1.0, "{r:?}");
     assert!((r[0] - (5.0 - 0.1875f64.sqrt())).abs() < 1e-5, "{r:?}");
 }
+
+/// Every nibabel test tractogram: `info` either succeeds or refuses with a clear error, never
+/// panics (exit 101). In particular `multiline_header_field.tck`, whose 253 points all lie at
+/// the origin (252 zero-length links in one box), once built an 8-wide BVH deeper than
+/// obvhs's traversal stack (a debug-build panic; in release, dropped subtrees).
+#[test]
+fn info_never_panics_on_nibabel_test_files() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../reference/readers/nibabel");
+    let mut n = 0;
+    for e in std::fs::read_dir(&dir).unwrap() {
+        let p = e.unwrap().path();
+        if !matches!(p.extension().and_then(|x| x.to_str()), Some("trk" | "tck")) {
+            continue;
+        }
+        n += 1;
+        let out = bin().arg("info").arg(&p).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.code() != Some(101) && !err.contains("panicked"), "{}: {err}", p.display());
+        assert!(out.status.success() || err.starts_with("tubecast: "), "{}: {err}", p.display());
+    }
+    assert!(n >= 14, "only {n} nibabel files found in {}", dir.display());
+}
+
+/// `multiline_header_field.tck` (252 zero-length links at one point): the 8-wide BVH (the
+/// default) answers as the binary BVH does, ray for ray, and as the sphere they all are.
+#[test]
+fn a_tractogram_of_coincident_points_traces_alike_in_both_trees() {
+    let f = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../reference/readers/nibabel/multiline_header_field.tck");
+    // A fan of rays through the origin's neighbourhood (radius 0.5 given below).
+    let rays: Vec<f64> = (0..64)
+        .flat_map(|i| {
+            let y = -0.8 + 1.6 * (i as f64) / 63.0;
+            [-5.0, y, 0.1, 1.0, 0.0, 0.0]
+        })
+        .collect();
+    let rays_path = tmp("coincident-rays.npy");
+    std::fs::write(&rays_path, write(&Array2 { rows: 64, cols: 6, data: rays })).unwrap();
+    let mut hits = Vec::new();
+    for accel in ["bvh", "bvh2"] {
+        let out_path = tmp(&format!("coincident-hits-{accel}.npy"));
+        let _ = std::fs::remove_file(&out_path);
+        let out = bin()
+            .arg("intersect")
+            .arg(&f)
+            .arg("--rays")
+            .arg(&rays_path)
+            .arg("--out")
+            .arg(&out_path)
+            .args(["--radius", "0.5", "--accel", accel])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{accel}: {}", String::from_utf8_lossy(&out.stderr));
+        hits.push(read(&std::fs::read(&out_path).unwrap(), "hits", Some(8)).unwrap());
+    }
+    // Equal in every column but the link (column 5): the 252 coincident links are the same
+    // sphere, so which of them a tree reports first at the shared nearest t is a tie.
+    for (i, (a, b)) in hits[0].data.iter().zip(&hits[1].data).enumerate() {
+        if i % 8 != 5 {
+            assert_eq!(a.to_bits(), b.to_bits(), "ray {}, column {}", i / 8, i % 8);
+        }
+    }
+    // A sphere of radius 0.5 at the origin, the rays in the plane z = 0.1: a ray hits where
+    // y² + 0.01 < 0.25, |y| < 0.4899; margins of 0.01 ≫ the f32 rounding of the primitive.
+    let t = &hits[0];
+    for i in 0..64 {
+        let y = -0.8 + 1.6 * (i as f64) / 63.0;
+        let hit = t.data[i * t.cols].is_finite();
+        if y.abs() < 0.48 {
+            assert!(hit, "ray {i} (y = {y}) should hit");
+        } else if y.abs() > 0.50 {
+            assert!(!hit, "ray {i} (y = {y}) should miss");
+        }
+    }
+}

@@ -32,6 +32,7 @@ use tubecast::csg::Tagged;
 use tubecast::Ray;
 use tubecast::V3;
 
+mod cwbuild;
 pub mod grid;
 #[cfg(feature = "wide")]
 mod packet;

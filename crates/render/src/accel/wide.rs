@@ -40,11 +40,8 @@ impl WideBvh {
         if prims.is_empty() {
             return Self { bvh: CwBvh::default(), prims, frame };
         }
-        let mut bvh = obvhs::cwbvh::builder::build_cwbvh(
-            &aabbs,
-            obvhs::BvhBuildParams::medium_build(),
-            &mut std::time::Duration::default(),
-        );
+        // obvhs PLOC, medium quality, with a depth guard for degenerate scenes (cwbuild.rs).
+        let mut bvh = super::cwbuild::build(&aabbs);
         let prims: Vec<Prim> = bvh.primitive_indices.iter().map(|&i| prims[i as usize]).collect();
         for (k, i) in bvh.primitive_indices.iter_mut().enumerate() {
             *i = k as u32;
