@@ -101,6 +101,7 @@ pub fn load_scene(
     let bar = crate::progress::bytes(len, &format!("loading {}", input.display()));
     let r = Scene::load_selected(input, &opts, &sel, data, &bar);
     bar.finish_and_clear();
+    crate::progress::report_peak(Some("load"));
     Ok(r?)
 }
 
@@ -123,9 +124,9 @@ pub fn check_memory(
     // Unreadable or malformed files are reported by the load itself, with its own message.
     let Ok(counts) = estimate::probe(input) else { return Ok(None) };
     let Some((per_link, avg)) = sample(input, opts, sel, plan) else { return Ok(None) };
-    let links = counts.links(sel, avg);
+    let kept = (counts.links(sel, avg), counts.kept_lines(sel, avg));
     let name = input.display().to_string();
-    Ok(Some(estimate::check(&name, links, per_link, available).map_err(CliError::Memory)?))
+    Ok(Some(estimate::check(&name, kept, per_link, available).map_err(CliError::Memory)?))
 }
 
 /// Bytes per link of the first streamlines of `input` (a generated bundle for SWC), built as

@@ -57,7 +57,7 @@ fn main() -> ExitCode {
         Cmd::Mesh(a) => cmd_mesh::mesh(&a),
         Cmd::Simplify(a) => cmd_simplify::simplify(&a),
     };
-    progress::report_peak();
+    progress::report_peak(None);
     match r {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

@@ -52,18 +52,23 @@ pub fn step<R>(what: &str, f: impl FnOnce() -> R) -> R {
     }
     let r = f();
     bar.finish_and_clear();
+    report_peak(Some(what));
     r
 }
 
 /// With the environment variable `TUBECAST_PEAK_RSS` set, print the process's peak resident
-/// set (`VmHWM` of `/proc/self/status`, Linux) on stderr as `tubecast: peak resident set N kB`:
-/// how the memory estimate and the streaming readers are checked.
-pub fn report_peak() {
+/// set so far (`VmHWM` of `/proc/self/status`, Linux) on stderr as `tubecast: peak resident set
+/// N kB` at exit, and `tubecast: peak resident set after PHASE: N kB` after loading and
+/// building: how the memory estimate and the streaming readers are checked.
+pub fn report_peak(phase: Option<&str>) {
     if std::env::var_os("TUBECAST_PEAK_RSS").is_none() {
         return;
     }
     let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
     if let Some(kb) = status.lines().find_map(|l| l.strip_prefix("VmHWM:")) {
-        eprintln!("tubecast: peak resident set {}", kb.trim());
+        match phase {
+            Some(p) => eprintln!("tubecast: peak resident set after {p}: {}", kb.trim()),
+            None => eprintln!("tubecast: peak resident set {}", kb.trim()),
+        }
     }
 }

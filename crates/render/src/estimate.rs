@@ -34,7 +34,7 @@ pub const BASE_BYTES: u64 = 16 << 20;
 /// let c = Counts { streamlines: Some(10), points: 1010 };
 /// assert_eq!(c.links(&Selection::default(), None), 1000);
 /// let per_link = PerLink { scene: 48.0, tracer: 90.0 };
-/// let e = check("big.trk", 100_000_000, per_link, (8 << 30, "MemAvailable".into())).unwrap_err();
+/// let e = check("big.trk", (100_000_000, Some(10)), per_link, (8 << 30, "MemAvailable".into())).unwrap_err();
 /// assert!(e.to_string().contains("--subsample"));
 /// assert!(e.needed > 8 << 30);
 /// ```
@@ -52,10 +52,21 @@ impl Counts {
     /// unknown streamlines: `points × share`), with `avg_points` (points per streamline of a
     /// sample) standing in for an unknown streamline count.
     pub fn links(&self, sel: &Selection, avg_points: Option<f64>) -> u64 {
-        let lines =
-            self.streamlines.or_else(|| avg_points.filter(|&a| a >= 1.0).map(|a| (self.points as f64 / a) as u64));
+        let lines = self.lines(avg_points);
         let share = sel.fraction(lines.unwrap_or(0));
         (self.points.saturating_sub(lines.unwrap_or(0)) as f64 * share).ceil() as u64
+    }
+
+    /// Streamlines: the header's count, or points / `avg_points` (a sample's points per
+    /// streamline); `None` when neither is known.
+    pub fn lines(&self, avg_points: Option<f64>) -> Option<u64> {
+        let guess = || avg_points.filter(|&a| a >= 1.0).map(|a| (self.points as f64 / a) as u64);
+        self.streamlines.or_else(guess)
+    }
+
+    /// Streamlines `sel` keeps ([`Self::lines`] × its share), when known.
+    pub fn kept_lines(&self, sel: &Selection, avg_points: Option<f64>) -> Option<u64> {
+        self.lines(avg_points).map(|n| (n as f64 * sel.fraction(n)).round() as u64)
     }
 }
 
@@ -130,6 +141,8 @@ pub struct TooLarge {
     pub file: String,
     /// Links the load would keep.
     pub links: u64,
+    /// Streamlines it would keep, when known.
+    pub streamlines: Option<u64>,
     /// Bytes per link (scene, tracer).
     pub per_link: PerLink,
     /// Estimated peak bytes.
@@ -145,13 +158,16 @@ impl fmt::Display for TooLarge {
         let room = self.available.0.saturating_sub(BASE_BYTES) as f64;
         let share = (room / self.needed.saturating_sub(BASE_BYTES).max(1) as f64 * 0.9).clamp(0.001, 1.0);
         let share = (share * 1000.0).floor() / 1000.0;
-        let lines = self.links as f64 * share;
+        let n = match self.streamlines {
+            Some(s) => format!("N ≤ {}", (s as f64 * share) as u64),
+            None => "N".to_string(),
+        };
         write!(
             f,
             "{}: the scene needs about {:.2} GiB ({} links × {:.0} B: scene {:.1} B + primitives and tree \
              {:.1} B, built with {:.0}% more at the peak), more than the {:.2} GiB available ({}); \
-             load a part of it with --subsample F (e.g. --subsample {share}) or --max-streamlines N \
-             (about {:.0} of the links), or set --memory-limit BYTES",
+             load a part of it with --subsample F (F ≤ {share}) or --max-streamlines {n}, \
+             or set --memory-limit BYTES",
             self.file,
             gib(self.needed),
             self.links,
@@ -161,18 +177,23 @@ impl fmt::Display for TooLarge {
             100.0 * BUILD_OVERHEAD,
             gib(self.available.0),
             self.available.1,
-            lines,
         )
     }
 }
 
 impl std::error::Error for TooLarge {}
 
-/// Refuse `links` links at `per_link` when the estimated peak exceeds `available`.
-pub fn check(file: &str, links: u64, per_link: PerLink, available: (u64, String)) -> Result<u64, TooLarge> {
+/// Refuse `(links, streamlines)` (the streamlines kept, when known) at `per_link` when the
+/// estimated peak exceeds `available`; the estimate in bytes otherwise.
+pub fn check(
+    file: &str,
+    (links, streamlines): (u64, Option<u64>),
+    per_link: PerLink,
+    available: (u64, String),
+) -> Result<u64, TooLarge> {
     let needed = (links as f64 * per_link.peak()) as u64 + BASE_BYTES;
     if needed > available.0 {
-        return Err(TooLarge { file: file.to_string(), links, per_link, needed, available });
+        return Err(TooLarge { file: file.to_string(), links, streamlines, per_link, needed, available });
     }
     Ok(needed)
 }

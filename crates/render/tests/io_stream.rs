@@ -177,10 +177,14 @@ fn too_large_names_the_figures_and_the_way_out() {
     // Peak per link 48 + 100·(1 + BUILD_OVERHEAD), plus the base.
     let peak = 48.0 + 100.0 * (1.0 + estimate::BUILD_OVERHEAD);
     let need = (1e6 * peak) as u64 + estimate::BASE_BYTES;
-    assert_eq!(estimate::check("f.trk", 1_000_000, per_link, (need, "test".into())), Ok(need));
-    let e = estimate::check("f.trk", 1_000_000, per_link, (need - 1, "test".into())).unwrap_err();
+    let kept = (1_000_000, Some(10_000));
+    assert_eq!(estimate::check("f.trk", kept, per_link, (need, "test".into())), Ok(need));
+    let e = estimate::check("f.trk", kept, per_link, (need - 1, "test".into())).unwrap_err();
     let m = e.to_string();
-    for part in ["f.trk", "1000000 links", "--subsample", "--max-streamlines", "--memory-limit", "GiB", "test"] {
+    // What fits, with a tenth to spare: (need − 1 − base)/(need − base)·0.9 ≈ 0.899 → 0.899 of
+    // the streamlines, 8990 of 10⁴.
+    let parts = ["f.trk", "1000000 links", "--subsample F (F ≤ 0.899)", "--max-streamlines N ≤ 8990", "test"];
+    for part in parts.into_iter().chain(["--memory-limit", "GiB"]) {
         assert!(m.contains(part), "{part:?} missing in {m}");
     }
     assert_eq!(e.needed, need);

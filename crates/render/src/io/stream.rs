@@ -151,22 +151,22 @@ impl<'n, R: Read> Src<'n, R> {
         Ok(n)
     }
 
-    /// The 4 bytes at the start of `b` as an `f32` / `i32` in the source's byte order.
-    pub fn f32_at(&self, b: &[u8]) -> f32 {
+    /// The 4 bytes at the start of `b` as a `u32` in the source's byte order.
+    fn u32_at(&self, b: &[u8]) -> u32 {
         let a = [b[0], b[1], b[2], b[3]];
         if self.big {
-            f32::from_be_bytes(a)
+            u32::from_be_bytes(a)
         } else {
-            f32::from_le_bytes(a)
+            u32::from_le_bytes(a)
         }
     }
+    /// ... as an `f32`.
+    pub fn f32_at(&self, b: &[u8]) -> f32 {
+        f32::from_bits(self.u32_at(b))
+    }
+    /// ... as an `i32`.
     pub fn i32_at(&self, b: &[u8]) -> i32 {
-        let a = [b[0], b[1], b[2], b[3]];
-        if self.big {
-            i32::from_be_bytes(a)
-        } else {
-            i32::from_le_bytes(a)
-        }
+        self.u32_at(b) as i32
     }
 }
 
