@@ -26,7 +26,10 @@ fn info(input: &Path, extra: &[&str]) -> Output {
 /// The peak resident set in kB the binary reports on stderr.
 fn peak_kb(out: &Output) -> u64 {
     let err = String::from_utf8_lossy(&out.stderr);
-    let line = err.lines().find_map(|l| l.strip_prefix("tubecast: peak resident set ")).expect("peak line");
+    // The last line, at exit (the others are "… set after PHASE: N kB").
+    let mut at_exit =
+        err.lines().filter_map(|l| l.strip_prefix("tubecast: peak resident set ")).filter(|l| !l.starts_with("after"));
+    let line = at_exit.next_back().expect("peak line");
     line.trim_end_matches("kB").trim().parse().unwrap()
 }
 
