@@ -174,9 +174,9 @@ pub struct RenderArgs {
     /// Like --tolerance, per segment: P pixels of the camera's footprint at its distance.
     #[arg(long, value_name = "P", conflicts_with = "tolerance")]
     pub pixel_error: Option<f64>,
-    /// Hide the progress bar.
-    #[arg(long)]
-    pub quiet: bool,
+    /// Selection, memory limit, progress.
+    #[command(flatten)]
+    pub load: crate::cmd_load::LoadArgs,
     /// Acceleration structure.
     #[arg(long, value_enum, default_value_t = Accel::Bvh)]
     pub accel: Accel,
@@ -255,6 +255,9 @@ pub struct InfoArgs {
     /// The automatic choice within P pixels of the default fitted 800×600 view's footprint.
     #[arg(long, value_name = "P", conflicts_with = "tolerance")]
     pub pixel_error: Option<f64>,
+    /// Selection, memory limit, progress.
+    #[command(flatten)]
+    pub load: crate::cmd_load::LoadArgs,
 }
 
 /// `tubecast intersect`.
@@ -291,6 +294,9 @@ pub struct IntersectArgs {
     /// often hold) by R; a warning counts them. Without it such a file is refused.
     #[arg(long, value_name = "R")]
     pub min_radius: Option<f64>,
+    /// Selection, memory limit, progress.
+    #[command(flatten)]
+    pub load: crate::cmd_load::LoadArgs,
 }
 
 /// `tubecast generate`.

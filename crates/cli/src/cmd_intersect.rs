@@ -16,7 +16,9 @@ pub fn with_threads<R: Send>(threads: Option<usize>, f: impl FnOnce() -> R + Sen
 
 /// `tubecast intersect`: the scene's BVH, the rays, and the table the query asks for.
 pub fn intersect(a: &IntersectArgs) -> Result<(), CliError> {
-    let scene = crate::commands::load(&a.input, a.radius, a.min_radius, "every ray misses")?;
+    let plan = crate::cmd_load::Plan { model: crate::commands::model(a.splines), accel: a.accel };
+    let radius = (crate::render_opts::Radius::Absolute(a.radius), a.min_radius);
+    let scene = crate::commands::load(&a.input, radius, &a.load, plan, "every ray misses", None)?;
     let name = a.rays.display().to_string();
     let rays = io::npy::read(&crate::hits_io::read_input(&a.rays)?, &name, Some(6))?.rays(&name)?;
     let prims = scene.model_primitives(crate::commands::model(a.splines))?;

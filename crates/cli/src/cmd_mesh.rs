@@ -24,7 +24,10 @@ pub fn tracer(
 }
 
 pub fn mesh(a: &MeshArgs) -> Result<(), CliError> {
-    let scene = crate::commands::load(&a.io.input, a.io.radius, a.min_radius, "the mesh is empty")?;
+    let plan = crate::cmd_load::Plan { model: crate::commands::model(a.splines), accel: crate::args::Accel::Bvh };
+    let radius = (crate::render_opts::Radius::Absolute(a.io.radius), a.min_radius);
+    let args = crate::cmd_load::LoadArgs::default();
+    let scene = crate::commands::load(&a.io.input, radius, &args, plan, "the mesh is empty", None)?;
     let model = if a.splines { Model::Splines } else { Model::Links };
     let m = tessellate(&scene, model, a.io.tolerance)?;
     export::write(&a.io.out, &m)?;

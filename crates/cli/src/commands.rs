@@ -1,6 +1,7 @@
 //! Each command: arguments into library calls, results to files or stdout.
 
 use crate::args::{Accel, Color, GenerateArgs, InfoArgs, Kind, RenderArgs, Surface, Thin};
+use crate::cmd_load::{LoadArgs, Plan};
 use crate::error::CliError;
 use crate::render_opts::{check_out, Background, Radius};
 use std::path::Path;
@@ -8,7 +9,7 @@ use tubecast_render::accel::{grid::Grid, Bvh, Tracer, WideBvh};
 use tubecast_render::io::{self, npy::Array2};
 use tubecast_render::render::{self, Camera, ColorBy, Options, Shading, View};
 use tubecast_render::scene::Prim;
-use tubecast_render::scene::{generate, LoadOptions, Model, Scene};
+use tubecast_render::scene::{generate, Model, Scene};
 
 type Res = Result<(), CliError>;
 
@@ -17,24 +18,22 @@ fn warn(msg: &str) {
     eprintln!("tubecast: warning: {msg}");
 }
 
-/// Load the scene at `input`; warn about radii raised to `min_radius` and, with `empty`
-/// (what the command does then), about a scene without nodes.
-pub(crate) fn load(input: &Path, radius: f64, min_radius: Option<f64>, empty: &str) -> Result<Scene, CliError> {
-    load_colored(input, radius, min_radius, empty, None)
-}
-
-/// [`load`], then, with `field`, colour values from that data field of the file.
-fn load_colored(
+/// Load the scene at `input` ([`crate::cmd_load::load_scene`]); warn about radii raised to
+/// `min_radius` and, with `empty` (what the command does then), about a scene without nodes;
+/// with `field`, colour values from that data field of the file.
+pub(crate) fn load(
     input: &Path,
-    radius: f64,
-    min_radius: Option<f64>,
+    (radius, min_radius): (Radius, Option<f64>),
+    args: &LoadArgs,
+    plan: Plan,
     empty: &str,
     field: Option<&str>,
 ) -> Result<Scene, CliError> {
-    let (mut scene, rep, fields) = Scene::load_fields(input, &LoadOptions { default_radius: radius, min_radius })?;
+    let (mut scene, rep, fields) = crate::cmd_load::load_scene(input, radius, min_radius, args, plan, field.is_some())?;
     if let Some(key) = field {
         scene.select_values(&fields, key)?;
     }
+    drop(fields);
     if let (Some(r), true) = (min_radius, rep.replaced > 0) {
         warn(&format!(
             "{}: {} of {} radii were below --min-radius {r} ({} of them ≤ 0) and were set to {r}",
@@ -50,32 +49,13 @@ fn load_colored(
     Ok(scene)
 }
 
-/// The chosen acceleration structure over `prims`.
+/// The chosen acceleration structure over `prims` (under a progress spinner).
 pub(crate) fn tracer(accel: Accel, prims: Vec<Prim>) -> Box<dyn Tracer> {
-    match accel {
-        Accel::Bvh => Box::new(WideBvh::build(prims)),
+    crate::progress::step(&format!("building the accelerator over {} primitives", prims.len()), || match accel {
+        Accel::Bvh => Box::new(WideBvh::build(prims)) as Box<dyn Tracer>,
         Accel::Bvh2 => Box::new(Bvh::build(prims)),
         Accel::Grid => Box::new(Grid::build(prims)),
-    }
-}
-
-/// The default radius: absolute, or the fraction of the diagonal of the bounding box of the
-/// file's points (read once more to measure it; a file of one point: the fraction of 1 unit).
-fn resolve_radius(input: &Path, r: Radius, min_radius: Option<f64>) -> Result<f64, CliError> {
-    let Radius::Relative(f) = r else {
-        let Radius::Absolute(v) = r else { unreachable!() };
-        return Ok(v);
-    };
-    let (scene, _) = Scene::load_with(input, &LoadOptions { default_radius: 1.0, min_radius })?;
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for n in &scene.nodes {
-        for k in 0..3 {
-            lo[k] = lo[k].min(n.pos[k]);
-            hi[k] = hi[k].max(n.pos[k]);
-        }
-    }
-    let diag = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
-    Ok(if diag.is_finite() && diag > 0.0 { f * diag } else { f })
+    })
 }
 
 /// Whether the minimum pixel footprint applies: `auto` turns it on for wireframe-like data
@@ -105,8 +85,9 @@ pub fn render(a: &RenderArgs) -> Res {
     if let Some(d) = &a.depth {
         check_out(d, a.force)?;
     }
-    let radius = resolve_radius(&a.input, a.radius, a.min_radius)?;
-    let mut scene = load_colored(&a.input, radius, a.min_radius, "the image shows the background only", field)?;
+    let plan = Plan { model: model(a.splines), accel: a.accel };
+    let empty = "the image shows the background only";
+    let mut scene = load(&a.input, (a.radius, a.min_radius), &a.load, plan, empty, field)?;
     let mut prims = scene.model_primitives(model(a.splines))?;
     // Bounds of the primitives in use (a spline can bulge beyond its links' boxes); an empty
     // scene is viewed as if it were the box [-1, 1]³.
@@ -124,6 +105,7 @@ pub fn render(a: &RenderArgs) -> Res {
         cam = cam.orthographic(a.look_at.unwrap_or(centre));
     }
     if thin_on(a.thin, &a.input) && render::clamp_thin(&mut scene, &cam, a.min_pixels) > 0 {
+        drop(std::mem::take(&mut prims)); // not two lists at once
         prims = scene.model_primitives(model(a.splines))?;
     }
     let (prims, tol) = match (a.model, a.tolerance) {
@@ -151,7 +133,7 @@ pub fn render(a: &RenderArgs) -> Res {
         opacity: a.opacity,
         ao: a.ao,
         shadows: a.shadows,
-        progress: !a.quiet && (a.width as u64 * a.height as u64) >= 256 * 256,
+        progress: crate::progress::enabled() && (a.width as u64 * a.height as u64) >= 256 * 256,
     };
     let mut img = crate::cmd_intersect::with_threads(a.threads.map(usize::from), || {
         render::render(&scene, bvh.as_ref(), &cam, &opts)
@@ -184,12 +166,12 @@ fn units(input: &Path) -> &'static str {
 }
 
 pub fn info(a: &InfoArgs) -> Res {
-    let radius = resolve_radius(&a.input, a.radius, a.min_radius)?;
-    let scene = load(&a.input, radius, a.min_radius, "counts are zero")?;
+    let plan = Plan { model: model(a.splines), accel: Accel::Bvh };
+    let scene = load(&a.input, (a.radius, a.min_radius), &a.load, plan, "counts are zero", None)?;
     let prims = scene.model_primitives(model(a.splines))?;
     let st = if a.splines { scene.stats_of(&prims) } else { scene.stats() };
     let pieces = prims.iter().filter(|p| p.kind() == tubecast_render::scene::PrimKind::Spline).count();
-    let bvh = WideBvh::build(prims);
+    let bvh = crate::progress::step("building the 8-wide BVH", || WideBvh::build(prims));
     if a.json {
         let bounds = (!st.is_empty()).then(|| serde_json::json!({"min": st.bounds.0, "max": st.bounds.1}));
         let j = serde_json::json!({

@@ -33,6 +33,8 @@ pub enum CliError {
     MeshTolerance,
     /// `simplify --tolerance` not a finite number ≥ 0.
     Tolerance(f64),
+    /// The scene would not fit in memory (estimated before loading).
+    Memory(tubecast_render::estimate::TooLarge),
 }
 
 impl fmt::Display for CliError {
@@ -48,6 +50,7 @@ impl fmt::Display for CliError {
             Self::Mesh(e) => e.fmt(f),
             Self::MeshTolerance => f.write_str("--model mesh needs --tolerance EPS"),
             Self::Tolerance(t) => write!(f, "--tolerance {t} must be a finite number ≥ 0"),
+            Self::Memory(e) => e.fmt(f),
         }
     }
 }

@@ -2,11 +2,13 @@
 
 mod args;
 mod cmd_intersect;
+mod cmd_load;
 mod cmd_mesh;
 mod cmd_simplify;
 mod commands;
 mod error;
 mod hits_io;
+mod progress;
 mod render_opts;
 
 use args::{GenerateArgs, InfoArgs, IntersectArgs, MeshArgs, RenderArgs, SimplifyArgs};
@@ -55,6 +57,7 @@ fn main() -> ExitCode {
         Cmd::Mesh(a) => cmd_mesh::mesh(&a),
         Cmd::Simplify(a) => cmd_simplify::simplify(&a),
     };
+    progress::report_peak(None);
     match r {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

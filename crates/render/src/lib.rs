@@ -26,6 +26,7 @@
 #![deny(missing_docs)]
 
 pub mod accel;
+pub mod estimate;
 pub mod io;
 pub mod mesh;
 pub mod quantized;

@@ -124,3 +124,39 @@ fn malformed_archives_are_errors() {
     // Empty (as trx-python): zero streamlines read as the empty tractogram.
     assert!(read(&archive(&[("header.json", header(0, 0))], false), "e.trx").unwrap().lines.is_empty());
 }
+
+/// A scene streamed from a TRX file with a selection: `--max-streamlines 1` keeps the first
+/// streamline, with its own per-vertex and per-streamline values; without data fields the
+/// dpv/dps arrays are not needed (a corrupt group is then not read either).
+#[test]
+fn streamed_scene_with_a_selection_keeps_its_own_values() {
+    use tubecast_render::io::stream::Selection;
+    use tubecast_render::scene::{LoadOptions, Scene};
+    let dir = std::env::temp_dir().join(format!("tubecast-io-trx-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("g.trx");
+    std::fs::write(&p, good(true)).unwrap();
+    let hidden = indicatif::ProgressBar::hidden();
+    let first = Selection { max_streamlines: Some(1), subsample: None };
+    let (s, _, fields) = Scene::load_selected(&p, &LoadOptions::default(), &first, true, &hidden).unwrap();
+    assert_eq!(s.nodes.iter().map(|n| n.pos).collect::<Vec<_>>(), vec![[0.0, 0.0, 0.0], [1.0, 0.5, 0.25]]);
+    let get = |k: &str| fields.iter().find(|f| f.name == k).unwrap().values.clone();
+    assert_eq!(get("scalar:fa"), vec![0.1f32 as f64, 0.2f32 as f64]);
+    assert_eq!(get("property:len"), vec![2.5, 2.5]);
+    let (all, _, _) = Scene::load_selected(&p, &LoadOptions::default(), &Selection::default(), true, &hidden).unwrap();
+    assert_eq!(all.nodes.len(), 3);
+    // A group index out of range: an error when the data are read, not needed without them.
+    let bad = archive(
+        &[
+            ("header.json", header(2, 3)),
+            ("positions.3.float32", le(&[0.0f32, 0.0, 0.0, 1.0, 0.5, 0.25, -2.0, 3.0, 4.0], f32::to_le_bytes)),
+            ("offsets.uint64", le(&[0u64, 2, 3], u64::to_le_bytes)),
+            ("groups/g.uint32", le(&[5u32], u32::to_le_bytes)),
+        ],
+        false,
+    );
+    std::fs::write(&p, bad).unwrap();
+    assert!(Scene::load_selected(&p, &LoadOptions::default(), &Selection::default(), true, &hidden).is_err());
+    let (s, _, _) = Scene::load_selected(&p, &LoadOptions::default(), &Selection::default(), false, &hidden).unwrap();
+    assert_eq!(s.nodes.len(), 3);
+}

@@ -2,6 +2,8 @@
 //!
 //! Every reader takes the file's bytes plus a name used in error messages, and returns either
 //! the data or an [`IoError`] that names the file, the line or byte offset, and the problem.
+//! The readers of `.trk`, `.tck`/`.tsf`, `.trx` and `.swc` also stream from any reader
+//! ([`stream`]), which is how scenes are loaded: a file is never copied into memory whole.
 //! Readers never panic and never return NaN or infinite coordinates. Each format has a writer
 //! too, so the tests can round-trip.
 
@@ -9,6 +11,7 @@ pub mod data;
 pub mod npy;
 pub mod obj;
 mod orient;
+pub mod stream;
 pub mod swc;
 pub mod tck;
 pub mod trk;

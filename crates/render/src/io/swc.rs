@@ -12,8 +12,10 @@
 //! so every placeholder `≤ 0` — by `R`, and counts the replacements (the `--min-radius R`
 //! option of the `tubecast` command line).
 
+use super::stream::Src;
 use super::{parse_finite, IoError, Polyline};
 use std::collections::HashMap;
+use std::io::BufRead;
 
 /// One SWC row.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -70,19 +72,28 @@ pub fn read(data: &[u8], name: &str) -> Result<Vec<SwcNode>, IoError> {
 /// (negative placeholders included) replaced by `R` and counted. `R` must be a positive
 /// finite number (an error about the whole file otherwise).
 pub fn read_with(data: &[u8], name: &str, min_radius: Option<f64>) -> Result<SwcFile, IoError> {
+    read_from(data, name, min_radius)
+}
+
+/// [`read_with`] streaming from `r`, line by line (the file is never held whole).
+pub fn read_from(r: impl BufRead, name: &str, min_radius: Option<f64>) -> Result<SwcFile, IoError> {
     if let Some(r) = min_radius {
         if !(r.is_finite() && r > 0.0) {
             return Err(IoError::file(name, format!("minimum radius {r} must be a positive finite number")));
         }
     }
     let (mut replaced, mut placeholders) = (0, 0);
-    let text = std::str::from_utf8(data)
-        .map_err(|e| IoError::offset(name, e.valid_up_to() as u64, "not UTF-8 text (is this an SWC file?)"))?;
     let mut nodes = Vec::new();
     let mut lines = Vec::new(); // line number of each node
     let mut index: HashMap<i64, usize> = HashMap::new();
-    for (i, raw) in text.lines().enumerate() {
-        let ln = i + 1;
+    let (mut src, mut buf) = (Src::new(r, name), Vec::new());
+    for ln in 1.. {
+        let at = src.pos;
+        if src.line(&mut buf, ln)? == 0 {
+            break;
+        }
+        let raw = std::str::from_utf8(&buf)
+            .map_err(|e| IoError::offset(name, at + e.valid_up_to() as u64, "not UTF-8 text (is this an SWC file?)"))?;
         let line = raw.split('#').next().unwrap_or("").trim();
         if line.is_empty() {
             continue;
@@ -212,7 +223,7 @@ pub fn from_polylines(lines: &[Polyline], default_radius: f64) -> Vec<SwcNode> {
     out
 }
 
-/// Read the SWC file at `path` ([`read`], named by its path in errors).
+/// Read the SWC file at `path` ([`read`], streamed, named by its path in errors).
 pub fn load(path: &std::path::Path) -> Result<Vec<SwcNode>, IoError> {
-    read(&super::read_bytes(path)?, &path.display().to_string())
+    Ok(read_from(super::stream::open(path)?.0, &path.display().to_string(), None)?.nodes)
 }

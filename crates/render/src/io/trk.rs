@@ -15,7 +15,9 @@
 
 use super::data::{Field, Tractogram};
 use super::orient::{self, io_orientation, Affine, Ornt};
+use super::stream::{Flow, Line, Src};
 use super::{Cursor, IoError, Polyline};
+use std::io::Read;
 
 /// The header fields the reader uses (and the writer writes).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -51,15 +53,44 @@ impl Default for TrkHeader {
     }
 }
 
-/// A parsed header: the fields, byte order, `n_count` (0: unknown), the column groups of the
-/// scalars and properties, and the affine voxmm → RAS+ mm.
-struct Parsed {
-    h: TrkHeader,
+/// A TrackVis header as the streaming reader reads it: the fields, `n_count` (0: unknown),
+/// the column groups of the scalars and properties, and the affine voxmm → RAS+ mm.
+///
+/// ```
+/// use tubecast_render::io::stream::Flow;
+/// use tubecast_render::io::{trk, Polyline};
+/// let lines = vec![Polyline { points: vec![[0.5; 3], [1.5, 2.5, 3.5]], radii: vec![] }; 3];
+/// let bytes = trk::write(&trk::TrkHeader::default(), &lines, false);
+/// let mut seen = 0;
+/// let info = trk::stream(&bytes[..], "t.trk", &mut |l| {
+///     assert_eq!(l.points, &lines[l.index].points[..]);
+///     seen += 1;
+///     Flow::Continue
+/// })
+/// .unwrap();
+/// assert_eq!((info.n_count, seen), (3, 3));
+/// assert_eq!(info.streamline_bytes(2), 4 + 2 * 12);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct TrkInfo {
+    /// The header fields.
+    pub header: TrkHeader,
+    /// Streamlines the header announces (0: unknown, read to the end of the file).
+    pub n_count: usize,
+    /// Per-point scalar groups `(name, first column, width)`, as nibabel names them.
+    pub scalars: Vec<(String, usize, usize)>,
+    /// Per-streamline property groups `(name, first column, width)`.
+    pub properties: Vec<(String, usize, usize)>,
+    /// The affine the reader applies, voxmm → RAS+ mm (row-major).
+    pub affine: [[f64; 4]; 4],
     big: bool,
-    n_count: i32,
-    scalars: Vec<(String, usize, usize)>,
-    properties: Vec<(String, usize, usize)>,
-    affine: Affine,
+}
+
+impl TrkInfo {
+    /// Bytes of one streamline of `points` points (count, points with scalars, properties).
+    pub fn streamline_bytes(&self, points: u64) -> u64 {
+        4 + points * 4 * (3 + self.header.n_scalars as u64) + 4 * self.header.n_properties as u64
+    }
 }
 
 /// Column groups named in the 10 × 20-byte name table at `at` (nibabel's
@@ -133,8 +164,8 @@ fn voxmm_to_ras(h: &TrkHeader, order: &Ornt, name: &str) -> Result<Affine, IoErr
     Ok(orient::mul(&v, &m))
 }
 
-/// The validated header of a TrackVis file.
-fn read_header(data: &[u8], name: &str) -> Result<Parsed, IoError> {
+/// The validated header of a TrackVis file from its first (up to) 1000 bytes.
+fn read_header(data: &[u8], name: &str) -> Result<TrkInfo, IoError> {
     if data.is_empty() {
         return Err(IoError::file(name, "empty file"));
     }
@@ -216,7 +247,82 @@ fn read_header(data: &[u8], name: &str) -> Result<Parsed, IoError> {
     }
     let scalars = decode_names(data, 38, h.n_scalars as usize, "scalars", name)?;
     let properties = decode_names(data, 240, h.n_properties as usize, "properties", name)?;
-    Ok(Parsed { h, big, n_count, scalars, properties, affine })
+    Ok(TrkInfo { header: h, big, n_count: n_count as usize, scalars, properties, affine })
+}
+
+/// Read the header of a `.trk` file (its first 1000 bytes) from `r`.
+pub fn read_info(r: impl Read, name: &str) -> Result<TrkInfo, IoError> {
+    let mut head = [0u8; 1000];
+    let got = Src::new(r, name).fill(&mut head)?;
+    read_header(&head[..got], name)
+}
+
+/// Stream a `.trk` file from `r`: each streamline (points in RAS+ mm, per-point scalars
+/// `n_scalars` per point, properties) goes to `each` as it is read, until the end of the file
+/// or [`Flow::Stop`]; the header is returned. The same checks as [`read_data`] (which is this
+/// plus collecting), except that after a stop the rest of the file is not read.
+pub fn stream(r: impl Read, name: &str, each: &mut dyn FnMut(Line<'_>) -> Flow) -> Result<TrkInfo, IoError> {
+    let mut src = Src::new(r, name);
+    let mut head = [0u8; 1000];
+    let got = src.fill(&mut head)?;
+    let p = read_header(&head[..got], name)?;
+    src.big = p.big;
+    let (ns, np) = (p.header.n_scalars as usize, p.header.n_properties as usize);
+    let m = p.affine;
+    let (mut buf, mut points, mut scal, mut prop) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let mut count = 0usize;
+    while p.n_count == 0 || count < p.n_count {
+        let at = src.pos;
+        let mut b4 = [0u8; 4];
+        match src.fill(&mut b4)? {
+            0 => break,
+            4 => {}
+            left => {
+                let problem = format!("truncated: need 4 bytes for a point count, {left} left");
+                return Err(IoError::offset(name, at, problem));
+            }
+        }
+        let n = src.i32_at(&b4);
+        if n < 0 {
+            return Err(IoError::offset(name, at, format!("point count {n} is negative")));
+        }
+        let need = p.streamline_bytes(n as u64) - 4;
+        let got = src.chunk(need, &mut buf)?;
+        if (got as u64) < need {
+            let problem = format!("truncated streamline {count}: {n} points need {need} bytes, {got} left");
+            return Err(IoError::offset(name, at, problem));
+        }
+        points.clear();
+        scal.clear();
+        prop.clear();
+        for (k, rec) in buf.chunks_exact(4 * (3 + ns)).take(n as usize).enumerate() {
+            let v: [f64; 3] = std::array::from_fn(|i| src.f32_at(&rec[4 * i..]) as f64);
+            scal.extend((0..ns).map(|i| src.f32_at(&rec[12 + 4 * i..]) as f64));
+            let q: [f64; 3] = std::array::from_fn(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2] + m[r][3]);
+            if q.iter().any(|x| !x.is_finite()) {
+                let pat = at + 4 + (k * 4 * (3 + ns)) as u64;
+                return Err(IoError::offset(name, pat, "point has NaN or infinite coordinates"));
+            }
+            points.push(q);
+        }
+        prop.extend(buf[buf.len() - 4 * np..].chunks_exact(4).map(|b| src.f32_at(b) as f64));
+        let flow = each(Line { index: count, points: &points, scalars: &scal, properties: &prop });
+        count += 1;
+        if flow == Flow::Stop {
+            return Ok(p);
+        }
+    }
+    if p.n_count > 0 && count < p.n_count {
+        let problem = format!("truncated: header says {} streamlines, file holds {count}", p.n_count);
+        return Err(IoError::offset(name, src.pos, problem));
+    }
+    let at = src.pos;
+    let rest = src.rest()?;
+    if rest > 0 {
+        let problem = format!("{rest} bytes after the last of n_count = {} streamlines", p.n_count);
+        return Err(IoError::offset(name, at, problem));
+    }
+    Ok(p)
 }
 
 /// Parse a `.trk` file into streamlines in RAS+ mm (no radii), with its header.
@@ -227,74 +333,29 @@ pub fn read(data: &[u8], name: &str) -> Result<(TrkHeader, Vec<Polyline>), IoErr
 
 /// Parse a `.trk` file into streamlines in RAS+ mm with their per-point scalars and
 /// per-streamline properties, named as nibabel names them, and the header.
-///
-/// Errors: short header, bad magic, `hdr_size` ≠ 1000 in both byte orders, a version other
-/// than 1, 2 or 3, a zero or non-finite voxel size, a negative number of scalars/properties, a
-/// malformed scalar/property name, a singular or non-finite `vox_to_ras`, a `voxel_order` that
-/// is not three axis codes, a negative point count, a truncated streamline, non-finite
-/// coordinates, fewer streamlines than `n_count`, or trailing bytes.
 pub fn read_data(data: &[u8], name: &str) -> Result<(TrkHeader, Tractogram), IoError> {
-    let p = read_header(data, name)?;
-    let (h, m) = (p.h, p.affine);
-    let mut c = Cursor::new(data, name, p.big);
-    c.pos = 1000;
-    let (ns, np) = (h.n_scalars as usize, h.n_properties as usize);
-    let per_point = 3 + ns;
-    let mut out = Vec::new();
-    let (mut scal, mut prop) = (Vec::new(), Vec::new());
-    while c.remaining() > 0 && (p.n_count == 0 || out.len() < p.n_count as usize) {
-        let at = c.pos as u64;
-        let n = c.i32("a point count")?;
-        if n < 0 {
-            return Err(IoError::offset(name, at, format!("point count {n} is negative")));
-        }
-        let need = (n as u64) * per_point as u64 * 4 + np as u64 * 4;
-        if need > c.remaining() as u64 {
-            return Err(IoError::offset(
-                name,
-                at,
-                format!("truncated streamline {}: {n} points need {need} bytes, {} left", out.len(), c.remaining()),
-            ));
-        }
-        let mut pl = Polyline { points: Vec::with_capacity(n as usize), radii: Vec::new() };
-        for _ in 0..n {
-            let pat = c.pos as u64;
-            let v: [f64; 3] = [c.f32("a point")? as f64, c.f32("a point")? as f64, c.f32("a point")? as f64];
-            for _ in 0..ns {
-                scal.push(c.f32("a scalar")? as f64);
-            }
-            let q: [f64; 3] = std::array::from_fn(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2] + m[r][3]);
-            if q.iter().any(|x| !x.is_finite()) {
-                return Err(IoError::offset(name, pat, "point has NaN or infinite coordinates"));
-            }
-            pl.points.push(q);
-        }
-        for _ in 0..np {
-            prop.push(c.f32("a property")? as f64);
-        }
-        out.push(pl);
-    }
-    if p.n_count > 0 && out.len() < p.n_count as usize {
-        let problem = format!("truncated: header says {} streamlines, file holds {}", p.n_count, out.len());
-        return Err(IoError::offset(name, c.pos as u64, problem));
-    }
-    if c.remaining() > 0 {
-        let problem = format!("{} bytes after the last of n_count = {} streamlines", c.remaining(), p.n_count);
-        return Err(IoError::offset(name, c.pos as u64, problem));
-    }
-    let fields = |groups: &[(String, usize, usize)], all: &[f64], n: usize| -> Vec<Field> {
-        let items = all.len().checked_div(n).unwrap_or(0);
-        let groups = groups.iter().map(|(gname, a, w)| Field {
-            name: gname.clone(),
-            width: *w,
-            values: (0..items).flat_map(|i| all[i * n + a..i * n + a + w].iter().copied()).collect(),
-        });
-        groups.collect()
-    };
-    let per_point = fields(&p.scalars, &scal, ns);
+    let (mut lines, mut scal, mut prop) = (Vec::new(), Vec::new(), Vec::new());
+    let p = stream(data, name, &mut |l| {
+        lines.push(Polyline { points: l.points.to_vec(), radii: Vec::new() });
+        scal.extend_from_slice(l.scalars);
+        prop.extend_from_slice(l.properties);
+        Flow::Continue
+    })?;
+    let (ns, np) = (p.header.n_scalars as usize, p.header.n_properties as usize);
+    let per_point = if ns == 0 { Vec::new() } else { fields(&p.scalars, &scal, ns) };
     let per_line = if np == 0 { Vec::new() } else { fields(&p.properties, &prop, np) };
-    let per_point = if ns == 0 { Vec::new() } else { per_point };
-    Ok((h, Tractogram { lines: out, per_point, per_line, groups: Vec::new(), affine: Some(m) }))
+    Ok((p.header, Tractogram { lines, per_point, per_line, groups: Vec::new(), affine: Some(p.affine) }))
+}
+
+/// The named column groups of `all` (`n` columns per item) as fields.
+pub(crate) fn fields(groups: &[(String, usize, usize)], all: &[f64], n: usize) -> Vec<Field> {
+    let items = all.len().checked_div(n).unwrap_or(0);
+    let groups = groups.iter().map(|(gname, a, w)| Field {
+        name: gname.clone(),
+        width: *w,
+        values: (0..items).flat_map(|i| all[i * n + a..i * n + a + w].iter().copied()).collect(),
+    });
+    groups.collect()
 }
 
 /// Write streamlines given in RAS+ mm as a `.trk` file with header `h` (inverse of [`read`]:

@@ -15,16 +15,30 @@
 //! than three dot-separated parts, or an array whose size does not match the header is an error.
 
 use super::data::{Field, Tractogram};
+use super::stream::{Flow, Line, Src};
 use super::{IoError, Polyline};
 use serde_json::Value;
-use std::io::Read;
+use std::io::{Read, Seek};
 
-/// An array entry: its folder, name, columns and little-endian values as `f64`.
+/// An array entry of the archive: its index, folder, name, columns, dtype and byte size.
 struct Entry {
+    index: usize,
     folder: String,
     base: String,
     dim: usize,
-    values: Vec<f64>,
+    dtype: String,
+    bytes: u64,
+}
+
+/// Bytes per value of numpy dtype `dtype`; `None` for an unknown dtype.
+fn dtype_size(dtype: &str) -> Option<usize> {
+    match dtype {
+        "int8" | "uint8" | "bool" | "bit" => Some(1),
+        "float16" | "int16" | "uint16" => Some(2),
+        "float32" | "int32" | "uint32" => Some(4),
+        "float64" | "int64" | "uint64" => Some(8),
+        _ => None,
+    }
 }
 
 /// Decode `bytes` of numpy dtype `dtype` (little endian) to `f64`; `None` for an unknown dtype.
@@ -63,11 +77,17 @@ fn count(h: &Value, key: &str, name: &str) -> Result<usize, IoError> {
         .ok_or_else(|| IoError::file(name, format!("header.json: {key} is missing or not a non-negative integer")))
 }
 
-/// Read every array entry of the archive (skipping JSON, folders and unknown dtypes).
-fn entries(zip: &mut zip::ZipArchive<std::io::Cursor<&[u8]>>, name: &str) -> Result<Vec<Entry>, IoError> {
+type Zip<R> = zip::ZipArchive<R>;
+
+/// A data array read whole: name, columns, values.
+type Array = (String, usize, Vec<f64>);
+
+/// The array entries of the archive (skipping JSON, folders and unknown dtypes), from its
+/// directory: nothing is decompressed.
+fn entries<R: Read + Seek>(zip: &mut Zip<R>, name: &str) -> Result<Vec<Entry>, IoError> {
     let mut out = Vec::new();
-    for i in 0..zip.len() {
-        let mut f = zip.by_index(i).map_err(|e| IoError::file(name, format!("zip entry {i}: {e}")))?;
+    for index in 0..zip.len() {
+        let f = zip.by_index(index).map_err(|e| IoError::file(name, format!("zip entry {index}: {e}")))?;
         let path = f.name().to_string();
         if f.is_dir() || path.ends_with(".json") {
             continue;
@@ -79,66 +99,124 @@ fn entries(zip: &mut zip::ZipArchive<std::io::Cursor<&[u8]>>, name: &str) -> Res
             [b, d, t] => (*b, *d, *t),
             _ => return Err(IoError::file(name, format!("entry {path:?}: not NAME[.DIM].DTYPE"))),
         };
-        let mut bytes = Vec::new();
-        f.read_to_end(&mut bytes).map_err(|e| IoError::file(name, format!("entry {path:?}: {e}")))?;
-        let values = match decode(&bytes, dtype) {
-            None => continue,
-            Some(Err(size)) => {
-                let problem =
-                    format!("entry {path:?}: {} bytes is not a whole number of {size}-byte {dtype}", bytes.len());
-                return Err(IoError::file(name, problem));
-            }
-            Some(Ok(v)) => v,
-        };
+        let Some(size) = dtype_size(dtype) else { continue };
+        if f.size() % size as u64 != 0 {
+            let problem = format!("entry {path:?}: {} bytes is not a whole number of {size}-byte {dtype}", f.size());
+            return Err(IoError::file(name, problem));
+        }
         let dim = dim.parse::<usize>().ok().filter(|&d| d > 0);
         let dim =
             dim.ok_or_else(|| IoError::file(name, format!("entry {path:?}: dimension is not a positive integer")))?;
-        out.push(Entry { folder: folder.to_string(), base: base.to_string(), dim, values });
+        let (folder, base, dtype) = (folder.to_string(), base.to_string(), dtype.to_string());
+        out.push(Entry { index, folder, base, dim, dtype, bytes: f.size() });
     }
     Ok(out)
 }
 
-/// Parse a `.trx` file into streamlines (RAS+ mm) with their per-vertex and per-streamline
-/// data and groups.
+/// The values of entry `e`, decoded whole (offsets, data, groups: small beside positions).
+fn values<R: Read + Seek>(zip: &mut Zip<R>, e: &Entry, name: &str) -> Result<Vec<f64>, IoError> {
+    let path = format!("{}{}", e.folder, e.base);
+    let mut f = zip.by_index(e.index).map_err(|err| IoError::file(name, format!("entry {path:?}: {err}")))?;
+    let mut bytes = Vec::new();
+    f.read_to_end(&mut bytes).map_err(|err| IoError::file(name, format!("entry {path:?}: {err}")))?;
+    match decode(&bytes, &e.dtype) {
+        Some(Ok(v)) => Ok(v),
+        _ => Err(IoError::file(name, format!("entry {path:?}: {} bytes do not hold whole {}", bytes.len(), e.dtype))),
+    }
+}
+
+/// What [`stream`] reads beside the streamlines: the column groups of the per-point data
+/// (the `dpv` arrays, by name) and per-streamline data (`dps`) that each [`Line`] carries,
+/// and the groups, as [`super::trk::TrkInfo`] names its scalars.
 ///
-/// Errors: not a zip archive, no or malformed `header.json`, missing `positions` or `offsets`,
-/// an array whose size or dimension does not match the header, offsets that do not start at 0,
-/// decrease or do not end at `NB_VERTICES`, a group index out of range, or non-finite positions.
-pub fn read(data: &[u8], name: &str) -> Result<Tractogram, IoError> {
-    let mut zip = zip::ZipArchive::new(std::io::Cursor::new(data))
-        .map_err(|e| IoError::file(name, format!("not a TRX file (zip archive): {e}")))?;
+/// ```
+/// // Not a zip archive: a clear error, nothing read.
+/// use tubecast_render::io::{stream::Flow, trx};
+/// let e = trx::stream(std::io::Cursor::new(b"nope"), "x.trx", false, &mut |_| Flow::Continue);
+/// assert!(e.unwrap_err().problem.contains("zip"));
+/// ```
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TrxInfo {
+    /// `NB_STREAMLINES` and `NB_VERTICES`.
+    pub counts: (usize, usize),
+    /// Per-point groups `(name, first column, width)` of [`Line::scalars`].
+    pub scalars: Vec<(String, usize, usize)>,
+    /// Per-streamline groups `(name, first column, width)` of [`Line::properties`].
+    pub properties: Vec<(String, usize, usize)>,
+    /// Named groups of streamline indices.
+    pub groups: Vec<(String, Vec<u64>)>,
+}
+
+/// Column groups of `fields` laid side by side, and the total width.
+fn columns(fields: &[Array]) -> (Vec<(String, usize, usize)>, usize) {
+    let mut at = 0;
+    let groups = fields
+        .iter()
+        .map(|(n, w, _)| {
+            at += w;
+            (n.clone(), at - w, *w)
+        })
+        .collect();
+    (groups, at)
+}
+
+/// Read the `header.json` of a TRX archive: `(NB_STREAMLINES, NB_VERTICES)`.
+pub fn read_counts(r: impl Read + Seek, name: &str) -> Result<(usize, usize), IoError> {
+    let mut zip =
+        zip::ZipArchive::new(r).map_err(|e| IoError::file(name, format!("not a TRX file (zip archive): {e}")))?;
+    counts(&mut zip, name)
+}
+
+fn counts<R: Read + Seek>(zip: &mut Zip<R>, name: &str) -> Result<(usize, usize), IoError> {
     let header: Value = {
         let mut f = zip.by_name("header.json").map_err(|_| IoError::file(name, "no header.json in the archive"))?;
         let mut s = String::new();
         f.read_to_string(&mut s).map_err(|e| IoError::file(name, format!("header.json: {e}")))?;
         serde_json::from_str(&s).map_err(|e| IoError::file(name, format!("header.json: {e}")))?
     };
-    let (ns, nv) = (count(&header, "NB_STREAMLINES", name)?, count(&header, "NB_VERTICES", name)?);
+    Ok((count(&header, "NB_STREAMLINES", name)?, count(&header, "NB_VERTICES", name)?))
+}
+
+/// Stream a `.trx` file: each streamline goes to `each` as its positions are decompressed,
+/// with, when `data`, its per-vertex values ([`Line::scalars`]) and per-streamline values
+/// ([`Line::properties`]) laid out as the returned [`TrxInfo`] says (the `dpv`/`dps` arrays
+/// are then read whole, and the groups are read and checked). Without `data` only the
+/// offsets are held whole (8 bytes per streamline). The checks of [`read`].
+pub fn stream<R: Read + Seek>(
+    r: R,
+    name: &str,
+    data: bool,
+    each: &mut dyn FnMut(Line<'_>) -> Flow,
+) -> Result<TrxInfo, IoError> {
+    let mut zip =
+        zip::ZipArchive::new(r).map_err(|e| IoError::file(name, format!("not a TRX file (zip archive): {e}")))?;
+    let (ns, nv) = counts(&mut zip, name)?;
+    let mut info = TrxInfo { counts: (ns, nv), ..TrxInfo::default() };
     if ns == 0 || nv == 0 {
-        return Ok(Tractogram::default());
+        return Ok(info);
     }
-    let mut t = Tractogram::default();
     let (mut positions, mut offsets) = (None, None);
+    let (mut dpv, mut dps) = (Vec::new(), Vec::new());
     for e in entries(&mut zip, name)? {
-        let size = e.values.len();
+        let size = (e.bytes / dtype_size(&e.dtype).unwrap_or(1) as u64) as usize;
         let bad =
             |what: &str| IoError::file(name, format!("{}{}: wrong size or dimension for {what}", e.folder, e.base));
         match (e.folder.as_str(), e.base.as_str()) {
-            ("", "positions") if size == nv * 3 && e.dim == 3 => positions = Some(e.values),
+            ("", "positions") if size == nv * 3 && e.dim == 3 => positions = Some(e),
             ("", "positions") => return Err(bad(&format!("{nv} vertices × 3"))),
-            ("", "offsets") if size == ns + 1 && e.dim == 1 => offsets = Some(e.values),
+            ("", "offsets") if size == ns + 1 && e.dim == 1 => offsets = Some(values(&mut zip, &e, name)?),
             ("", "offsets") => return Err(bad(&format!("{ns} streamlines + 1"))),
-            ("dpv", _) if size == nv * e.dim => {
-                t.per_point.push(Field { name: e.base, width: e.dim, values: e.values })
-            }
-            ("dps", _) if size == ns * e.dim => t.per_line.push(Field { name: e.base, width: e.dim, values: e.values }),
+            ("dpv", _) if size == nv * e.dim => dpv.push(e),
+            ("dps", _) if size == ns * e.dim => dps.push(e),
             ("dpv", _) | ("dps", _) => return Err(bad("its folder's count × DIM")),
-            ("groups", _) if e.dim == 1 => {
-                if e.values.iter().any(|&i| i >= ns as f64 || i < 0.0 || i.fract() != 0.0) {
+            ("groups", _) if e.dim == 1 && data => {
+                let v = values(&mut zip, &e, name)?;
+                if v.iter().any(|&i| i >= ns as f64 || i < 0.0 || i.fract() != 0.0) {
                     return Err(IoError::file(name, format!("group {:?} has an index outside 0..{ns}", e.base)));
                 }
-                t.groups.push((e.base, e.values.iter().map(|&i| i as u64).collect()));
+                info.groups.push((e.base, v.iter().map(|&i| i as u64).collect()));
             }
+            ("groups", _) if e.dim == 1 => {}
             ("groups", _) => return Err(bad("a group (DIM 1)")),
             _ => {} // dpg/ and anything else: not needed to draw the streamlines.
         }
@@ -149,18 +227,91 @@ pub fn read(data: &[u8], name: &str) -> Result<Tractogram, IoError> {
     if off[0] != 0.0 || off[ns] != nv as f64 || off.windows(2).any(|w| w[1] < w[0]) {
         return Err(IoError::file(name, format!("offsets must rise from 0 to NB_VERTICES = {nv}")));
     }
-    if let Some(i) = pos.iter().position(|v| !v.is_finite()) {
-        return Err(IoError::file(name, format!("position {} has NaN or infinite coordinates", i / 3)));
+    let off: Vec<u64> = off.iter().map(|&v| v as u64).collect();
+    let load = |zip: &mut Zip<R>, list: Vec<Entry>| -> Result<Vec<Array>, IoError> {
+        let mut out = Vec::new();
+        for e in list.into_iter().filter(|_| data) {
+            out.push((e.base.clone(), e.dim, values(zip, &e, name)?));
+        }
+        out.sort_by(|a, b| a.0.cmp(&b.0));
+        Ok(out)
+    };
+    let (dpv, dps) = (load(&mut zip, dpv)?, load(&mut zip, dps)?);
+    ((info.scalars, _), (info.properties, _)) = (columns(&dpv), columns(&dps));
+    info.groups.sort();
+    let f = zip.by_index(pos.index).map_err(|e| IoError::file(name, format!("entry \"positions\": {e}")))?;
+    walk(Src::new(f, name), &pos.dtype, &off, (&dpv, &dps), each)?;
+    Ok(info)
+}
+
+/// Decode the positions from `src` streamline by streamline (offsets `off`), with the data
+/// `(dpv, dps)` of each, into `each`.
+fn walk<R: Read>(
+    mut src: Src<'_, R>,
+    dtype: &str,
+    off: &[u64],
+    (dpv, dps): (&[Array], &[Array]),
+    each: &mut dyn FnMut(Line<'_>) -> Flow,
+) -> Result<(), IoError> {
+    let name = src.name;
+    let size = dtype_size(dtype).unwrap_or(4) as u64;
+    let (mut buf, mut points, mut scal, mut prop) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for (k, w) in off.windows(2).enumerate() {
+        let need = (w[1] - w[0]) * 3 * size;
+        if (src.chunk(need, &mut buf)? as u64) < need {
+            return Err(IoError::file(name, format!("entry \"positions\": ends inside streamline {k}")));
+        }
+        let v = match decode(&buf, dtype) {
+            Some(Ok(v)) => v,
+            _ => return Err(IoError::file(name, format!("entry \"positions\": not {dtype}"))),
+        };
+        if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+            let problem = format!("position {} has NaN or infinite coordinates", w[0] as usize + i / 3);
+            return Err(IoError::file(name, problem));
+        }
+        points.clear();
+        points.extend(v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]));
+        scal.clear();
+        for i in w[0] as usize..w[1] as usize {
+            for (_, d, vals) in dpv {
+                scal.extend_from_slice(&vals[i * d..(i + 1) * d]);
+            }
+        }
+        prop.clear();
+        for (_, d, vals) in dps {
+            prop.extend_from_slice(&vals[k * d..(k + 1) * d]);
+        }
+        if each(Line { index: k, points: &points, scalars: &scal, properties: &prop }) == Flow::Stop {
+            break;
+        }
     }
-    t.lines = off
-        .windows(2)
-        .map(|w| {
-            let (a, b) = (w[0] as usize, w[1] as usize);
-            Polyline { points: (a..b).map(|i| [pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]]).collect(), radii: vec![] }
-        })
-        .collect();
-    t.per_point.sort_by(|a, b| a.name.cmp(&b.name));
-    t.per_line.sort_by(|a, b| a.name.cmp(&b.name));
-    t.groups.sort();
-    Ok(t)
+    Ok(())
+}
+
+/// Parse a `.trx` file into streamlines (RAS+ mm) with their per-vertex and per-streamline
+/// data and groups ([`stream`], collected).
+///
+/// Errors: not a zip archive, no or malformed `header.json`, missing `positions` or `offsets`,
+/// an array whose size or dimension does not match the header, offsets that do not start at 0,
+/// decrease or do not end at `NB_VERTICES`, a group index out of range, or non-finite positions.
+pub fn read(data: &[u8], name: &str) -> Result<Tractogram, IoError> {
+    let (mut lines, mut scal, mut prop) = (Vec::new(), Vec::new(), Vec::new());
+    let info = stream(std::io::Cursor::new(data), name, true, &mut |l| {
+        lines.push(Polyline { points: l.points.to_vec(), radii: Vec::new() });
+        scal.extend_from_slice(l.scalars);
+        prop.extend_from_slice(l.properties);
+        Flow::Continue
+    })?;
+    let width = |g: &[(String, usize, usize)]| g.iter().map(|c| c.2).sum::<usize>();
+    let per_point = split(&info.scalars, &scal, width(&info.scalars));
+    let per_line = split(&info.properties, &prop, width(&info.properties));
+    Ok(Tractogram { lines, per_point, per_line, groups: info.groups, affine: None })
+}
+
+/// Fields of the column groups of `all` (`n` columns per item).
+fn split(groups: &[(String, usize, usize)], all: &[f64], n: usize) -> Vec<Field> {
+    if n == 0 {
+        return Vec::new();
+    }
+    super::trk::fields(groups, all, n)
 }
