@@ -59,6 +59,22 @@ pub(crate) fn tracer(accel: Accel, prims: Vec<Prim>) -> Box<dyn Tracer> {
     }
 }
 
+/// The chosen acceleration structure over the scene's own primitives of model `m` (`prims`, or
+/// none yet: `None` computes them): the 8-wide BVH keeps the links model compact
+/// ([`WideBvh::from_scene`]), the others take the primitives.
+pub(crate) fn scene_tracer(
+    accel: Accel,
+    scene: &Scene,
+    m: Model,
+    prims: Option<Vec<Prim>>,
+) -> Result<Box<dyn Tracer>, CliError> {
+    if matches!(accel, Accel::Bvh) && m == Model::Links {
+        drop(prims);
+        return Ok(Box::new(WideBvh::from_scene(scene, m)?));
+    }
+    Ok(tracer(accel, prims.map_or_else(|| scene.model_primitives(m), Ok)?))
+}
+
 /// The default radius: absolute, or the fraction of the diagonal of the bounding box of the
 /// file's points (read once more to measure it; a file of one point: the fraction of 1 unit).
 fn resolve_radius(input: &Path, r: Radius, min_radius: Option<f64>) -> Result<f64, CliError> {
@@ -126,11 +142,13 @@ pub fn render(a: &RenderArgs) -> Res {
     if thin_on(a.thin, &a.input) && render::clamp_thin(&mut scene, &cam, a.min_pixels) > 0 {
         prims = scene.model_primitives(model(a.splines))?;
     }
+    let exact = a.model == Surface::Exact && a.tolerance.is_none() && a.pixel_error.is_none();
     let (prims, tol) = match (a.model, a.tolerance) {
         (Surface::Exact, _) => (crate::cmd_mesh::chosen(&scene, prims, a.tolerance, a.pixel_error, &cam), None),
         (Surface::Mesh, t) => (prims, Some(t.ok_or(CliError::MeshTolerance)?)),
     };
     let bvh = crate::cmd_intersect::with_threads(a.threads.map(usize::from), || match tol {
+        None if exact => scene_tracer(a.accel, &scene, model(a.splines), Some(prims)),
         None => Ok(tracer(a.accel, prims)),
         Some(_) => crate::cmd_mesh::tracer(&scene, model(a.splines), prims, tol),
     })??;
@@ -186,10 +204,10 @@ fn units(input: &Path) -> &'static str {
 pub fn info(a: &InfoArgs) -> Res {
     let radius = resolve_radius(&a.input, a.radius, a.min_radius)?;
     let scene = load(&a.input, radius, a.min_radius, "counts are zero")?;
-    let prims = scene.model_primitives(model(a.splines))?;
+    let prims = if a.splines { scene.model_primitives(Model::Splines)? } else { Vec::new() };
     let st = if a.splines { scene.stats_of(&prims) } else { scene.stats() };
     let pieces = prims.iter().filter(|p| p.kind() == tubecast_render::scene::PrimKind::Spline).count();
-    let bvh = WideBvh::build(prims);
+    let bvh = if a.splines { WideBvh::build(prims) } else { WideBvh::from_scene(&scene, Model::Links)? };
     if a.json {
         let bounds = (!st.is_empty()).then(|| serde_json::json!({"min": st.bounds.0, "max": st.bounds.1}));
         let j = serde_json::json!({
