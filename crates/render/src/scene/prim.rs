@@ -75,19 +75,21 @@ pub struct Prim {
 
 /// True only where the stable link kernel surely misses the local `f32` line `o + τ·d` (`d`
 /// unit to `f32` rounding): the line passes the link's axis segment `[a, b]` farther than
-/// `R = max(ra, rb)` plus a margin `M = (L₁ + R + |o|₁ + |m|₁)/16` (`L₁`, `|o|₁`, `|m|₁`:
-/// 1-norms, upper bounds of the Euclidean ones; `m` the link's midpoint, `≈ 0` for a
+/// `R = max(ra, rb)` plus a margin `M = (L₁ + R + |o − m|₁)/16 + 2⁻¹⁶·(|o|₁ + |m|₁)` (`L₁`,
+/// `|·|₁`: 1-norms, upper bounds of the Euclidean ones; `m` the link's midpoint, `≈ 0` for a
 /// [`Prim::from_link`] primitive, up to a cluster's extent for links sharing a cluster's origin).
 /// A static filter, as in robust predicates: it runs before the kernel and never changes a hit.
 ///
 /// Why it is safe: the solid lies within distance `R` of the segment. The kernel accepts a
 /// stump crossing only where its distance-like residual is `|g| ≤ 8√ε·S` (`StumpSide::polish`,
-/// `S ≤ 2(L + R + |o| + |m|)` in its local frame, centred on the axis point the kernel forms from
-/// the midpoint), i.e. at most `5.6·10⁻³·(L + R + |o| + |m|)` (f32:
-/// `8·2⁻¹²·2`) off the surface; its sphere chords err by a few `ε` of the same sizes. The distance computed here
-/// errs by a few `ε·(L + |o|)`. `M` exceeds the sum of both by a factor over 10, so a
-/// rejected line is a kernel miss (the test `filter_rejects_only_kernel_misses` below compares
-/// filtered and unfiltered answers bit for bit).
+/// `S ≤ 2(L + R + |o − m|)`: its frame is centred on an axis point formed from the midpoint),
+/// i.e. at most `5.6·10⁻³·(L + R + |o − m|)` (f32: `8·2⁻¹²·2`) off the surface; its sphere
+/// chords err by a few `ε` of the same sizes. Forming the midpoint and the frame in `f32` from
+/// coordinates relative to the local origin adds a few `ε·(|o| + |m|)`, as does the distance
+/// computed here (`ε = 2⁻²⁴`; the second term of `M` is 256 of them). `M` exceeds the sum by a
+/// factor over 10, so a rejected line is a kernel miss (the test `filter_rejects_only_kernel_misses`
+/// below compares filtered and unfiltered answers bit for bit, also for links stored in a
+/// cluster's frame).
 #[inline(always)]
 pub(crate) fn link_surely_misses(c: &RoundCone<f32>, o: V3<f32>, d: V3<f32>) -> bool {
     let v = c.b - c.a;
@@ -100,7 +102,8 @@ pub(crate) fn link_surely_misses(c: &RoundCone<f32>, o: V3<f32>, d: V3<f32>) -> 
     let dist2 = (wp + vp * s).length2();
     let r = c.ra.max(c.rb);
     let n1 = |x: V3<f32>| x.x.abs() + x.y.abs() + x.z.abs();
-    let reach = r + (n1(v) + r + n1(o) + n1((c.a + c.b) * 0.5)) * (1.0 / 16.0);
+    let m = (c.a + c.b) * 0.5;
+    let reach = r + (n1(v) + r + n1(o - m)) * (1.0 / 16.0) + (n1(o) + n1(m)) * (1.0 / 65536.0);
     // NaN compares false: no rejection.
     dist2 > reach * reach
 }
