@@ -61,7 +61,8 @@ pub(crate) fn tracer(accel: Accel, prims: Vec<Prim>) -> Box<dyn Tracer> {
 
 /// The chosen acceleration structure over the scene's own primitives of model `m` (`prims`, or
 /// none yet: `None` computes them): the 8-wide BVH keeps the links model compact
-/// ([`WideBvh::from_scene`]), the others take the primitives.
+/// ([`WideBvh::from_scene`]), the others trace the same primitives
+/// ([`WideBvh::scene_primitives`]), so every `--accel` gives the same answers.
 pub(crate) fn scene_tracer(
     accel: Accel,
     scene: &Scene,
@@ -71,6 +72,9 @@ pub(crate) fn scene_tracer(
     if matches!(accel, Accel::Bvh) && m == Model::Links {
         drop(prims);
         return Ok(Box::new(WideBvh::from_scene(scene, m)?));
+    }
+    if m == Model::Links {
+        return Ok(tracer(accel, WideBvh::scene_primitives(scene)));
     }
     Ok(tracer(accel, prims.map_or_else(|| scene.model_primitives(m), Ok)?))
 }

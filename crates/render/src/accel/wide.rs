@@ -87,6 +87,17 @@ impl WideBvh {
         }
     }
 
+    /// The primitives [`Self::from_scene`] stores for the links model of `scene` (links in
+    /// cluster frames, spheres whole), one per link in link order: for another accelerator to
+    /// trace the very same primitives (its answers then equal this tree's bit for bit).
+    pub fn scene_primitives(scene: &Scene) -> Vec<Prim> {
+        let (runs, mut prims) = Clusters::group(scene);
+        let cl = Clusters::from_runs(scene, &runs);
+        prims.extend((0..cl.len()).flat_map(|c| (0..cl.links(c)).map(move |i| (c, i))).map(|(c, i)| cl.prim(c, i)));
+        prims.sort_unstable_by_key(|p| p.link);
+        prims
+    }
+
     /// The tree over whole primitives and pieces of clusters (runs of up to `piece` links of a
     /// cluster: the tree's items), all put in leaf order (a cluster where its first piece is).
     fn assemble(prims: Vec<Prim>, clusters: Clusters) -> Self {
