@@ -318,6 +318,16 @@ mod tests {
         b
     }
 
+    /// A ray aimed near a random node of `scene`: from 40 away (`k` even), or from the node
+    /// itself (inside).
+    fn aim(rng: &mut Rng, scene: &Scene, k: usize) -> Ray<f64> {
+        let node = scene.nodes[(rng.uniform() * scene.nodes.len() as f64) as usize].pos;
+        let p = V3::from(node) + V3::from(rng.unit()) * rng.range(0.0, 0.1);
+        let d = V3::from(rng.unit()) * rng.range(0.5, 2.0);
+        let o = if k % 2 == 0 { p - d * (40.0 / d.length()) } else { p };
+        Ray::with_range(o, d, 0.0, 60.0)
+    }
+
     /// Both trees answer with the same exact kernel results (lane packets are bit-identical to
     /// the scalar path), so every query agrees bit for bit: the closest `t` (the primitive
     /// only up to ties), any-hit, and the union of the line intervals. Links, spheres and spline
@@ -334,12 +344,7 @@ mod tests {
             assert_eq!(wide.prims().len(), bvh.prims.len());
             let mut hits = 0;
             for k in 0..2000 {
-                // Aim near a random node: from 40 away, or from the node itself (inside).
-                let node = scene.nodes[(rng.uniform() * scene.nodes.len() as f64) as usize].pos;
-                let p = V3::from(node) + V3::from(rng.unit()) * rng.range(0.0, 0.1);
-                let d = V3::from(rng.unit()) * rng.range(0.5, 2.0);
-                let o = if k % 2 == 0 { p - d * (40.0 / d.length()) } else { p };
-                let ray = Ray::with_range(o, d, 0.0, 60.0);
+                let ray = aim(&mut rng, &scene, k);
                 let (a, b) = (bvh.closest_hit(&ray), wide.closest_hit(&ray));
                 assert_eq!(a.map(|h| h.t.to_bits()), b.map(|h| h.t.to_bits()), "ray {k}: {ray:?}");
                 hits += usize::from(a.is_some());
@@ -370,11 +375,7 @@ mod tests {
             assert!(links.iter().enumerate().all(|(k, &l)| l == k as u32), "every link once");
             let mut hits = 0;
             for k in 0..1500 {
-                let node = scene.nodes[(rng.uniform() * scene.nodes.len() as f64) as usize].pos;
-                let p = V3::from(node) + V3::from(rng.unit()) * rng.range(0.0, 0.1);
-                let d = V3::from(rng.unit()) * rng.range(0.5, 2.0);
-                let o = if k % 2 == 0 { p - d * (40.0 / d.length()) } else { p };
-                let ray = Ray::with_range(o, d, 0.0, 60.0);
+                let ray = aim(&mut rng, scene, k);
                 let brute = prims.iter().filter_map(|p| p.first_hit(&ray)).map(|h| h.0).reduce(f64::min);
                 let got = wide.closest_hit(&ray);
                 assert_eq!(got.map(|h| h.t.to_bits()), brute.map(f64::to_bits), "ray {k}: {ray:?}");
