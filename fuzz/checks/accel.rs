@@ -10,7 +10,8 @@ use tubecast::csg::{union, Boundary, Tagged};
 use tubecast::{Ray, RoundCone, V3};
 use tubecast_render::accel::grid::Grid;
 use tubecast_render::accel::{Bvh, Tracer, WideBvh};
-use tubecast_render::scene::Prim;
+use tubecast_render::io::Polyline;
+use tubecast_render::scene::{Model, Prim, Scene};
 
 /// The little-endian `f32` at 4-byte slot `i` (bytes past the end read as 0), widened.
 fn f32_at(data: &[u8], i: usize) -> f64 {
@@ -72,6 +73,28 @@ pub fn check(data: &[u8]) {
             agree(name, tr.as_ref(), &prims, ray);
         }
     }
+    // The compact 8-wide tree built from a scene of the same links: as independent links, and as
+    // one polyline through the links' first ends (consecutive links share nodes and cluster).
+    // Its primitives are its own stored ones ([`Tracer::prim`]: links share one f64 origin per
+    // cluster), so brute force runs over those.
+    let mut lines: Vec<Polyline> = Vec::new();
+    let mut chain = Polyline { points: Vec::new(), radii: Vec::new() };
+    for p in &prims {
+        let Some(c) = p.round_cone() else { continue };
+        let org = V3::from(p.origin);
+        let (a, b) = (org + c.a.cast::<f64>(), org + c.b.cast::<f64>());
+        lines.push(Polyline { points: vec![a.to_array(), b.to_array()], radii: vec![c.ra as f64, c.rb as f64] });
+        chain.points.push(a.to_array());
+        chain.radii.push(c.ra as f64);
+    }
+    for lines in [lines, vec![chain]] {
+        let Ok(scene) = Scene::from_polylines(&lines, 1.0, "fuzz") else { continue };
+        let compact = WideBvh::from_scene(&scene, Model::Links).expect("a links model builds");
+        let own: Vec<Prim> = (0..compact.prim_count() as u32).map(|i| compact.prim(i)).collect();
+        for ray in &rays {
+            agree("compact wide bvh", &compact, &own, ray);
+        }
+    }
 }
 
 /// `tracer` against brute force over `prims` on one ray.
@@ -82,7 +105,7 @@ pub fn agree(name: &str, tracer: &dyn Tracer, prims: &[Prim], ray: &Ray<f64>) {
     let got = tracer.closest_hit(ray);
     assert_eq!(got.map(|h| h.t.to_bits()), brute_t.map(f64::to_bits), "{name}: closest hit of {ray:?}");
     if let Some(h) = got {
-        let p = &tracer.prims()[h.prim as usize];
+        let p = tracer.prim(h.prim);
         assert_eq!(p.first_hit(ray).map(|x| x.0.to_bits()), Some(h.t.to_bits()), "{name}: hit's own primitive");
     }
     let brute_any = prims.iter().any(|p| p.meets(ray));

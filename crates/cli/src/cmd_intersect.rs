@@ -21,14 +21,13 @@ pub fn intersect(a: &IntersectArgs) -> Result<(), CliError> {
     let scene = crate::commands::load(&a.input, radius, &a.load, plan, "every ray misses", None)?;
     let name = a.rays.display().to_string();
     let rays = io::npy::read(&crate::hits_io::read_input(&a.rays)?, &name, Some(6))?.rays(&name)?;
-    let prims = scene.model_primitives(crate::commands::model(a.splines))?;
     let rows = with_threads(a.threads.map(usize::from), || {
-        let bvh = crate::commands::tracer(a.accel, prims);
-        match a.query {
+        let bvh = crate::commands::scene_tracer(a.accel, &scene, crate::commands::model(a.splines), None)?;
+        Ok::<_, CliError>(match a.query {
             Query::Hit => closest_table(bvh.as_ref(), &rays),
             Query::Piece => hit_table(bvh.as_ref(), &rays),
             Query::All => crossings_table(bvh.as_ref(), &rays),
-        }
-    })?;
+        })
+    })??;
     crate::hits_io::write_hits(&a.out, &Array2::from_rows(&rows), a.csv)
 }

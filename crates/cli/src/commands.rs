@@ -58,6 +58,27 @@ pub(crate) fn tracer(accel: Accel, prims: Vec<Prim>) -> Box<dyn Tracer> {
     })
 }
 
+/// The chosen acceleration structure over the scene's own primitives of model `m` (`prims`, or
+/// none yet: `None` computes them): the 8-wide BVH keeps the links model compact
+/// ([`WideBvh::from_scene`]), the others trace the same primitives
+/// ([`WideBvh::scene_primitives`]), so every `--accel` gives the same answers.
+pub(crate) fn scene_tracer(
+    accel: Accel,
+    scene: &Scene,
+    m: Model,
+    prims: Option<Vec<Prim>>,
+) -> Result<Box<dyn Tracer>, CliError> {
+    if matches!(accel, Accel::Bvh) && m == Model::Links {
+        drop(prims);
+        let bvh = crate::progress::step("building the compact 8-wide BVH", || WideBvh::from_scene(scene, m))?;
+        return Ok(Box::new(bvh));
+    }
+    if m == Model::Links {
+        return Ok(tracer(accel, WideBvh::scene_primitives(scene)));
+    }
+    Ok(tracer(accel, prims.map_or_else(|| scene.model_primitives(m), Ok)?))
+}
+
 /// Whether the minimum pixel footprint applies: `auto` turns it on for wireframe-like data
 /// (formats without radii: .trk, .tck, .trx, .obj), off for SWC morphologies.
 fn thin_on(t: Thin, input: &Path) -> bool {
@@ -108,11 +129,13 @@ pub fn render(a: &RenderArgs) -> Res {
         drop(std::mem::take(&mut prims)); // not two lists at once
         prims = scene.model_primitives(model(a.splines))?;
     }
+    let exact = a.model == Surface::Exact && a.tolerance.is_none() && a.pixel_error.is_none();
     let (prims, tol) = match (a.model, a.tolerance) {
         (Surface::Exact, _) => (crate::cmd_mesh::chosen(&scene, prims, a.tolerance, a.pixel_error, &cam), None),
         (Surface::Mesh, t) => (prims, Some(t.ok_or(CliError::MeshTolerance)?)),
     };
     let bvh = crate::cmd_intersect::with_threads(a.threads.map(usize::from), || match tol {
+        None if exact => scene_tracer(a.accel, &scene, model(a.splines), Some(prims)),
         None => Ok(tracer(a.accel, prims)),
         Some(_) => crate::cmd_mesh::tracer(&scene, model(a.splines), prims, tol),
     })??;
@@ -168,10 +191,14 @@ fn units(input: &Path) -> &'static str {
 pub fn info(a: &InfoArgs) -> Res {
     let plan = Plan { model: model(a.splines), accel: Accel::Bvh };
     let scene = load(&a.input, (a.radius, a.min_radius), &a.load, plan, "counts are zero", None)?;
-    let prims = scene.model_primitives(model(a.splines))?;
+    let prims = if a.splines { scene.model_primitives(Model::Splines)? } else { Vec::new() };
     let st = if a.splines { scene.stats_of(&prims) } else { scene.stats() };
     let pieces = prims.iter().filter(|p| p.kind() == tubecast_render::scene::PrimKind::Spline).count();
-    let bvh = crate::progress::step("building the 8-wide BVH", || WideBvh::build(prims));
+    let bvh = if a.splines {
+        crate::progress::step("building the 8-wide BVH", || WideBvh::build(prims))
+    } else {
+        crate::progress::step("building the compact 8-wide BVH", || WideBvh::from_scene(&scene, Model::Links))?
+    };
     if a.json {
         let bounds = (!st.is_empty()).then(|| serde_json::json!({"min": st.bounds.0, "max": st.bounds.1}));
         let j = serde_json::json!({

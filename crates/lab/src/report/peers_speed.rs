@@ -1,8 +1,9 @@
 //! The peers report's speed and memory section (feature `embree`): per scene, one run, the same
 //! `f32` camera rays for Embree `ROUND_LINEAR_CURVE` (`rtcIntersect1`, isolated segments: the
 //! same solid) and our trees (the binary [`Bvh`] with lane packets, and the 8-wide
-//! [`WideBvh`] that the CLI uses), on one thread and on all threads; build times; bytes per
-//! link (ours: [`Tracer::memory_bytes`]; Embree's: its device memory monitor after the build).
+//! [`WideBvh`] over whole primitives and built compactly from the scene as the CLI does,
+//! [`WideBvh::from_scene`]), on one thread and on all threads; build times; bytes per link
+//! (ours: [`Tracer::memory_bytes`]; Embree's: its device memory monitor after the build).
 
 use super::peers::best_of;
 use super::ReportError;
@@ -16,23 +17,23 @@ use tubecast::Ray;
 use tubecast_render::accel::{Bvh, Tracer, WideBvh};
 use tubecast_render::io::Polyline;
 use tubecast_render::render::Camera;
-use tubecast_render::scene::Scene;
+use tubecast_render::scene::{Model, Scene};
 
 /// One scene's figures.
 pub(super) struct SceneSpeed {
     name: String,
     links: usize,
-    /// Build seconds: Embree, Bvh, WideBvh.
-    build: [f64; 3],
-    /// Mrays/s, one thread: Embree, Bvh, WideBvh.
-    one: [f64; 3],
-    /// Mrays/s on all threads: Embree, WideBvh.
-    all: [f64; 2],
+    /// Build seconds: Embree, Bvh, WideBvh (whole), WideBvh (compact).
+    build: [f64; 4],
+    /// Mrays/s, one thread: Embree, Bvh, WideBvh (whole), WideBvh (compact).
+    one: [f64; 4],
+    /// Mrays/s on all threads: Embree, WideBvh (whole), WideBvh (compact).
+    all: [f64; 3],
     threads: usize,
-    /// Bytes per link: Embree, Bvh, WideBvh.
-    bytes: [f64; 3],
-    /// Hits: Embree, WideBvh; rays.
-    hits: [usize; 2],
+    /// Bytes per link: Embree, Bvh, WideBvh (whole), WideBvh (compact).
+    bytes: [f64; 4],
+    /// Hits: Embree, WideBvh (whole), WideBvh (compact); rays.
+    hits: [usize; 3],
     rays: usize,
 }
 
@@ -66,55 +67,66 @@ pub(super) fn measure(
     let t0 = Instant::now();
     let wide = WideBvh::build(scene.primitives());
     let b_wide = t0.elapsed().as_secs_f64();
+    let t0 = Instant::now();
+    let compact = WideBvh::from_scene(&scene, Model::Links).map_err(|e| ReportError::Render(e.to_string()))?;
+    let b_compact = t0.elapsed().as_secs_f64();
     let reps = 3;
     let (t_emb, h_emb) = best_of(reps, || emb.count_hits(&rays32));
     let (t_bvh, _) = best_of(reps, || count(&bvh, &rays64));
     let (t_wide, h_wide) = best_of(reps, || count(&wide, &rays64));
+    let (t_compact, h_compact) = best_of(reps, || count(&compact, &rays64));
     let chunk = 256;
     let (a_emb, _) = best_of(reps, || rays32.par_chunks(chunk).map(|c| emb.count_hits(c)).sum());
     let (a_wide, _) = best_of(reps, || rays64.par_chunks(chunk).map(|c| count(&wide, c)).sum());
+    let (a_compact, _) = best_of(reps, || rays64.par_chunks(chunk).map(|c| count(&compact, c)).sum());
     let nr = rays32.len() as f64;
     let mr = |t: f64| nr / t / 1e6;
     let nl = scene.links.len() as f64;
     Ok(SceneSpeed {
         name: name.to_string(),
         links: scene.links.len(),
-        build: [b_emb, b_bvh, b_wide],
-        one: [mr(t_emb), mr(t_bvh), mr(t_wide)],
-        all: [mr(a_emb), mr(a_wide)],
+        build: [b_emb, b_bvh, b_wide, b_compact],
+        one: [mr(t_emb), mr(t_bvh), mr(t_wide), mr(t_compact)],
+        all: [mr(a_emb), mr(a_wide), mr(a_compact)],
         threads: rayon::current_num_threads(),
-        bytes: [emb_bytes / nl, bvh.memory_bytes() as f64 / nl, wide.memory_bytes() as f64 / nl],
-        hits: [h_emb, h_wide],
+        bytes: [emb_bytes / nl, bvh.memory_bytes() as f64 / nl, wide.memory_bytes() as f64 / nl, {
+            compact.memory_bytes() as f64 / nl
+        }],
+        hits: [h_emb, h_wide, h_compact],
         rays: rays32.len(),
     })
 }
 
-/// The markdown table of `rows` and the ratios it implies.
+/// The markdown table of `rows` and the ratios it implies ("whole": [`WideBvh::build`] over
+/// whole primitives, the layout before clusters; "compact": [`WideBvh::from_scene`], the CLI's).
 pub(super) fn table(rows: &[SceneSpeed]) -> String {
     let mut md = String::from(
-        "| scene | links | rays (hits Embree / ours) | Mrays/s 1 thread: Embree / Bvh / WideBvh | \
-         WideBvh ÷ Embree | Mrays/s all threads: Embree / WideBvh | WideBvh ÷ Embree | build ms: \
-         Embree / Bvh / WideBvh | build WideBvh ÷ Embree | bytes per link: Embree / Bvh / WideBvh |\n\
-         |---|---|---|---|---|---|---|---|---|---|\n",
+        "| scene | links | rays (hits Embree / whole / compact) | Mrays/s 1 thread: Embree / Bvh / WideBvh whole / \
+         compact | ÷ Embree: whole / compact | Mrays/s all threads: Embree / whole / compact | ÷ Embree: whole / \
+         compact | build ms: Embree / Bvh / whole / compact | build compact ÷ Embree | bytes per link: Embree / \
+         Bvh / whole / compact |\n|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for r in rows {
         let f = |v: &[f64], p: usize| v.iter().map(|x| format!("{x:.p$}")).collect::<Vec<_>>().join(" / ");
         let _ = writeln!(
             md,
-            "| {} | {} | {} ({} / {}) | {} | {:.2} | {} ({} threads) | {:.2} | {} | {:.2} | {} |",
+            "| {} | {} | {} ({} / {} / {}) | {} | {:.2} / {:.2} | {} ({} threads) | {:.2} / {:.2} | {} | {:.2} | {} |",
             r.name,
             r.links,
             r.rays,
             r.hits[0],
             r.hits[1],
+            r.hits[2],
             f(&r.one, 2),
             r.one[2] / r.one[0],
+            r.one[3] / r.one[0],
             f(&r.all, 2),
             r.threads,
             r.all[1] / r.all[0],
+            r.all[2] / r.all[0],
             f(&r.build.map(|b| b * 1e3), 1),
-            r.build[2] / r.build[0],
-            f(&r.bytes, 0),
+            r.build[3] / r.build[0],
+            f(&r.bytes, 1),
         );
     }
     md

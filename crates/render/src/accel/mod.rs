@@ -32,6 +32,7 @@ use tubecast::csg::Tagged;
 use tubecast::Ray;
 use tubecast::V3;
 
+mod cluster;
 mod cwbuild;
 pub mod grid;
 #[cfg(feature = "wide")]
@@ -128,14 +129,18 @@ struct Frame {
 impl Frame {
     /// The frame of `prims` and their padded `f32` boxes relative to the centre.
     fn new(prims: &[Prim]) -> (Self, Vec<BoxOf>) {
+        Self::of_boxes(&prims.iter().map(|p| p.aabb()).collect::<Vec<_>>())
+    }
+
+    /// The frame of items with world boxes `boxes` and their padded `f32` boxes.
+    fn of_boxes(boxes: &[([f64; 3], [f64; 3])]) -> (Self, Vec<BoxOf>) {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
-        let boxes: Vec<_> = prims.iter().map(|p| p.aabb()).collect();
-        for (a, b) in &boxes {
+        for (a, b) in boxes {
             lo = std::array::from_fn(|i| lo[i].min(a[i]));
             hi = std::array::from_fn(|i| hi[i].max(b[i]));
         }
-        if prims.is_empty() {
+        if boxes.is_empty() {
             lo = [0.0; 3];
             hi = [0.0; 3];
         }
@@ -156,7 +161,7 @@ impl Frame {
         let aabbs: Vec<BoxOf> = boxes.iter().map(|(a, b)| BoxOf(Aabb::new(to32(*a, -pad), to32(*b, pad)))).collect();
         let lo = std::array::from_fn(|i| lo[i] - 2.0 * pad);
         let hi = std::array::from_fn(|i| hi[i] + 2.0 * pad);
-        (Self { centre, lo, hi, pad, scale, any: !prims.is_empty() }, aabbs)
+        (Self { centre, lo, hi, pad, scale, any: !boxes.is_empty() }, aabbs)
     }
 
     /// Clip the ray's line restricted to distances `[s_lo, s_hi]` along the unit direction to
@@ -233,6 +238,7 @@ impl Bvh {
                 &mut std::time::Duration::default(),
             )
         };
+        bvh.nodes.shrink_to_fit();
         // Reorder primitives into leaf order so leaves index them directly.
         #[allow(unused_mut)]
         let mut prims: Vec<Prim> = bvh.primitive_indices.iter().map(|&i| prims[i as usize]).collect();
@@ -276,6 +282,7 @@ impl Bvh {
                 j += n;
             }
         }
+        packs.shrink_to_fit();
         (packs, pack_at)
     }
 
@@ -330,17 +337,17 @@ impl Bvh {
         (ray.d * (1.0 / len), len)
     }
 
-    /// Bytes held by the BVH nodes and the primitives.
+    /// Bytes held by the BVH nodes and the primitives (allocated capacity).
     pub fn memory_bytes(&self) -> usize {
-        self.bvh.nodes.len() * std::mem::size_of::<obvhs::bvh2::node::Bvh2Node>()
-            + self.bvh.primitive_indices.len() * 4
-            + self.prims.len() * std::mem::size_of::<Prim>()
+        self.bvh.nodes.capacity() * std::mem::size_of::<obvhs::bvh2::node::Bvh2Node>()
+            + self.bvh.primitive_indices.capacity() * 4
+            + self.prims.capacity() * std::mem::size_of::<Prim>()
             + self.packet_bytes()
     }
 
     #[cfg(feature = "wide")]
     fn packet_bytes(&self) -> usize {
-        self.packs.len() * packet::Packet::BYTES + self.pack_at.len() * 4
+        self.packs.capacity() * packet::Packet::BYTES + self.pack_at.capacity() * 4
     }
 
     #[cfg(not(feature = "wide"))]

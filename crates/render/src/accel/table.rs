@@ -36,7 +36,7 @@ pub fn closest_table(tracer: &dyn Tracer, rays: &[Ray<f64>]) -> Vec<[f64; HIT_CO
     rays.par_iter()
         .map(|ray| match tracer.closest_hit(ray) {
             Some(h) => {
-                let p = &tracer.prims()[h.prim as usize];
+                let p = tracer.prim(h.prim);
                 let exit = p.intersect(ray).t_out;
                 let flag = if h.entering { 1.0 } else { -1.0 };
                 [h.t, exit, h.n.x, h.n.y, h.n.z, h.link as f64, h.u, flag]
@@ -52,7 +52,7 @@ pub fn closest_table(tracer: &dyn Tracer, rays: &[Ray<f64>]) -> Vec<[f64; HIT_CO
 pub fn hit_table(tracer: &dyn Tracer, rays: &[Ray<f64>]) -> Vec<[f64; HIT_COLUMNS]> {
     rays.par_iter()
         .map(|ray| match first_component(tracer, ray) {
-            Some((e, x)) => [e.t, x.t, e.n.x, e.n.y, e.n.z, tracer.prims()[e.id as usize].link as f64, e.u, 1.0],
+            Some((e, x)) => [e.t, x.t, e.n.x, e.n.y, e.n.z, tracer.prim(e.id).link as f64, e.u, 1.0],
             None => MISS_ROW,
         })
         .collect()
@@ -71,7 +71,7 @@ pub fn crossings_table(tracer: &dyn Tracer, rays: &[Ray<f64>]) -> Vec<[f64; HIT_
             tracer.line_intervals(ray, &mut ivs);
             let mut rows = Vec::new();
             union(&mut ivs, ray.t_min, ray.t_max, |b| {
-                let link = tracer.prims()[b.id as usize].link as f64;
+                let link = tracer.prim(b.id).link as f64;
                 rows.push([k as f64, b.t, b.n.x, b.n.y, b.n.z, link, b.u, if b.entering { 1.0 } else { -1.0 }]);
             });
             rows

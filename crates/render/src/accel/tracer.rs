@@ -22,11 +22,22 @@ use tubecast::Ray;
 /// let scene = Scene::from_polylines(&[line], 0.5, "tube").unwrap();
 /// let tracer: Box<dyn Tracer> = Box::new(Bvh::build(scene.primitives()));
 /// let hit = tracer.closest_hit(&Ray::new(V3::new(2.0, 3.0, 0.0), V3::new(0.0, -1.0, 0.0))).unwrap();
-/// assert_eq!(tracer.prims()[hit.prim as usize].link, 0);
+/// assert_eq!(tracer.prim(hit.prim).link, 0);
 /// ```
 pub trait Tracer: Send + Sync {
-    /// The primitives a [`Hit::prim`] or a [`Tagged::id`] indexes.
+    /// The primitives the tracer stores whole: ids `0..prims().len()` of [`Hit::prim`] and
+    /// [`Tagged::id`]. Every tracer stores all of them so, except a compact
+    /// [`WideBvh::from_scene`](super::WideBvh::from_scene), whose clustered links follow them:
+    /// reach any id through [`Tracer::prim`] and [`Tracer::prim_count`].
     fn prims(&self) -> &[Prim];
+    /// The primitive with id `id` (a [`Hit::prim`] or [`Tagged::id`]), `id < prim_count()`.
+    fn prim(&self, id: u32) -> Prim {
+        self.prims()[id as usize]
+    }
+    /// Number of primitive ids.
+    fn prim_count(&self) -> usize {
+        self.prims().len()
+    }
     /// The closest surface crossing in `[t_min, t_max]` (entry, or exit when the ray starts
     /// inside a primitive). The ray must be valid ([`Ray::validate`]).
     fn closest_hit(&self, ray: &Ray<f64>) -> Option<Hit>;

@@ -39,7 +39,7 @@ impl Ctx<'_> {
     /// Offset for secondary rays: well above the `f32` kernel's hit error (≈ 2⁻²⁰ of the
     /// primitive's size) and the `f64` position error (≈ 2⁻⁵⁰ of |p|).
     fn eps(&self, prim: u32, p: V3<f64>) -> f64 {
-        let pr = &self.bvh.prims()[prim as usize];
+        let pr = self.bvh.prim(prim);
         1e-3 * pr.max_radius() as f64 + 1e-12 * p.max_abs()
     }
 
@@ -54,7 +54,7 @@ impl Ctx<'_> {
         let Some(hit) = self.bvh.closest_hit(&ray) else {
             return Px { premul: [0.0; 3], alpha: 0.0, depth: f64::INFINITY };
         };
-        let (base, cov) = self.pal.color(self.scene, self.opts.color, &self.bvh.prims()[hit.prim as usize], hit.u);
+        let (base, cov) = self.pal.color(self.scene, self.opts.color, &self.bvh.prim(hit.prim), hit.u);
         if cov < 1.0 {
             return self.faded(x, y, &ray, view);
         }
@@ -109,7 +109,7 @@ impl Ctx<'_> {
         });
         let (mut acc, mut trans) = ([0.0f32; 3], 1.0f32);
         for b in &entries {
-            let (base, cov) = self.pal.color(self.scene, self.opts.color, &self.bvh.prims()[b.id as usize], b.u);
+            let (base, cov) = self.pal.color(self.scene, self.opts.color, &self.bvh.prim(b.id), b.u);
             let c = self.surface(x, y, ray, view, (b.id, b.t, b.n), base);
             for (acc, c) in acc.iter_mut().zip(c) {
                 *acc += trans * cov * c;
@@ -155,7 +155,7 @@ impl Ctx<'_> {
         let mut acc = [0.0f32; 3];
         let mut trans = 1.0f32;
         for b in &bounds {
-            let (base, cov) = self.pal.color(self.scene, self.opts.color, &self.bvh.prims()[b.id as usize], b.u);
+            let (base, cov) = self.pal.color(self.scene, self.opts.color, &self.bvh.prim(b.id), b.u);
             let a = self.opts.opacity as f32 * cov;
             let c = self.shade(base, b.n, view, 1.0, 1.0);
             for (acc, c) in acc.iter_mut().zip(c) {

@@ -57,6 +57,7 @@ mod stats;
 pub use chains::{Chain, SplineFidelity, SplineSegment, SPLINE_MAX_DEPTH, SPLINE_TOLERANCE};
 pub use error::SceneError;
 pub use load::{LoadOptions, LoadReport};
+pub(crate) use prim::{link_interval, local_origin};
 pub use prim::{Prim, PrimKind, Shape};
 pub use stats::Stats;
 

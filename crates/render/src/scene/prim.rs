@@ -75,17 +75,21 @@ pub struct Prim {
 
 /// True only where the stable link kernel surely misses the local `f32` line `o + τ·d` (`d`
 /// unit to `f32` rounding): the line passes the link's axis segment `[a, b]` farther than
-/// `R = max(ra, rb)` plus a margin `M = (L₁ + R + |o|₁)/16` (`L₁`, `|o|₁`: 1-norms, upper bounds
-/// of the Euclidean ones). A static filter, as in robust predicates: it runs before the kernel
-/// and never changes a hit.
+/// `R = max(ra, rb)` plus a margin `M = (L₁ + R + |o − m|₁)/16 + 2⁻¹⁶·(|o|₁ + |m|₁)` (`L₁`,
+/// `|·|₁`: 1-norms, upper bounds of the Euclidean ones; `m` the link's midpoint, `≈ 0` for a
+/// [`Prim::from_link`] primitive, up to a cluster's extent for links sharing a cluster's origin).
+/// A static filter, as in robust predicates: it runs before the kernel and never changes a hit.
 ///
 /// Why it is safe: the solid lies within distance `R` of the segment. The kernel accepts a
 /// stump crossing only where its distance-like residual is `|g| ≤ 8√ε·S` (`StumpSide::polish`,
-/// `S ≤ 2(L + R + |o|)` in its local frame), i.e. at most `5.6·10⁻³·(L + R + |o|)` (f32:
-/// `8·2⁻¹²·2`) off the surface; its sphere chords err by a few `ε` of the same sizes. The distance computed here
-/// errs by a few `ε·(L + |o|)`. `M` exceeds the sum of both by a factor over 10, so a
-/// rejected line is a kernel miss (the test `filter_rejects_only_kernel_misses` below compares
-/// filtered and unfiltered answers bit for bit).
+/// `S ≤ 2(L + R + |o − m|)`: its frame is centred on an axis point formed from the midpoint),
+/// i.e. at most `5.6·10⁻³·(L + R + |o − m|)` (f32: `8·2⁻¹²·2`) off the surface; its sphere
+/// chords err by a few `ε` of the same sizes. Forming the midpoint and the frame in `f32` from
+/// coordinates relative to the local origin adds a few `ε·(|o| + |m|)`, as does the distance
+/// computed here (`ε = 2⁻²⁴`; the second term of `M` is 256 of them). `M` exceeds the sum by a
+/// factor over 10, so a rejected line is a kernel miss (the test `filter_rejects_only_kernel_misses`
+/// below compares filtered and unfiltered answers bit for bit, also for links stored in a
+/// cluster's frame).
 #[inline(always)]
 pub(crate) fn link_surely_misses(c: &RoundCone<f32>, o: V3<f32>, d: V3<f32>) -> bool {
     let v = c.b - c.a;
@@ -98,9 +102,31 @@ pub(crate) fn link_surely_misses(c: &RoundCone<f32>, o: V3<f32>, d: V3<f32>) -> 
     let dist2 = (wp + vp * s).length2();
     let r = c.ra.max(c.rb);
     let n1 = |x: V3<f32>| x.x.abs() + x.y.abs() + x.z.abs();
-    let reach = r + (n1(v) + r + n1(o)) * (1.0 / 16.0);
+    let m = (c.a + c.b) * 0.5;
+    let reach = r + (n1(v) + r + n1(o - m)) * (1.0 / 16.0) + (n1(o) + n1(m)) * (1.0 / 65536.0);
     // NaN compares false: no rejection.
     dist2 > reach * reach
+}
+
+/// The point of the line `o + s·dn` (`dn` unit, `f64`) nearest the local origin `origin`,
+/// relative to it and rounded to `f32`, and its distance `s = tc` along `dn`: every local ray
+/// of a primitive (or of a cluster of links sharing one origin) is made by these operations.
+#[inline(always)]
+pub(crate) fn local_origin(origin: [f64; 3], o: V3<f64>, dn: V3<f64>) -> (V3<f32>, f64) {
+    let org = V3::from(origin);
+    let tc = (org - o).dot(dn); // distance along dn to the nearest point
+    ((o + dn * tc - org).cast::<f32>(), tc)
+}
+
+/// A link's interval with the world ray `ray`, given its local `f32` ray `rl` (unit direction,
+/// made by [`local_origin`], `tc` and `len = |d|` as [`Prim::intersect_unit`] takes them):
+/// [`link_surely_misses`], then the stable kernel, mapped back by [`Prim::to_world`].
+#[inline(always)]
+pub(crate) fn link_interval(c: &RoundCone<f32>, rl: &Ray<f32>, tc: f64, len: f64, ray: &Ray<f64>) -> Interval<f64> {
+    if link_surely_misses(c, rl.o, rl.d) {
+        return Interval::miss();
+    }
+    Prim::to_world(&c.intersect(rl), tc, len, ray)
 }
 
 /// A sphere of radius `r` at the local origin as a (degenerate) round cone.
@@ -230,12 +256,7 @@ impl Prim {
         let rl = Ray::with_range(o, dn.cast::<f32>(), f32::NEG_INFINITY, f32::INFINITY);
         let iv = match &self.shape {
             Shape::Sphere { r } => Sphere { c: V3::zero(), r: *r }.intersect(&rl),
-            Shape::Cylinder(c) | Shape::Cone(c) => {
-                if link_surely_misses(c, rl.o, rl.d) {
-                    return Interval::miss();
-                }
-                c.intersect(&rl)
-            }
+            Shape::Cylinder(c) | Shape::Cone(c) => return link_interval(c, &rl, tc, len, ray),
             Shape::Spline { quad, .. } => quad.intersect_with(&rl, Solver::Polynomial),
         };
         Self::to_world(&iv, tc, len, ray)
@@ -332,9 +353,7 @@ impl Prim {
     /// depends on the primitive, shared with the lane-packet path so both see the same bits.
     #[inline(always)]
     pub(crate) fn local_origin(&self, o: V3<f64>, dn: V3<f64>) -> (V3<f32>, f64) {
-        let org = V3::from(self.origin);
-        let tc = (org - o).dot(dn); // distance along dn to the nearest point
-        ((o + dn * tc - org).cast::<f32>(), tc)
+        local_origin(self.origin, o, dn)
     }
 
     /// A local `f32` line interval mapped back to the world ray, with the hit mask clipped
@@ -402,9 +421,17 @@ mod tests {
             let axis = V3::from(rng.unit());
             let Ok(link) = RoundCone::new(off, r, off + axis * len, rb) else { continue };
             let p = Prim::from_link(&link, 0);
-            if !matches!(p.shape, Shape::Cylinder(_) | Shape::Cone(_)) {
-                continue;
-            }
+            let Some(c) = p.round_cone().filter(|_| p.kind() != PrimKind::Sphere) else { continue };
+            // One in four: stored as in a cluster of links sharing one origin, up to 4·(L + R)
+            // away from the link (the accel cluster module's limit).
+            let p = if k % 4 == 3 {
+                let sh = V3::from(rng.unit()) * (4.0 * (len + r) * rng.uniform());
+                let m = |x: V3<f32>| (x.cast::<f64>() + sh).cast::<f32>();
+                let c = RoundCone { a: m(c.a), b: m(c.b), ..c };
+                Prim { origin: (V3::from(p.origin) - sh).to_array(), shape: Shape::Cone(c), ..p }
+            } else {
+                p
+            };
             // A point on the axis, a direction, and the ray's distance from the axis point.
             let at = off + axis * (len * rng.range(-0.2, 1.2));
             let dir = match k % 7 {

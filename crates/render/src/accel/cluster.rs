@@ -1,0 +1,357 @@
+//! Compact link storage for [`WideBvh::from_scene`](super::WideBvh::from_scene): runs of up to
+//! [`MAX_LINKS`] consecutive links of one chain (link `k + 1` starts at the node where link `k`
+//! ends) share **one** `f64` local origin and store each of their nodes **once**, as `f32`
+//! `(x, y, z, r)` relative to that origin — 16 bytes per node plus a 32-byte head per cluster,
+//! instead of a [`Prim`] (88 bytes) per link. A traversal moves the ray to the cluster's origin
+//! once (one `f64` shift per cluster, not per link) and runs each link's filter and kernel on the
+//! shared local ray.
+//!
+//! # The primitives are the stored ones
+//! Link `i` of a cluster *is* the [`Prim`] `{ origin: cluster origin, shape: Cylinder or Cone
+//! (RoundCone { a: node i, ra, b: node i + 1, rb }) }` ([`Clusters::prim`]): the traversal runs
+//! exactly that primitive's arithmetic ([`local_origin`], then [`link_interval`]), so its
+//! answers equal [`Prim::intersect`] of the reconstructed primitives bit for bit, and brute
+//! force over [`Tracer::prim`](super::Tracer::prim) is the reference (`fuzz/checks/accel.rs`).
+//!
+//! # Precision
+//! A coordinate stored in `f32` relative to an `f64` origin errs by at most `u·|x|` (`u = 2⁻²⁴`,
+//! round to nearest; the origin itself and the `f64` subtraction add `≤ 2⁻⁵³` relative, nothing
+//! at this scale). A per-link [`Prim::from_link`] stores offsets from the link's own midpoint,
+//! `|x|∞ ≤ ℓ/2` with `ℓ = |b − a|∞`, so its error is `≤ u·ℓ/2`. A cluster's origin is the centre
+//! of its nodes' bounding box and a link joins only while the box's half-extent `h` (∞-norm)
+//! stays `≤ SPREAD·(ℓₖ + Rₖ)` for **every** link `k` of the cluster (`Rₖ = max(raₖ, rbₖ)`), so
+//! each stored coordinate errs by `≤ u·h ≤ SPREAD·u·(ℓₖ + Rₖ)`: with [`SPREAD`] `= 4`, at most
+//! `8u·(ℓ + R)` — eight times the per-link figure `u·ℓ/2` for thin links, still relative to the
+//! link's **own size** and independent of where the scene lies (the property the local origin
+//! exists for; world `f32` coordinates would err by `u·|position|`). Radii are stored as
+//! `r as f32` exactly as [`Prim::from_link`] stores them. A straight run of equal links has
+//! `h = n·ℓ/2`, so it fills [`MAX_LINKS`] `= 2·SPREAD` links; a bent or uneven run stops sooner.
+//! The kernel's own rounding grows with the size of its local frame in the same way (its local
+//! centre and ray origin are formed in `f32` at distance `≤ √3·h` from the origin), which the
+//! static filter's margin accounts for (`link_surely_misses` in `scene/prim.rs`).
+//!
+//! # Tree items
+//! The tree is built over **pieces** of [`super::wide`]'s `PIECE` links of a cluster (one link:
+//! the same boxes as one item per link), not over whole clusters: a cluster's box is far
+//! looser than its links' boxes (a run of eight diagonal links has about 16 times their
+//! volume), and in a dense bundle a ray entered so many that tracing was 6× slower (peers
+//! report, Bundle 10⁵: 0.14 against 0.82 Mrays/s; pieces of two links: 0.41).
+
+use crate::scene::{link_interval, local_origin, Prim, Scene, Shape};
+use tubecast::{Interval, LinkShape, Ray, RoundCone, V3};
+
+/// Most links per cluster (one lane group of eight).
+pub(crate) const MAX_LINKS: usize = 8;
+/// A cluster's half-extent may be at most this many times each of its links' `ℓ + R`.
+pub(crate) const SPREAD: f64 = 4.0;
+
+/// One cluster: its `f64` origin, the index of its first node in [`Clusters::nodes`] and the
+/// scene index of its first link (its links are consecutive in the scene).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Head {
+    origin: [f64; 3],
+    node: u32,
+    link: u32,
+}
+
+/// Clusters of links, their nodes stored once (see the module docs).
+#[derive(Debug, Default)]
+pub(crate) struct Clusters {
+    /// One head per cluster plus a sentinel whose `node` is `nodes.len()` (so cluster `c` has
+    /// `heads[c + 1].node − heads[c].node − 1` links).
+    heads: Vec<Head>,
+    /// `(x, y, z, r)` of each cluster's nodes, relative to its origin.
+    nodes: Vec<[f32; 4]>,
+}
+
+/// A run of `n` scene links starting at link `first`, grouped into one cluster.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Run {
+    pub first: u32,
+    pub n: u32,
+}
+
+impl Clusters {
+    /// Split the scene's links into runs (see the module docs) and the primitives of the links
+    /// that join none (spheres: a link whose larger end sphere contains the other).
+    pub fn group(scene: &Scene) -> (Vec<Run>, Vec<Prim>) {
+        let mut runs: Vec<Run> = Vec::new();
+        let mut single = Vec::new();
+        let pos = |i: u32| V3::from(scene.nodes[i as usize].pos);
+        let mut cur: Option<(Run, [f64; 3], [f64; 3], f64)> = None; // run, node box, min(ℓ + R)
+        for k in 0..scene.links.len() {
+            let l = scene.link(k);
+            if l.shape() == LinkShape::Sphere {
+                single.push(Prim::from_link(&l, k as u32));
+                runs.extend(cur.take().map(|c| c.0));
+                continue;
+            }
+            let [na, nb] = scene.links[k];
+            let size = (l.b - l.a).max_abs() + l.ra.max(l.rb);
+            let (pa, pb) = (pos(na).to_array(), pos(nb).to_array());
+            if let Some((run, lo, hi, m)) = cur.as_mut() {
+                let joins = run.n < MAX_LINKS as u32 && scene.links[k - 1][1] == na;
+                let (lo2, hi2) = (min3(*lo, pb), max3(*hi, pb));
+                let h = (0..3).map(|i| 0.5 * (hi2[i] - lo2[i])).fold(0.0, f64::max);
+                if joins && h <= SPREAD * m.min(size) {
+                    (run.n, *lo, *hi, *m) = (run.n + 1, lo2, hi2, m.min(size));
+                    continue;
+                }
+            }
+            runs.extend(cur.take().map(|c| c.0));
+            cur = Some((Run { first: k as u32, n: 1 }, min3(pa, pb), max3(pa, pb), size));
+        }
+        runs.extend(cur.map(|c| c.0));
+        (runs, single)
+    }
+
+    /// The clusters of `runs`, in that order.
+    pub fn from_runs(scene: &Scene, runs: &[Run]) -> Self {
+        let total: usize = runs.iter().map(|r| r.n as usize + 1).sum();
+        let mut heads = Vec::with_capacity(runs.len() + 1);
+        let mut nodes = Vec::with_capacity(total);
+        for r in runs {
+            let ids = (0..=r.n).map(|i| {
+                let k = (r.first + i.min(r.n - 1)) as usize;
+                scene.links[k][usize::from(i == r.n)]
+            });
+            let ids: Vec<u32> = ids.collect();
+            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+            for &i in &ids {
+                (lo, hi) = (min3(lo, scene.nodes[i as usize].pos), max3(hi, scene.nodes[i as usize].pos));
+            }
+            let origin: [f64; 3] = std::array::from_fn(|i| 0.5 * (lo[i] + hi[i]));
+            heads.push(Head { origin, node: nodes.len() as u32, link: r.first });
+            for &i in &ids {
+                let n = &scene.nodes[i as usize];
+                let p = (V3::from(n.pos) - V3::from(origin)).cast::<f32>();
+                nodes.push([p.x, p.y, p.z, n.radius as f32]);
+            }
+        }
+        heads.push(Head { origin: [0.0; 3], node: nodes.len() as u32, link: 0 });
+        Self { heads, nodes }
+    }
+
+    /// The same clusters in the order `order` (each cluster once).
+    pub fn reordered(&self, order: impl Iterator<Item = usize>) -> Self {
+        let mut heads = Vec::with_capacity(self.heads.len());
+        let mut nodes = Vec::with_capacity(self.nodes.len());
+        for c in order {
+            let h = self.heads[c];
+            heads.push(Head { node: nodes.len() as u32, ..h });
+            nodes.extend_from_slice(&self.nodes[h.node as usize..self.heads[c + 1].node as usize]);
+        }
+        heads.push(Head { origin: [0.0; 3], node: nodes.len() as u32, link: 0 });
+        Self { heads, nodes }
+    }
+
+    /// Number of clusters.
+    pub fn len(&self) -> usize {
+        self.heads.len().saturating_sub(1)
+    }
+
+    /// Number of links in all clusters.
+    pub fn link_count(&self) -> usize {
+        self.nodes.len() - self.len()
+    }
+
+    /// Number of links of cluster `c`.
+    #[inline(always)]
+    pub fn links(&self, c: usize) -> usize {
+        (self.heads[c + 1].node - self.heads[c].node - 1) as usize
+    }
+
+    /// Position of cluster `c`'s first link among all clusters' links (the links of cluster
+    /// `c` are numbered `first(c)..first(c) + links(c)`).
+    #[inline(always)]
+    pub fn first(&self, c: usize) -> u32 {
+        self.heads[c].node - c as u32
+    }
+
+    /// Link `i` of cluster `c` relative to the cluster's origin.
+    #[inline(always)]
+    fn cone(&self, c: usize, i: usize) -> RoundCone<f32> {
+        let n = self.heads[c].node as usize + i;
+        let ([ax, ay, az, ra], [bx, by, bz, rb]) = (self.nodes[n], self.nodes[n + 1]);
+        RoundCone { a: V3::new(ax, ay, az), ra, b: V3::new(bx, by, bz), rb }
+    }
+
+    /// Scene link index of link `i` of cluster `c`.
+    #[inline(always)]
+    pub fn link(&self, c: usize, i: usize) -> u32 {
+        self.heads[c].link + i as u32
+    }
+
+    /// Link `i` of cluster `c` as the primitive it is (see the module docs). Its kind is a
+    /// cylinder where the stored radii are equal.
+    pub fn prim(&self, c: usize, i: usize) -> Prim {
+        let cone = self.cone(c, i);
+        let shape = if cone.ra == cone.rb { Shape::Cylinder(cone) } else { Shape::Cone(cone) };
+        Prim { origin: self.heads[c].origin, link: self.link(c, i), shape }
+    }
+
+    /// The cluster and position in it of the link numbered `k` (see [`Self::first`]; `k` below
+    /// [`Self::link_count`]), by bisection (`first` increases with `c`).
+    pub fn locate(&self, k: u32) -> (usize, usize) {
+        let (mut lo, mut hi) = (0, self.len());
+        while hi - lo > 1 {
+            let mid = (lo + hi) / 2;
+            if self.first(mid) <= k {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        (lo, (k - self.first(lo)) as usize)
+    }
+
+    /// World box of links `i0..i1` of cluster `c`: the union of their stored boxes
+    /// ([`Prim::aabb`]).
+    pub fn aabb(&self, c: usize, i0: usize, i1: usize) -> ([f64; 3], [f64; 3]) {
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for i in i0..i1 {
+            let (a, b) = self.prim(c, i).aabb();
+            (lo, hi) = (min3(lo, a), max3(hi, b));
+        }
+        (lo, hi)
+    }
+
+    /// Each of the links `i0..i1` of cluster `c` whose line interval is a hit
+    /// ([`Prim::intersect`] of [`Self::prim`], bit for bit): `f(i, interval)` in link order, with
+    /// one local ray for them all. Stops and returns false as soon as `f` does.
+    #[inline(always)]
+    pub fn hits(
+        &self,
+        (c, i0, i1): (usize, usize, usize),
+        ray: &Ray<f64>,
+        dn: V3<f64>,
+        len: f64,
+        mut f: impl FnMut(usize, Interval<f64>) -> bool,
+    ) -> bool {
+        let (o, tc) = local_origin(self.heads[c].origin, ray.o, dn);
+        let rl = Ray::with_range(o, dn.cast::<f32>(), f32::NEG_INFINITY, f32::INFINITY);
+        for i in i0..i1 {
+            let iv = link_interval(&self.cone(c, i), &rl, tc, len, ray);
+            if iv.hit && !f(i, iv) {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// Bytes held (allocated capacity).
+    pub fn bytes(&self) -> usize {
+        self.heads.capacity() * std::mem::size_of::<Head>() + self.nodes.capacity() * std::mem::size_of::<[f32; 4]>()
+    }
+}
+
+fn min3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| a[i].min(b[i]))
+}
+
+fn max3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| a[i].max(b[i]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::generate;
+
+    /// Scenes with chains, bifurcations, tapering and far origins (a bundle moved 10⁶ away),
+    /// and SWC trees whose soma links are spheres.
+    fn scenes() -> Vec<Scene> {
+        let mut far = generate::bundle(20, 40, 3);
+        for l in &mut far {
+            for p in &mut l.points {
+                *p = p.map(|x| x * 1e-3 + 1e6);
+            }
+        }
+        let neuron = generate::neurons(2, &[generate::base_neuron(4)], 5);
+        vec![
+            Scene::from_polylines(&generate::bundle(30, 84, 1), 0.12, "bundle").unwrap(),
+            Scene::from_polylines(&generate::furball(40, 78, 2), 0.05, "furball").unwrap(),
+            Scene::from_polylines(&generate::helix(60), 0.3, "helix").unwrap(),
+            Scene::from_polylines(&far, 1e-4, "far").unwrap(),
+            Scene::from_swc(&neuron, "neurons").unwrap(),
+        ]
+    }
+
+    /// Every link is stored exactly once (in a cluster or whole), a cluster's links are
+    /// consecutive links of a chain, and each stored coordinate is within the module docs'
+    /// bound of the scene's `f64` node: `|s − (p − O)|∞ ≤ u·h` with the half-extent
+    /// `h ≤ SPREAD·(ℓₖ + Rₖ)` for every link `k` of its cluster; radii are `r as f32`.
+    #[test]
+    fn clusters_store_every_link_within_the_bound() {
+        let u = 2f64.powi(-24);
+        for scene in scenes() {
+            let (runs, single) = Clusters::group(&scene);
+            let cl = Clusters::from_runs(&scene, &runs);
+            let mut seen = vec![0u32; scene.links.len()];
+            single.iter().for_each(|p| seen[p.link as usize] += 1);
+            for c in 0..cl.len() {
+                let o = V3::from(cl.heads[c].origin);
+                let n = cl.links(c);
+                assert!((1..=MAX_LINKS).contains(&n));
+                let ids: Vec<u32> = (0..=n)
+                    .map(|i| {
+                        if i < n {
+                            scene.links[cl.link(c, i) as usize][0]
+                        } else {
+                            scene.links[cl.link(c, n - 1) as usize][1]
+                        }
+                    })
+                    .collect();
+                let h = ids.iter().map(|&i| (V3::from(scene.nodes[i as usize].pos) - o).max_abs()).fold(0.0, f64::max);
+                for i in 0..n {
+                    let k = cl.link(c, i) as usize;
+                    seen[k] += 1;
+                    assert!(i == 0 || scene.links[k - 1][1] == scene.links[k][0], "a chain");
+                    let l = scene.link(k);
+                    assert!(h <= SPREAD * ((l.b - l.a).max_abs() + l.ra.max(l.rb)) * (1.0 + 1e-12), "spread");
+                }
+                for (j, &i) in ids.iter().enumerate() {
+                    let nd = &scene.nodes[i as usize];
+                    let [x, y, z, r] = cl.nodes[cl.heads[c].node as usize + j];
+                    let exact = V3::from(nd.pos) - o;
+                    let err = (V3::new(x as f64, y as f64, z as f64) - exact).max_abs();
+                    assert!(err <= u * h * (1.0 + 1e-9), "error {err:e} > u·h = {:e}", u * h);
+                    assert_eq!(r, nd.radius as f32);
+                }
+            }
+            assert!(seen.iter().all(|&s| s == 1), "every link once");
+        }
+    }
+
+    /// On straight, evenly sampled chains (the bundle) clusters fill up: the mean is at least
+    /// six links, so nodes cost at most 16·7/6 + 32/6 ≈ 24 bytes per link.
+    #[test]
+    fn bundle_clusters_fill_up() {
+        let scene = Scene::from_polylines(&generate::bundle(30, 84, 1), 0.12, "bundle").unwrap();
+        let (runs, single) = Clusters::group(&scene);
+        assert!(single.is_empty());
+        let mean = scene.links.len() as f64 / runs.len() as f64;
+        assert!(mean >= 6.0, "mean {mean} links per cluster");
+        let cl = Clusters::from_runs(&scene, &runs);
+        let per = cl.bytes() as f64 / scene.links.len() as f64;
+        assert!(per <= 16.0 * 7.0 / 6.0 + 32.0 / 6.0 + 0.5, "{per} B per link");
+    }
+
+    /// Reordering keeps each cluster's data, and `locate` inverts `first`.
+    #[test]
+    fn reorder_and_locate() {
+        let scene = Scene::from_polylines(&generate::furball(10, 30, 7), 0.05, "furball").unwrap();
+        let (runs, _) = Clusters::group(&scene);
+        let cl = Clusters::from_runs(&scene, &runs);
+        let order: Vec<usize> = (0..cl.len()).rev().collect();
+        let re = cl.reordered(order.iter().copied());
+        for (new, &old) in order.iter().enumerate() {
+            assert_eq!(re.links(new), cl.links(old));
+            for i in 0..cl.links(old) {
+                assert_eq!(re.prim(new, i), cl.prim(old, i));
+                assert_eq!(re.locate(re.first(new) + i as u32), (new, i));
+            }
+        }
+        assert_eq!(re.link_count(), scene.links.len());
+    }
+}
