@@ -12,7 +12,7 @@ mod tracer;
 
 pub use tracer::MeshTracer;
 
-use crate::scene::{Model, Scene};
+use crate::scene::{Model, Scene, SPLINE_MAX_DEPTH, SPLINE_TOLERANCE};
 use std::fmt;
 use tubecast::{GeometryError, Mesh, V3};
 
@@ -68,7 +68,7 @@ impl std::error::Error for MeshError {}
 
 /// Tessellates every chain of the scene within `eps` (absolute, scene units), both ways.
 /// `Model::Splines` meshes the C¹ spline tubes of the chains (their Hermite segments split into
-/// quadratic sweeps), `Model::Links` the links.
+/// the same certified quadratic sweeps the exact tracer traces), `Model::Links` the links.
 pub fn tessellate(scene: &Scene, model: Model, eps: f64) -> Result<SceneMesh, MeshError> {
     if !(eps.is_finite() && eps > 0.0) {
         let cause = GeometryError::TooSmall { what: "mesh tolerance (must be a positive number)" };
@@ -87,12 +87,17 @@ pub fn tessellate(scene: &Scene, model: Model, eps: f64) -> Result<SceneMesh, Me
             // spline_segments() lists the chains' segments in the same chain order.
             let chain_segs = &segs[seg_at..seg_at + chain.links.len()];
             seg_at += chain.links.len();
-            let mut tubes = Vec::with_capacity(2 * chain_segs.len());
-            for s in chain_segs {
-                tubes.extend(s.seg.split().map_err(err)?);
+            // The pieces the exact tracer traces (`Scene::spline_primitives`: the certified
+            // split within SPLINE_TOLERANCE of the cubic), so the mesh's certified error is
+            // measured against the same model; `owner` maps each piece to its segment.
+            let (mut tubes, mut owner) = (Vec::with_capacity(2 * chain_segs.len()), Vec::new());
+            for (k, s) in chain_segs.iter().enumerate() {
+                let quads = s.seg.split_adaptive(SPLINE_TOLERANCE, SPLINE_MAX_DEPTH).map_err(err)?.quads;
+                owner.extend(std::iter::repeat(k as u32).take(quads.len()));
+                tubes.extend(quads);
             }
             let mut m = tubecast::tessellate_spline(&tubes, eps).map_err(err)?;
-            m.tags.iter_mut().for_each(|t| *t /= 2); // two sub-segments per link
+            m.tags.iter_mut().for_each(|t| *t = owner[(*t as usize).min(owner.len() - 1)]);
             m
         } else {
             let nodes: Vec<(V3<f64>, f64)> = chain
