@@ -55,6 +55,8 @@ enum Which {
     Peers,
     /// Dynamic line sets: rebuild + render per frame, voxel grid vs BVH.
     Voxel,
+    /// Ambient occlusion: voxel cone tracing vs rays, error against cost.
+    VoxelAo,
     /// Every report this build has (peers only with feature `embree`).
     All,
 }
@@ -75,6 +77,9 @@ fn jobs(which: Which) -> Result<Vec<(&'static str, Job)>, String> {
     }
     if all || which == Which::Voxel {
         jobs.push(("voxel", report::run_voxel));
+    }
+    if all || which == Which::VoxelAo {
+        jobs.push(("voxel-ao", report::run_voxel_ao));
     }
     if all || which == Which::Mesh {
         jobs.push(("mesh", report::run_mesh));

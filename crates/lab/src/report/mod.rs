@@ -29,6 +29,7 @@ mod peers_speed;
 mod runs;
 mod speed;
 mod voxel;
+mod voxel_ao;
 
 pub use mesh::run_mesh;
 #[cfg(feature = "embree")]
@@ -36,6 +37,7 @@ pub use peers::run_peers;
 pub use runs::{run_accuracy, run_stability};
 pub use speed::run_speed;
 pub use voxel::run_voxel;
+pub use voxel_ao::run_voxel_ao;
 
 use std::path::{Path, PathBuf};
 

@@ -10,9 +10,9 @@
 //! `cos θ = 1 − 1/N` (the `N` cones' solid angles add up to the hemisphere's `2π`). Each cone
 //! starts at the apex `q′ = q + s₀·n` and samples its axis points `x(t) = q′ + t·aᵢ`,
 //! `t = 0, …, ≤ D`: at `t` it reads the one voxel containing `x(t)` of the finest level `L`
-//! whose side `w = 2ᴸh` has `√3·w ≤ t·tan θ` (level 0 when none has), takes its occupancy
-//! `o` as the opacity of that step, multiplies the cone's transmittance by `1 − o` and
-//! advances `t` by `w`. The cone's occlusion is `1 −` its transmittance; the point's is the mean
+//! whose side `w = 2ᴸh` has `√3·w ≤ t·tan θ` (level 0 when none has), turns its occupancy
+//! `o` into the step's opacity ("Opacity" below), multiplies the cone's transmittance by
+//! the step's and advances `t` by `w`. The cone's occlusion is `1 −` its transmittance; the point's is the mean
 //! over the cones.
 //!
 //! # What a sample can see (the footprint contract the tests check)
@@ -32,12 +32,23 @@
 //! samples. *Full voxels:* a base voxel whose centre is at least `h/2` inside one tube reads
 //! 1, so a cone whose sample lies `(√3 + 1)·h/2` inside a tube is fully occluded.
 //!
+//! # Opacity
+//! A sample of occupancy `o` read with step `Δt = w` multiplies the transmittance by
+//! `(1 − o)^(w/ℓ)`, `ℓ = min(w, 2r̄)`. For tubes at least half a voxel thick (`2r̄ ≥ w`) this is
+//! the volume fraction as the step's opacity. Thin tubes block more rays than their volume:
+//! random lines of radius `r` and volume fraction `o` have `o/(πr²)` length per volume, each
+//! unit of which blocks a cross-section `2r·π/4` on average over directions, so rays are
+//! stopped at the rate `o/(2r)` and a step of `w` lets `≈ e^{−o·w/(2r)} ≈ (1 − o)^{w/(2r)}`
+//! through. With mixed radii the rate is `o/(2r̄)`, `r̄ = Σ L r²/Σ L r` (length-weighted);
+//! one `r̄` per scene. Either way `o = 0` stays fully open and `o = 1` fully opaque, so the
+//! contract above holds for both. `ConeParams::lines = false` keeps the plain volume model.
+//!
 //! # Cost and error
 //! Per cone, `t` grows geometrically once the levels rise (`Δt = w ≥ t·tan θ/(2√3)`), so a cone
-//! takes `O(D/h)` samples at level 0 for narrow cones and `O(log(D/h)/tan θ)` beyond. Volume
-//! fraction as opacity is a model, not visibility: thin tubes in a coarse voxel block more
-//! rays than their volume fraction says, so the estimate is biased low in sparse tangles;
-//! `tubecast-lab voxel` charts the error against the ray reference against the cost.
+//! takes `O(D/h)` samples at level 0 for narrow cones and `O(log(D/h)/tan θ)` beyond. The occupancy is a density, not
+//! the lines: the estimate ignores where in a voxel the tubes lie, and misses contact
+//! occlusion within the apex offset, so it is biased low where neighbours are close;
+//! `tubecast-lab voxel-ao` charts the error against the ray reference against the cost.
 
 use crate::accel::grid::Pyramid;
 use crate::accel::Tracer;
@@ -111,11 +122,14 @@ pub struct ConeParams {
     pub r_min: f64,
     /// Most base cells.
     pub max_cells: usize,
+    /// Opacity model of a sample (module docs, "Opacity"): `true` for lines (extinction
+    /// `o/(2r̄)`), `false` for the plain volume fraction.
+    pub lines: bool,
 }
 
 impl Default for ConeParams {
     fn default() -> Self {
-        Self { cones: 16, voxels: 16.0, start: 2.5, r_min: 0.5, max_cells: 1 << 24 }
+        Self { cones: 16, voxels: 16.0, start: 2.5, r_min: 0.5, max_cells: 1 << 24, lines: true }
     }
 }
 
@@ -142,6 +156,9 @@ pub struct ConeAo {
     start: f64,
     tan: f64,
     axes: Vec<[f64; 3]>,
+    /// The mean free path scale `2r̄` of the line model (0: a zero-radius scene), or
+    /// infinity for the volume-fraction model.
+    two_r: f64,
 }
 
 /// The `n` cone axes in the frame `(b₁, b₂, normal)` and the half-angle's tangent.
@@ -167,6 +184,25 @@ pub fn cone_axes(n: u32) -> (Vec<[f64; 3]>, f64) {
     (axes, tan)
 }
 
+/// `r̄ = Σ Lₖ r̄ₖ² / Σ Lₖ r̄ₖ` over the links (length `Lₖ`, mean radius `r̄ₖ`; spheres count
+/// with `Lₖ = 2r`): the radius for which a volume fraction `o` of random lines stops rays at the
+/// rate `o/(2r̄)` (module docs, "Opacity"); 0 when every radius is 0.
+fn effective_radius(scene: &Scene) -> f64 {
+    let (mut num, mut den) = (0.0, 0.0);
+    for k in 0..scene.links.len() {
+        let l = scene.link(k);
+        let r = 0.5 * (l.ra + l.rb);
+        let len = (l.b - l.a).length().max(2.0 * r);
+        num += len * r * r;
+        den += len * r;
+    }
+    if den > 0.0 {
+        num / den
+    } else {
+        0.0
+    }
+}
+
 impl ConeAo {
     /// The pyramid of `scene`'s links for occlusion distance `dist` (world units). A scene
     /// without links, or a `dist` that is not finite and positive, gives occlusion 0.
@@ -190,8 +226,9 @@ impl ConeAo {
             }
             h *= 1.1;
         }
+        let two_r = if p.lines { 2.0 * effective_radius(scene) } else { f64::INFINITY };
         let pyramid = if ok { Pyramid::build(scene, lo, h, dims, r_min * h) } else { Pyramid { levels: Vec::new() } };
-        Self { pyramid, lo, h, dist: if ok { dist } else { 0.0 }, start: p.start.max(0.0) * h, tan, axes }
+        Self { pyramid, lo, h, dist: if ok { dist } else { 0.0 }, start: p.start.max(0.0) * h, tan, axes, two_r }
     }
 
     /// Base voxel side `h` (world units).
@@ -240,7 +277,10 @@ impl ConeAo {
                 l += 1;
             }
             let w = self.h * f64::from(1u32 << l);
-            vis *= 1.0 - self.sample(l, apex + d * t, w) as f64;
+            let o = self.sample(l, apex + d * t, w) as f64;
+            if o > 0.0 {
+                vis *= (1.0 - o).powf(w / w.min(self.two_r));
+            }
             t += w;
         }
         1.0 - vis
