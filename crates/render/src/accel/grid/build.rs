@@ -1,7 +1,7 @@
 //! Grid construction: resolution, then count → prefix sum → fill, each pass parallel over
 //! the primitives (rayon), voxel counters and cursors as relaxed atomics.
 
-use super::{Grid, GridParams, Voxelizer, BLOCK};
+use super::{Grid, GridParams, Skip, Voxelizer, BLOCK};
 use crate::scene::{Prim, Shape};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
@@ -57,9 +57,8 @@ impl Grid {
     pub fn build_with(prims: Vec<Prim>, params: &GridParams) -> Self {
         let (lo, hi, pad) = scene_box(&prims);
         let (h, dims) = resolution(lo, hi, prims.len(), params);
-        let bdims = dims.map(|d| d.div_ceil(BLOCK));
-        let (offsets, ids, occupied) = (Vec::new(), Vec::new(), Vec::new());
-        let mut grid = Grid { prims, lo, h, inv_h: 1.0 / h, dims, offsets, ids, bdims, occupied };
+        let (offsets, ids, skip) = (Vec::new(), Vec::new(), Vec::new());
+        let mut grid = Grid { prims, lo, h, inv_h: 1.0 / h, dims, offsets, ids, skip };
         let cells = dims.iter().map(|&d| d as usize).product::<usize>();
         let counts: Vec<AtomicU32> = (0..cells).map(|_| AtomicU32::new(0)).collect();
         grid.prims.par_iter().for_each(|p| {
@@ -91,24 +90,42 @@ impl Grid {
         });
         grid.offsets = offsets;
         grid.ids = ids.into_iter().map(AtomicU32::into_inner).collect();
-        grid.occupied = grid.block_occupancy();
+        grid.skip = grid.build_skip(params.skip_levels);
         grid
     }
 
-    /// Per block: whether any of its voxels has a non-empty list.
-    fn block_occupancy(&self) -> Vec<bool> {
-        let mut occ = vec![false; self.bdims.iter().map(|&d| d as usize).product()];
-        for z in 0..self.dims[2] {
-            for y in 0..self.dims[1] {
-                for x in 0..self.dims[0] {
-                    let v = self.index([x, y, z]);
-                    if self.offsets[v + 1] > self.offsets[v] {
-                        occ[self.block_index([x / BLOCK, y / BLOCK, z / BLOCK])] = true;
+    /// Up to `most` coarse occupancy levels (module docs), each marking the cells of `BLOCK³`
+    /// cells of the level below (voxels for the first) that hold a reference.
+    fn build_skip(&self, most: u32) -> Vec<Skip> {
+        let mut levels: Vec<Skip> = Vec::new();
+        while (levels.len() as u32) < most {
+            let (fine_dims, side) = levels.last().map_or((self.dims, 1), |l| (l.dims, l.side));
+            if !levels.is_empty() && fine_dims.iter().all(|&d| d <= BLOCK) {
+                break;
+            }
+            let dims = fine_dims.map(|d| d.div_ceil(BLOCK));
+            let mut next =
+                Skip { dims, side: side * BLOCK, occupied: vec![false; dims.iter().map(|&d| d as usize).product()] };
+            for z in 0..fine_dims[2] {
+                for y in 0..fine_dims[1] {
+                    for x in 0..fine_dims[0] {
+                        let full = match levels.last() {
+                            None => {
+                                let v = self.index([x, y, z]);
+                                self.offsets[v + 1] > self.offsets[v]
+                            }
+                            Some(l) => l.occupied[l.index([x, y, z])],
+                        };
+                        if full {
+                            let c = next.index([x / BLOCK, y / BLOCK, z / BLOCK]);
+                            next.occupied[c] = true;
+                        }
                     }
                 }
             }
+            levels.push(next);
         }
-        occ
+        levels
     }
 
     /// A world point in grid coordinates.
