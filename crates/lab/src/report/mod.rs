@@ -30,6 +30,7 @@ mod runs;
 mod speed;
 mod voxel;
 mod voxel_ao;
+mod voxel_levels;
 
 pub use mesh::run_mesh;
 #[cfg(feature = "embree")]

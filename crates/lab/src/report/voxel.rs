@@ -95,8 +95,10 @@ pub fn run_voxel(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
         }
     }
     bar.finish_and_clear();
+    let mut md = markdown(&rows, opts);
+    md.push_str(&super::voxel_levels::ablation(&sizes, opts, &pool)?);
     let mdp = out.join("voxel.md");
-    write_text(&mdp, &markdown(&rows, opts))?;
+    write_text(&mdp, &md)?;
     let cp = out.join("voxel.svg");
     chart::write_svg(&cp, &frame_chart(&rows, opts), CHART)?;
     Ok(ReportFiles { markdown: mdp, charts: vec![cp] })

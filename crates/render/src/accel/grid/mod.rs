@@ -1,6 +1,8 @@
 //! A uniform voxel grid over the scene's primitives, rebuilt from scratch in parallel in a few
-//! passes (Kraaijeveld et al.'s voxelize → scan → voxelize): count the voxels each primitive
-//! meets, prefix-sum the counts into per-voxel list offsets, voxelize again to fill the lists.
+//! passes: voxelize every primitive once into (voxel, primitive) pairs, count them per voxel,
+//! prefix-sum the counts into per-voxel list offsets, scatter the pairs into the lists
+//! ([`GridParams::one_pass`]); or Kraaijeveld et al.'s voxelize → scan → voxelize, which
+//! voxelizes twice instead of holding the pairs.
 //! Links and spheres are voxelized conservatively by [`tubecast::voxel::voxelize_round_cone`],
 //! spline sub-segments by their bounding box. Rays walk the grid by Amanatides–Woo DDA
 //! ([`tubecast::voxel::dda`]); it implements [`Tracer`], so the renderer and `hit_table` use it
@@ -85,11 +87,21 @@ pub struct GridParams {
     /// DDA over the voxels), 1 the [`BLOCK`]³ blocks only; larger values stop at the level
     /// with at most `BLOCK` cells along every axis (the default, `u32::MAX`).
     pub skip_levels: u32,
+    /// Voxelize each primitive once into (voxel, primitive) pairs and sort them by voxel
+    /// (the default), instead of voxelizing twice (count, then fill): 8 more bytes per
+    /// reference while building.
+    pub one_pass: bool,
 }
 
 impl Default for GridParams {
     fn default() -> Self {
-        Self { cells_per_prim: 2.0, max_cells: 1 << 24, voxelizer: Voxelizer::Conservative, skip_levels: u32::MAX }
+        Self {
+            cells_per_prim: 2.0,
+            max_cells: 1 << 24,
+            voxelizer: Voxelizer::Conservative,
+            skip_levels: u32::MAX,
+            one_pass: true,
+        }
     }
 }
 
