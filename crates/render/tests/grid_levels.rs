@@ -1,6 +1,6 @@
 //! The grid walk's coarse occupancy levels (`GridParams::skip_levels`) change which voxels are
-//! skipped, never the answers: with 0 levels (plain DDA), 2, and the default (up to a top
-//! level of at most 4 cells per axis), every closest hit (all fields), any-hit and line
+//! skipped, never the answers: with 0 levels (plain DDA), 2, and all (up to a top level of
+//! at most 4 cells per axis), every closest hit (all fields), any-hit and line
 //! interval list is bit for bit the single-level walk's (one level of 4³ blocks, the walk
 //! `grid_equivalence.rs` checks against the BVH). Rays: random through the scene, short
 //! shadow/AO-like rays leaving tubes, axis-parallel rays on voxel and coarse-cell planes, and

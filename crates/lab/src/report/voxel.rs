@@ -96,7 +96,8 @@ pub fn run_voxel(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
     }
     bar.finish_and_clear();
     let mut md = markdown(&rows, opts);
-    md.push_str(&super::voxel_levels::ablation(&sizes, opts, &pool)?);
+    let small: Vec<usize> = sizes.iter().copied().filter(|&n| n <= 100_000).collect();
+    md.push_str(&super::voxel_levels::ablation(&small, opts, &pool)?);
     let mdp = out.join("voxel.md");
     write_text(&mdp, &md)?;
     let cp = out.join("voxel.svg");

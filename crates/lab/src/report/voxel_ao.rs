@@ -129,7 +129,7 @@ fn scene_rows(name: &'static str, scene: &Scene, opts: &ReportOptions, bar: &ind
             let (mean, max, bias) = errors(&est, &reference);
             rows.push(Row {
                 scene: name,
-                method: "cones",
+                method: if lines { "cones" } else { "cones, volume model" },
                 samples,
                 voxels,
                 build_ms,

@@ -7,6 +7,7 @@ use super::{fmt_num, ReportError, ReportOptions};
 use std::fmt::Write as _;
 use std::time::Instant;
 use tubecast_render::accel::grid::{Grid, GridParams};
+use tubecast_render::io::Polyline;
 use tubecast_render::render::{render, Camera, Options};
 use tubecast_render::scene::{generate, Scene};
 
@@ -47,7 +48,8 @@ fn row(scene: &Scene, image: u32, pool: &rayon::ThreadPool) -> Result<(usize, [f
     Ok((grids[2].skip_levels(), walk.map(|s| s * 1e3), build.map(|s| s * 1e3)))
 }
 
-/// The ablation section (markdown): the bundle and the (hollow) Furball at each size.
+/// The ablation section (markdown): the bundle, the (hollow) Furball and two bundles far
+/// apart at each size.
 pub(super) fn ablation(sizes: &[usize], opts: &ReportOptions, pool: &rayon::ThreadPool) -> Result<String, ReportError> {
     let mut md = format!(
         "\n## Grid ablations (same run)\n\nOpaque {0}×{0} frames (primary rays, lit) through grids built from the same \
@@ -55,7 +57,8 @@ pub(super) fn ablation(sizes: &[usize], opts: &ReportOptions, pool: &rayon::Thre
          one below, up to ≤ 4 cells per axis) against the single level of 4³ blocks and against a plain DDA \
          (answers are bit-identical: `crates/render/tests/grid_levels.rs`); and the build voxelizing each link once \
          (pairs sorted by voxel) against voxelizing it twice (count, then fill). Ratios below 1 favour the new \
-         variant.\n\n\
+         variant. *Two bundles apart*: half the links each, 300 units apart along y and z (mostly empty \
+         space).\n\n\
          | scene | links | skip levels | plain DDA (ms) | 1 level (ms) | all levels (ms) | all / 1 level | \
          two-pass build (ms) | one-pass build (ms) | one / two-pass |\n|---|---|---|---|---|---|---|---|---|---|\n",
         opts.image, opts.threads
@@ -66,7 +69,15 @@ pub(super) fn ablation(sizes: &[usize], opts: &ReportOptions, pool: &rayon::Thre
             Scene::from_polylines(&generate::bundle(links.div_ceil(84), 84, opts.seed), 0.12, "b").map_err(err)?;
         let fur =
             Scene::from_polylines(&generate::furball(links.div_ceil(20), 20, opts.seed), 0.06, "f").map_err(err)?;
-        for (name, scene) in [("bundle", &bundle), ("furball", &fur)] {
+        // Two half-size bundles 300 units apart along y and z: mostly empty space.
+        let mut two = generate::bundle(links.div_ceil(168), 84, opts.seed);
+        let far = generate::bundle(links.div_ceil(168), 84, opts.seed + 1);
+        two.extend(far.into_iter().map(|p| Polyline {
+            points: p.points.iter().map(|q| [q[0], q[1] + 300.0, q[2] + 300.0]).collect(),
+            radii: p.radii,
+        }));
+        let apart = Scene::from_polylines(&two, 0.12, "a").map_err(err)?;
+        for (name, scene) in [("bundle", &bundle), ("furball", &fur), ("two bundles apart", &apart)] {
             let (levels, w, b) = row(scene, opts.image, pool)?;
             let _ = writeln!(
                 md,

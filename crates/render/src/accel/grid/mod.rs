@@ -99,7 +99,7 @@ impl Default for GridParams {
             cells_per_prim: 2.0,
             max_cells: 1 << 24,
             voxelizer: Voxelizer::Conservative,
-            skip_levels: u32::MAX,
+            skip_levels: 1,
             one_pass: true,
         }
     }

@@ -44,14 +44,15 @@ impl Grid {
     }
 
     /// The walk over `[t0, t1]` at skip level `k` (0: the voxels); false once `f` stopped it.
-    fn walk_level(
+    #[inline]
+    fn walk_level<F: FnMut(&[u32], f64) -> bool>(
         &self,
         k: usize,
         o: V3<f64>,
         d: V3<f64>,
         t0: f64,
         t1: f64,
-        f: &mut dyn FnMut(&[u32], f64) -> bool,
+        f: &mut F,
     ) -> bool {
         let mut go = true;
         if k == 0 {
