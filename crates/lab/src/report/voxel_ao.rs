@@ -67,9 +67,10 @@ fn shaded_points(scene: &Scene, bvh: &dyn Tracer, side: u32) -> Result<Vec<Point
 fn errors(est: &[f64], reference: &[f64]) -> (f64, f64, f64) {
     let n = est.len().max(1) as f64;
     let d: Vec<f64> = est.iter().zip(reference).map(|(e, r)| e - r).collect();
-    let mean = d.iter().map(|x| x.abs()).sum::<f64>() / n;
+    // `+ 0.0`: an empty sum is −0.0.
+    let mean = d.iter().map(|x| x.abs()).sum::<f64>() / n + 0.0;
     let max = d.iter().map(|x| x.abs()).fold(0.0, f64::max);
-    (mean, max, d.iter().sum::<f64>() / n)
+    (mean, max, d.iter().sum::<f64>() / n + 0.0)
 }
 
 /// Values of `f` on every point and the best time per point (ns) over repetitions within
