@@ -140,9 +140,13 @@ pub struct RenderArgs {
     /// Surface opacity in (0, 1]; below 1 renders transparent tubes (CSG union).
     #[arg(long, default_value_t = 1.0)]
     pub opacity: f64,
-    /// Ambient-occlusion rays per pixel.
-    #[arg(long, default_value_t = 0)]
-    pub ao: u32,
+    /// Ambient occlusion: rays (through the accelerator), cone (voxel cone tracing on the
+    /// occupancy pyramid) or off; a number N means N rays.
+    #[arg(long, value_parser = crate::ao_opts::parse_ao, default_value = "off")]
+    pub ao: crate::ao_opts::Ao,
+    /// Rays or cones per pixel for --ao rays|cone.
+    #[arg(long, default_value_t = 16, value_name = "N")]
+    pub ao_samples: u32,
     /// Trace shadow rays.
     #[arg(long)]
     pub shadows: bool,

@@ -154,7 +154,8 @@ pub fn render(a: &RenderArgs) -> Res {
         background,
         shading: Shading::Lit,
         opacity: a.opacity,
-        ao: a.ao,
+        ao: a.ao.resolve(a.ao_samples).0,
+        ao_method: a.ao.resolve(a.ao_samples).1,
         shadows: a.shadows,
         progress: crate::progress::enabled() && (a.width as u64 * a.height as u64) >= 256 * 256,
     };

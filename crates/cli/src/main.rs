@@ -1,5 +1,6 @@
 //! The `tubecast` command line: render, info, intersect, generate.
 
+mod ao_opts;
 mod args;
 mod cmd_intersect;
 mod cmd_load;

@@ -1,7 +1,7 @@
 //! `tubecast-lab`: writes the reports (SVG charts, markdown, CSV) into a folder.
 //!
 //! ```text
-//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|thin|mesh|mesh-real|peers|voxel|all|tables [--out DIR]
+//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|thin|mesh|mesh-real|peers|voxel|voxel-ao|all|tables [--out DIR]
 //!     [--seed N] [--quick] [--big] [--threads N] [--quiet]
 //! ```
 //!
@@ -61,6 +61,8 @@ enum Which {
     MeshReal,
     /// Write `<name>.tables.json` beside every markdown report in --out (measures nothing).
     Tables,
+    /// Ambient occlusion: voxel cone tracing vs rays, error against cost.
+    VoxelAo,
     /// Every report this build has (peers only with feature `embree`).
     All,
 }
@@ -84,6 +86,9 @@ fn jobs(which: Which) -> Result<Vec<(&'static str, Job)>, String> {
     }
     if all || which == Which::Voxel {
         jobs.push(("voxel", report::run_voxel));
+    }
+    if all || which == Which::VoxelAo {
+        jobs.push(("voxel-ao", report::run_voxel_ao));
     }
     if all || which == Which::Mesh {
         jobs.push(("mesh", report::run_mesh));

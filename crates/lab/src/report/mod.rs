@@ -35,6 +35,8 @@ mod runs;
 mod speed;
 mod thin;
 mod voxel;
+mod voxel_ao;
+mod voxel_levels;
 
 pub use mesh::run_mesh;
 pub use mesh_real::run_mesh_real;
@@ -44,6 +46,7 @@ pub use runs::{run_accuracy, run_stability};
 pub use speed::run_speed;
 pub use thin::run_thin;
 pub use voxel::run_voxel;
+pub use voxel_ao::run_voxel_ao;
 
 use std::path::{Path, PathBuf};
 

@@ -18,6 +18,7 @@
 //!
 //! Colours are linear RGB in `[0, 1]`; [`Image::to_srgb8`] encodes them for PNG.
 
+mod ao;
 mod camera;
 mod colormap;
 mod error;
@@ -28,6 +29,7 @@ mod shade;
 mod thin;
 mod trace;
 
+pub use ao::{cone_axes, ray_occlusion, AoMethod, ConeAo, ConeParams};
 pub use camera::{Camera, Preset, View};
 pub use colormap::{value_range, Colormap};
 pub use error::RenderError;
@@ -57,7 +59,10 @@ pub fn render(scene: &Scene, bvh: &dyn Tracer, cam: &Camera, opts: &Options) -> 
     let light = (cam.up * 0.6 - cam.right * 0.4 - cam.forward * 0.7).normalize_or_zero();
     let st = scene.stats();
     let diag = (V3::from(st.bounds.1) - V3::from(st.bounds.0)).length();
-    let ctx = Ctx { scene, bvh, cam, opts, pal: Palette::new(scene), light, ao_dist: 0.1 * diag };
+    let ao_dist = 0.1 * diag;
+    let cone = (opts.ao > 0 && opts.ao_method == AoMethod::Cone)
+        .then(|| ConeAo::build(scene, ao_dist, &ConeParams { cones: opts.ao, ..ConeParams::default() }));
+    let ctx = Ctx { scene, bvh, cam, opts, pal: Palette::new(scene), light, ao_dist, cone };
     let bar = if opts.progress { indicatif::ProgressBar::new(h as u64) } else { indicatif::ProgressBar::hidden() };
     let n = (w * h) as usize;
     let (mut rgb, mut alpha, mut depth) = (vec![[0.0f32; 3]; n], vec![0.0f32; n], vec![f64::INFINITY; n]);

@@ -49,6 +49,8 @@ pub struct Options {
     pub opacity: f64,
     /// Ambient-occlusion rays per pixel (0: none). Opaque mode only.
     pub ao: u32,
+    /// How the `ao` samples estimate ambient occlusion: rays or cones.
+    pub ao_method: super::AoMethod,
     /// Trace a shadow ray toward the light. Opaque mode only.
     pub shadows: bool,
     /// Background colour (linear RGB).
@@ -64,6 +66,7 @@ impl Default for Options {
             shading: Shading::Lit,
             opacity: 1.0,
             ao: 0,
+            ao_method: super::AoMethod::Rays,
             shadows: false,
             background: [1.0, 1.0, 1.0],
             progress: false,

@@ -4,7 +4,6 @@
 use super::shade::Palette;
 use super::{Camera, Options, Shading};
 use crate::accel::Tracer;
-use crate::scene::generate::Rng;
 use crate::scene::Scene;
 use tubecast::csg::{union, Boundary, Tagged};
 use tubecast::Ray;
@@ -19,6 +18,7 @@ pub(super) struct Ctx<'a> {
     pub(super) pal: Palette,
     pub(super) light: V3<f64>,
     pub(super) ao_dist: f64,
+    pub(super) cone: Option<super::ConeAo>,
 }
 
 impl Ctx<'_> {
@@ -123,25 +123,13 @@ impl Ctx<'_> {
         Px { premul: acc, alpha: 1.0 - trans, depth }
     }
 
-    /// The unoccluded fraction of `self.opts.ao` cosine-weighted hemisphere rays from `q`
-    /// around the unit normal `nf`, seeded by the pixel `(x, y)`.
+    /// The unoccluded fraction of the hemisphere around the unit normal `nf` at `q`: by cones
+    /// when built, else by `self.opts.ao` cosine-weighted rays seeded by the pixel `(x, y)`.
     fn ambient(&self, x: u32, y: u32, q: V3<f64>, nf: V3<f64>) -> f64 {
-        let mut rng = Rng::new((y as u64) << 32 | x as u64);
-        // Orthonormal frame around the normal.
-        let t0 = if nf.x.abs() < 0.9 { V3::new(1.0, 0.0, 0.0) } else { V3::new(0.0, 1.0, 0.0) };
-        let b1 = nf.cross(t0).normalize_or_zero();
-        let b2 = nf.cross(b1);
-        let mut occ = 0;
-        for _ in 0..self.opts.ao {
-            // Cosine-weighted hemisphere direction.
-            let (u1, u2) = (rng.uniform(), rng.uniform());
-            let (r, phi) = (u1.sqrt(), 2.0 * std::f64::consts::PI * u2);
-            let d = b1 * (r * phi.cos()) + b2 * (r * phi.sin()) + nf * (1.0 - u1).sqrt();
-            if self.bvh.any_hit(&Ray::with_range(q, d, 0.0, self.ao_dist)) {
-                occ += 1;
-            }
+        if let Some(cone) = &self.cone {
+            return 1.0 - cone.occlusion(q, nf);
         }
-        1.0 - occ as f64 / self.opts.ao as f64
+        1.0 - super::ray_occlusion(self.bvh, q, nf, self.ao_dist, self.opts.ao, (y as u64) << 32 | x as u64)
     }
 
     /// Front-to-back compositing of the union's exterior boundaries, each of opacity

@@ -1,7 +1,7 @@
 //! Grid construction: resolution, then count → prefix sum → fill, each pass parallel over
 //! the primitives (rayon), voxel counters and cursors as relaxed atomics.
 
-use super::{Grid, GridParams, Voxelizer, BLOCK};
+use super::{Grid, GridParams, Skip, Voxelizer, BLOCK};
 use crate::scene::{Prim, Shape};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
@@ -51,64 +51,133 @@ fn world_cone(p: &Prim, pad: f64) -> Option<RoundCone<f64>> {
     Some(RoundCone { a: o + c.a.cast(), ra: c.ra as f64 + pad, b: o + c.b.cast(), rb: c.rb as f64 + pad })
 }
 
+/// The list offsets (prefix sums of `counts`) and zeroed id slots; `counts` become the fill
+/// cursors (each voxel's list start). `None` when the total exceeds `u32::MAX`.
+fn cursors(counts: &[AtomicU32]) -> Option<(Vec<u32>, Vec<AtomicU32>)> {
+    let total: u64 = counts.iter().map(|c| c.load(Relaxed) as u64).sum();
+    if total > u32::MAX as u64 {
+        return None;
+    }
+    let mut offsets = Vec::with_capacity(counts.len() + 1);
+    let mut sum = 0u32;
+    offsets.push(0);
+    for c in counts {
+        sum += c.load(Relaxed);
+        offsets.push(sum);
+    }
+    counts.par_iter().zip(offsets.par_iter()).for_each(|(c, &o)| c.store(o, Relaxed));
+    Some((offsets, (0..sum).map(|_| AtomicU32::new(0)).collect()))
+}
+
 impl Grid {
     /// Build over `prims` with explicit parameters. An empty list gives a grid every ray
     /// misses.
     pub fn build_with(prims: Vec<Prim>, params: &GridParams) -> Self {
         let (lo, hi, pad) = scene_box(&prims);
         let (h, dims) = resolution(lo, hi, prims.len(), params);
-        let bdims = dims.map(|d| d.div_ceil(BLOCK));
-        let (offsets, ids, occupied) = (Vec::new(), Vec::new(), Vec::new());
-        let mut grid = Grid { prims, lo, h, inv_h: 1.0 / h, dims, offsets, ids, bdims, occupied };
+        let (offsets, ids, skip) = (Vec::new(), Vec::new(), Vec::new());
+        let mut grid = Grid { prims, lo, h, inv_h: 1.0 / h, dims, offsets, ids, skip };
         let cells = dims.iter().map(|&d| d as usize).product::<usize>();
+        let lists = if params.one_pass && cells <= u32::MAX as usize {
+            grid.lists_once(pad, params.voxelizer)
+        } else {
+            grid.lists_twice(pad, params.voxelizer)
+        };
+        let Some((offsets, ids)) = lists else {
+            // Lists too long for u32 offsets (huge radii against the voxel size): coarser. At
+            // one voxel each primitive is listed once, so this ends.
+            let coarser = GridParams { cells_per_prim: params.cells_per_prim / 8.0, ..*params };
+            return Self::build_with(grid.prims, &coarser);
+        };
+        grid.offsets = offsets;
+        grid.ids = ids;
+        grid.skip = grid.build_skip(params.skip_levels);
+        grid
+    }
+
+    /// Per-voxel lists by voxelizing twice: count → prefix sum → voxelize again to fill.
+    /// `None` when there are more than `u32::MAX` references.
+    fn lists_twice(&self, pad: f64, how: Voxelizer) -> Option<(Vec<u32>, Vec<u32>)> {
+        let cells = self.dims.iter().map(|&d| d as usize).product::<usize>();
         let counts: Vec<AtomicU32> = (0..cells).map(|_| AtomicU32::new(0)).collect();
-        grid.prims.par_iter().for_each(|p| {
-            grid.voxelize(p, pad, params.voxelizer, |v| {
+        self.prims.par_iter().for_each(|p| {
+            self.voxelize(p, pad, how, |v| {
                 counts[v].fetch_add(1, Relaxed);
             })
         });
-        let total: u64 = counts.iter().map(|c| c.load(Relaxed) as u64).sum();
-        if total > u32::MAX as u64 && params.cells_per_prim > 1e-6 {
-            // Lists too long for u32 offsets (huge radii against the voxel size): coarser.
-            let coarser = GridParams { cells_per_prim: params.cells_per_prim / 8.0, ..*params };
-            return Self::build_with(grid.prims, &coarser);
-        }
-        let mut offsets = Vec::with_capacity(cells + 1);
-        let mut sum = 0u32;
-        offsets.push(0);
-        for c in &counts {
-            sum = sum.saturating_add(c.load(Relaxed));
-            offsets.push(sum);
-        }
-        // Reuse the counters as fill cursors.
-        counts.par_iter().zip(offsets.par_iter()).for_each(|(c, &o)| c.store(o, Relaxed));
-        let ids: Vec<AtomicU32> = (0..sum).map(|_| AtomicU32::new(0)).collect();
-        grid.prims.par_iter().enumerate().for_each(|(k, p)| {
-            grid.voxelize(p, pad, params.voxelizer, |v| {
+        let (offsets, ids) = cursors(&counts)?;
+        self.prims.par_iter().enumerate().for_each(|(k, p)| {
+            self.voxelize(p, pad, how, |v| {
                 let slot = counts[v].fetch_add(1, Relaxed);
                 ids[slot as usize].store(k as u32, Relaxed);
             })
         });
-        grid.offsets = offsets;
-        grid.ids = ids.into_iter().map(AtomicU32::into_inner).collect();
-        grid.occupied = grid.block_occupancy();
-        grid
+        Some((offsets, ids.into_iter().map(AtomicU32::into_inner).collect()))
     }
 
-    /// Per block: whether any of its voxels has a non-empty list.
-    fn block_occupancy(&self) -> Vec<bool> {
-        let mut occ = vec![false; self.bdims.iter().map(|&d| d as usize).product()];
-        for z in 0..self.dims[2] {
-            for y in 0..self.dims[1] {
-                for x in 0..self.dims[0] {
-                    let v = self.index([x, y, z]);
-                    if self.offsets[v + 1] > self.offsets[v] {
-                        occ[self.block_index([x / BLOCK, y / BLOCK, z / BLOCK])] = true;
+    /// Per-voxel lists by voxelizing once into (voxel, primitive) pairs, then a counting sort
+    /// of the pairs by voxel (count → prefix sum → scatter). Needs voxel indices below 2³².
+    fn lists_once(&self, pad: f64, how: Voxelizer) -> Option<(Vec<u32>, Vec<u32>)> {
+        let pairs: Vec<[u32; 2]> = self
+            .prims
+            .par_iter()
+            .enumerate()
+            .fold(Vec::new, |mut acc, (k, p)| {
+                self.voxelize(p, pad, how, |v| acc.push([v as u32, k as u32]));
+                acc
+            })
+            .reduce(Vec::new, |mut a, mut b| {
+                if a.len() < b.len() {
+                    std::mem::swap(&mut a, &mut b);
+                }
+                a.extend_from_slice(&b);
+                a
+            });
+        let cells = self.dims.iter().map(|&d| d as usize).product::<usize>();
+        let counts: Vec<AtomicU32> = (0..cells).map(|_| AtomicU32::new(0)).collect();
+        pairs.par_iter().for_each(|&[v, _]| {
+            counts[v as usize].fetch_add(1, Relaxed);
+        });
+        let (offsets, ids) = cursors(&counts)?;
+        pairs.par_iter().for_each(|&[v, k]| {
+            let slot = counts[v as usize].fetch_add(1, Relaxed);
+            ids[slot as usize].store(k, Relaxed);
+        });
+        Some((offsets, ids.into_iter().map(AtomicU32::into_inner).collect()))
+    }
+
+    /// Up to `most` coarse occupancy levels (module docs), each marking the cells of `BLOCK³`
+    /// cells of the level below (voxels for the first) that hold a reference.
+    fn build_skip(&self, most: u32) -> Vec<Skip> {
+        let mut levels: Vec<Skip> = Vec::new();
+        while (levels.len() as u32) < most {
+            let (fine_dims, side) = levels.last().map_or((self.dims, 1), |l| (l.dims, l.side));
+            if !levels.is_empty() && fine_dims.iter().all(|&d| d <= BLOCK) {
+                break;
+            }
+            let dims = fine_dims.map(|d| d.div_ceil(BLOCK));
+            let mut next =
+                Skip { dims, side: side * BLOCK, occupied: vec![false; dims.iter().map(|&d| d as usize).product()] };
+            for z in 0..fine_dims[2] {
+                for y in 0..fine_dims[1] {
+                    for x in 0..fine_dims[0] {
+                        let full = match levels.last() {
+                            None => {
+                                let v = self.index([x, y, z]);
+                                self.offsets[v + 1] > self.offsets[v]
+                            }
+                            Some(l) => l.occupied[l.index([x, y, z])],
+                        };
+                        if full {
+                            let c = next.index([x / BLOCK, y / BLOCK, z / BLOCK]);
+                            next.occupied[c] = true;
+                        }
                     }
                 }
             }
+            levels.push(next);
         }
-        occ
+        levels
     }
 
     /// A world point in grid coordinates.

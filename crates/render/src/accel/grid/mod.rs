@@ -1,6 +1,8 @@
 //! A uniform voxel grid over the scene's primitives, rebuilt from scratch in parallel in a few
-//! passes (Kraaijeveld et al.'s voxelize → scan → voxelize): count the voxels each primitive
-//! meets, prefix-sum the counts into per-voxel list offsets, voxelize again to fill the lists.
+//! passes: voxelize every primitive once into (voxel, primitive) pairs, count them per voxel,
+//! prefix-sum the counts into per-voxel list offsets, scatter the pairs into the lists
+//! ([`GridParams::one_pass`]); or Kraaijeveld et al.'s voxelize → scan → voxelize, which
+//! voxelizes twice instead of holding the pairs.
 //! Links and spheres are voxelized conservatively by [`tubecast::voxel::voxelize_round_cone`],
 //! spline sub-segments by their bounding box. Rays walk the grid by Amanatides–Woo DDA
 //! ([`tubecast::voxel::dda`]); it implements [`Tracer`], so the renderer and `hit_table` use it
@@ -20,11 +22,17 @@
 //! hit point within `pad` of a voxel boundary is listed on both sides of it.
 //!
 //! # Empty-space skipping
-//! A second, coarse level marks which blocks of [`BLOCK`]³ voxels hold any reference. The walk
-//! runs DDA over the blocks and, only inside occupied ones, DDA over their voxels on the
-//! block's `t` range; an empty block is crossed in one step. Blocks abut in `t`, so the fine
-//! walks cover the ray's range outside empty blocks; a voxel revisited at a block boundary
-//! (rounding) is harmless (closest hit takes the minimum, intervals are deduplicated).
+//! Coarse occupancy levels: level 1 marks which blocks of [`BLOCK`]³ voxels hold any
+//! reference, level `k + 1` which blocks of `BLOCK³` level-`k` cells are marked
+//! ([`GridParams::skip_levels`] of them: by default only the first; at most until a level is
+//! at most `BLOCK` cells along every axis). The walk runs DDA over the coarsest level and, only inside marked cells,
+//! DDA over the next finer level on that cell's `t` range, down to the voxels; an empty cell is
+//! crossed in one step. Cells abut in `t`, so the fine walks cover the ray's range outside
+//! empty cells; a voxel revisited at a cell boundary (rounding) is harmless (closest hit takes
+//! the minimum, intervals are deduplicated). Every level's DDA runs on the grid coordinates
+//! scaled by a power of two (`4⁻ᵏ`), so its boundary `t = (plane − o·s)/(d·s)` is bit for bit
+//! the finest walk's `t` at the same plane: the levels change which voxels are skipped, never
+//! the answers (`tests/grid_levels.rs` checks hits, any-hits and intervals bit for bit).
 //!
 //! # Resolution
 //! Cubic voxels of side `h = ∛(V/(λ·N))` over the padded scene box of volume `V` (each extent
@@ -75,11 +83,28 @@ pub struct GridParams {
     pub max_cells: usize,
     /// Voxel assignment.
     pub voxelizer: Voxelizer,
+    /// Coarse occupancy levels the walk skips empty space on (module docs): 0 none (a plain
+    /// DDA over the voxels), 1 the [`BLOCK`]³ blocks only (the default); larger values stop at
+    /// the level with at most `BLOCK` cells along every axis (`u32::MAX`: all of them). More
+    /// levels did not pay at the default resolution (`tubecast-lab voxel`, "Grid ablations":
+    /// 0.8–1.3× the one-level frame time on bundle, Furball and two bundles apart, with no
+    /// consistent sign over three runs).
+    pub skip_levels: u32,
+    /// Voxelize each primitive once into (voxel, primitive) pairs and sort them by voxel
+    /// (the default), instead of voxelizing twice (count, then fill): 8 more bytes per
+    /// reference while building.
+    pub one_pass: bool,
 }
 
 impl Default for GridParams {
     fn default() -> Self {
-        Self { cells_per_prim: 2.0, max_cells: 1 << 24, voxelizer: Voxelizer::Conservative }
+        Self {
+            cells_per_prim: 2.0,
+            max_cells: 1 << 24,
+            voxelizer: Voxelizer::Conservative,
+            skip_levels: 1,
+            one_pass: true,
+        }
     }
 }
 
@@ -111,10 +136,23 @@ pub struct Grid {
     /// Per voxel `v`: its list is `ids[offsets[v]..offsets[v + 1]]`.
     offsets: Vec<u32>,
     ids: Vec<u32>,
-    /// Blocks of [`BLOCK`]³ voxels along x, y, z, and whether each holds any reference: the
-    /// coarse level the walk skips empty space on.
-    bdims: [u32; 3],
+    /// The coarse occupancy levels, finest (blocks of [`BLOCK`]³ voxels) first.
+    skip: Vec<Skip>,
+}
+
+/// One coarse occupancy level: cells of `side` voxels along each axis.
+struct Skip {
+    dims: [u32; 3],
+    side: u32,
     occupied: Vec<bool>,
+}
+
+impl Skip {
+    /// Linear index of cell `c`.
+    #[inline]
+    fn index(&self, c: [u32; 3]) -> usize {
+        (c[2] as usize * self.dims[1] as usize + c[1] as usize) * self.dims[0] as usize + c[0] as usize
+    }
 }
 
 /// Side of an empty-space-skipping block, in voxels.
@@ -147,15 +185,17 @@ impl Grid {
         self.ids.len()
     }
 
-    /// Linear index of block `b`.
-    #[inline]
-    fn block_index(&self, b: [u32; 3]) -> usize {
-        (b[2] as usize * self.bdims[1] as usize + b[1] as usize) * self.bdims[0] as usize + b[0] as usize
+    /// Fraction of [`BLOCK`]³ blocks that hold a reference (1 without skip levels).
+    pub fn occupied_fraction(&self) -> f64 {
+        let Some(b) = self.skip.first() else {
+            return 1.0;
+        };
+        b.occupied.iter().filter(|&&o| o).count() as f64 / b.occupied.len().max(1) as f64
     }
 
-    /// Fraction of blocks that hold a reference.
-    pub fn occupied_fraction(&self) -> f64 {
-        self.occupied.iter().filter(|&&o| o).count() as f64 / self.occupied.len().max(1) as f64
+    /// Number of coarse occupancy levels the walk uses (module docs).
+    pub fn skip_levels(&self) -> usize {
+        self.skip.len()
     }
 
     /// Linear index of voxel `c`.
@@ -186,6 +226,8 @@ impl Tracer for Grid {
         self.intervals(ray, out)
     }
     fn memory_bytes(&self) -> usize {
-        (self.offsets.len() + self.ids.len()) * 4 + self.occupied.len() + self.prims.len() * std::mem::size_of::<Prim>()
+        (self.offsets.len() + self.ids.len()) * 4
+            + self.skip.iter().map(|l| l.occupied.len()).sum::<usize>()
+            + self.prims.len() * std::mem::size_of::<Prim>()
     }
 }

@@ -1,10 +1,10 @@
 //! Ray queries on the grid: the DDA walk with a closest hit accepted inside the current
 //! voxel's `t` range (module docs), any hit, and every line interval for the CSG union.
 
-use super::{Grid, BLOCK};
+use super::Grid;
 use crate::accel::Hit;
 use tubecast::csg::Tagged;
-use tubecast::{voxel, Ray};
+use tubecast::{voxel, Ray, V3};
 
 /// The last few primitives tested on a walk, so a primitive listed in consecutive voxels is
 /// tested once there (a check, not a guarantee: older ones may be tested again, harmlessly).
@@ -31,7 +31,8 @@ impl Mailbox {
 
 impl Grid {
     /// Walk the voxels of `ray`'s line over `[t_lo, t_hi]` (ray parameter), skipping empty
-    /// blocks, handing each voxel's list and exit `t` to `f` until it returns false.
+    /// cells of the coarse levels, handing each voxel's list and exit `t` to `f` until it
+    /// returns false.
     #[inline]
     fn walk(&self, ray: &Ray<f64>, t_lo: f64, t_hi: f64, mut f: impl FnMut(&[u32], f64) -> bool) {
         if self.prims.is_empty() {
@@ -39,18 +40,37 @@ impl Grid {
         }
         let o = self.to_grid(ray.o);
         let d = ray.d * self.inv_h;
-        let s = 1.0 / BLOCK as f64;
-        voxel::dda(o * s, d * s, t_lo, t_hi, self.bdims, |b, t0, t1| {
-            if !self.occupied[self.block_index(b)] {
-                return true;
-            }
-            let mut go = true;
+        self.walk_level(self.skip.len(), o, d, t_lo, t_hi, &mut f);
+    }
+
+    /// The walk over `[t0, t1]` at skip level `k` (0: the voxels); false once `f` stopped it.
+    #[inline]
+    fn walk_level<F: FnMut(&[u32], f64) -> bool>(
+        &self,
+        k: usize,
+        o: V3<f64>,
+        d: V3<f64>,
+        t0: f64,
+        t1: f64,
+        f: &mut F,
+    ) -> bool {
+        let mut go = true;
+        if k == 0 {
             voxel::dda(o, d, t0, t1, self.dims, |c, _, tc| {
                 go = f(self.list(c), tc);
                 go
             });
+            return go;
+        }
+        let level = &self.skip[k - 1];
+        let s = 1.0 / level.side as f64;
+        voxel::dda(o * s, d * s, t0, t1, level.dims, |c, a, b| {
+            if level.occupied[level.index(c)] {
+                go = self.walk_level(k - 1, o, d, a, b, f);
+            }
             go
         });
+        go
     }
 
     /// The closest surface crossing in `[t_min, t_max]`; ties in `t` go to the lower index.
