@@ -1,9 +1,32 @@
 //! `tubecast simplify`: merge consecutive links within a tolerance and write the same format.
+//! The file formats hold nodes only, so quadratic spline pieces cannot be written; the command
+//! prints what the automatic choice (`render`/`info --tolerance`) makes of the input at the
+//! same tolerance, links only and with quadratic spline fits.
 
 use crate::args::SimplifyArgs;
 use crate::error::CliError;
 use tubecast_render::io::{self, IoError};
+use tubecast_render::scene::choice::{choose, choose_with, Tolerance};
 use tubecast_render::scene::simplify::{simplify_polyline, simplify_swc};
+use tubecast_render::scene::Scene;
+
+/// The counts of the automatic choice on `scene` at `eps`, links only and with splines.
+fn print_choice(scene: &Scene, eps: f64) {
+    let t = Tolerance::Absolute(eps);
+    let (l, s) = (choose(scene, &t), choose_with(scene, &t, true));
+    println!(
+        "choice at {eps:e}: {} links → {} primitives with links only (worst {:e}); {} with quadratic splines: \
+         {} spline pieces, {} links merged, {} fitted (worst {:e})",
+        scene.links.len(),
+        l.prims.len(),
+        l.worst,
+        s.prims.len(),
+        s.splines,
+        s.merged,
+        s.fitted,
+        s.worst
+    );
+}
 
 pub fn simplify(a: &SimplifyArgs) -> Result<(), CliError> {
     if !(a.io.tolerance.is_finite() && a.io.tolerance >= 0.0) {
@@ -23,6 +46,9 @@ pub fn simplify(a: &SimplifyArgs) -> Result<(), CliError> {
             let rows = io::swc::read(&data, &name)?;
             let (out, d) = simplify_swc(&rows, a.io.tolerance);
             io::write_bytes(&a.io.out, io::swc::write(&out).as_bytes())?;
+            if let Ok(scene) = Scene::from_swc(&rows, &name) {
+                print_choice(&scene, a.io.tolerance);
+            }
             (rows.len(), out.len(), d)
         }
         "trk" | "tck" | "obj" => {
@@ -40,6 +66,9 @@ pub fn simplify(a: &SimplifyArgs) -> Result<(), CliError> {
             match header {
                 Some(h) => io::write_bytes(&a.io.out, &io::trk::write(&h, &out, false))?,
                 None => io::write_polylines(&a.io.out, &out)?,
+            }
+            if let Ok(scene) = Scene::from_polylines(&lines, a.io.radius, &name) {
+                print_choice(&scene, a.io.tolerance);
             }
             let count = |ls: &[io::Polyline]| ls.iter().map(|l| l.points.len()).sum::<usize>();
             (count(&lines), count(&out), d)

@@ -48,6 +48,7 @@ mod build;
 mod chains;
 pub mod choice;
 mod error;
+pub mod fit;
 pub mod generate;
 mod load;
 mod prim;
