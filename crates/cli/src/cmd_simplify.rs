@@ -41,15 +41,12 @@ pub fn simplify(a: &SimplifyArgs) -> Result<(), CliError> {
         );
     }
     let data = io::read_bytes(&a.io.input)?;
-    let (before, after, d) = match kind.as_str() {
+    let (before, after, d, scene) = match kind.as_str() {
         "swc" => {
             let rows = io::swc::read(&data, &name)?;
             let (out, d) = simplify_swc(&rows, a.io.tolerance);
             io::write_bytes(&a.io.out, io::swc::write(&out).as_bytes())?;
-            if let Ok(scene) = Scene::from_swc(&rows, &name) {
-                print_choice(&scene, a.io.tolerance);
-            }
-            (rows.len(), out.len(), d)
+            (rows.len(), out.len(), d, Scene::from_swc(&rows, &name).ok())
         }
         "trk" | "tck" | "obj" => {
             let (header, lines) = match kind.as_str() {
@@ -67,11 +64,8 @@ pub fn simplify(a: &SimplifyArgs) -> Result<(), CliError> {
                 Some(h) => io::write_bytes(&a.io.out, &io::trk::write(&h, &out, false))?,
                 None => io::write_polylines(&a.io.out, &out)?,
             }
-            if let Ok(scene) = Scene::from_polylines(&lines, a.io.radius, &name) {
-                print_choice(&scene, a.io.tolerance);
-            }
             let count = |ls: &[io::Polyline]| ls.iter().map(|l| l.points.len()).sum::<usize>();
-            (count(&lines), count(&out), d)
+            (count(&lines), count(&out), d, Scene::from_polylines(&lines, a.io.radius, &name).ok())
         }
         _ => return Err(IoError::file(&name, "simplify reads .swc, .trk, .tck or .obj").into()),
     };
@@ -80,5 +74,8 @@ pub fn simplify(a: &SimplifyArgs) -> Result<(), CliError> {
         a.io.out.display(),
         a.io.tolerance
     );
+    if let Some(scene) = scene {
+        print_choice(&scene, a.io.tolerance);
+    }
     Ok(())
 }
