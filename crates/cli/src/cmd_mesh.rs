@@ -6,7 +6,7 @@ use crate::error::CliError;
 use tubecast_render::accel::{Bvh, Tracer};
 use tubecast_render::mesh::{export, tessellate, MeshTracer};
 use tubecast_render::render::{Camera, View};
-use tubecast_render::scene::choice::{choose, Choice, Tolerance};
+use tubecast_render::scene::choice::{choose_with, Choice, Tolerance};
 use tubecast_render::scene::{Model, Prim, Scene};
 
 /// The tracer for `render`: the exact BVH, or with `tolerance` the certified mesh of the
@@ -57,7 +57,7 @@ fn tolerance(eps: Option<f64>, pixels: Option<f64>, cam: &Camera) -> Option<Tole
 /// `render` with the exact model: the chosen primitives when a tolerance is given, else `prims`.
 pub fn chosen(scene: &Scene, prims: Vec<Prim>, eps: Option<f64>, pixels: Option<f64>, cam: &Camera) -> Vec<Prim> {
     match tolerance(eps, pixels, cam) {
-        Some(t) => choose(scene, &t).prims,
+        Some(t) => choose_with(scene, &t, true).prims,
         None => prims,
     }
 }
@@ -71,14 +71,16 @@ pub fn info_choice(scene: &Scene, eps: Option<f64>, pixels: Option<f64>) -> Resu
     let bounds = if st.is_empty() { ([-1.0; 3], [1.0; 3]) } else { st.bounds };
     let cam = View::default().camera(bounds)?;
     let Some(t) = tolerance(eps, pixels, &cam) else { return Ok(()) };
-    let c: Choice = choose(scene, &t);
+    let c: Choice = choose_with(scene, &t, true);
     println!(
-        "choice     {} primitives: {} spheres, {} cylinders, {} cones ({} links merged away), worst certified error {:e}",
+        "choice     {} primitives: {} spheres, {} cylinders, {} cones, {} spline pieces ({} links merged away, {} fitted away into spline pieces), worst certified error {:e}",
         c.prims.len(),
         c.spheres,
         c.cylinders,
         c.cones,
+        c.splines,
         c.merged,
+        c.fitted,
         c.worst
     );
     Ok(())
