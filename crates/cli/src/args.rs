@@ -172,7 +172,7 @@ pub struct RenderArgs {
     pub model: Surface,
     /// Tolerance ε (scene units). With `--model mesh`: the mesh's two-sided Hausdorff bound;
     /// with the exact model: pick per segment the cheapest primitive within ε (merged links,
-    /// spheres, cylinders, cones).
+    /// spheres, cylinders, cones, fitted quadratic spline pieces).
     #[arg(long, value_name = "EPS")]
     pub tolerance: Option<f64>,
     /// Like --tolerance, per segment: P pixels of the camera's footprint at its distance.

@@ -99,22 +99,12 @@ impl Ctx<'_> {
     /// the walk. So a faded wire in front of another tube shows that tube through it, in the
     /// share `1 − α` it leaves uncovered, exactly as over the background.
     fn faded(&self, x: u32, y: u32, ray: &Ray<f64>, view: V3<f64>) -> Px {
-        let mut ivs: Vec<Tagged<f64>> = Vec::new();
-        self.bvh.line_intervals(ray, &mut ivs);
-        let mut entries: Vec<Boundary<f64>> = Vec::new();
-        union(&mut ivs, ray.t_min, ray.t_max, |b| {
-            if b.entering {
-                entries.push(b)
-            }
-        });
+        let mut entries = self.boundaries(ray);
+        entries.retain(|b| b.entering);
         let (mut acc, mut trans) = ([0.0f32; 3], 1.0f32);
         for b in &entries {
             let (base, cov) = self.pal.color(self.scene, self.opts.color, &self.bvh.prim(b.id), b.u);
-            let c = self.surface(x, y, ray, view, (b.id, b.t, b.n), base);
-            for (acc, c) in acc.iter_mut().zip(c) {
-                *acc += trans * cov * c;
-            }
-            trans *= 1.0 - cov;
+            over(&mut acc, &mut trans, cov, self.surface(x, y, ray, view, (b.id, b.t, b.n), base));
             if trans < 1.0 / 4096.0 {
                 break;
             }
@@ -136,24 +126,34 @@ impl Ctx<'_> {
     /// `opacity · coverage`: premultiplied colour `Σ Tᵢ·aᵢ·cᵢ` and alpha `1 − Π(1 − aᵢ)`, with
     /// `Tᵢ = Π_{j<i}(1 − aⱼ)` the transmittance in front of boundary `i`.
     fn transparent(&self, ray: &Ray<f64>, view: V3<f64>) -> Px {
-        let mut ivs: Vec<Tagged<f64>> = Vec::new();
-        self.bvh.line_intervals(ray, &mut ivs);
-        let mut bounds: Vec<Boundary<f64>> = Vec::new();
-        union(&mut ivs, ray.t_min, ray.t_max, |b| bounds.push(b));
-        let mut acc = [0.0f32; 3];
-        let mut trans = 1.0f32;
+        let bounds = self.boundaries(ray);
+        let (mut acc, mut trans) = ([0.0f32; 3], 1.0f32);
         for b in &bounds {
             let (base, cov) = self.pal.color(self.scene, self.opts.color, &self.bvh.prim(b.id), b.u);
-            let a = self.opts.opacity as f32 * cov;
-            let c = self.shade(base, b.n, view, 1.0, 1.0);
-            for (acc, c) in acc.iter_mut().zip(c) {
-                *acc += trans * a * c;
-            }
-            trans *= 1.0 - a;
+            over(&mut acc, &mut trans, self.opts.opacity as f32 * cov, self.shade(base, b.n, view, 1.0, 1.0));
         }
         let depth = bounds.first().map_or(f64::INFINITY, |b| b.t);
         Px { premul: acc, alpha: 1.0 - trans, depth }
     }
+
+    /// The exterior boundaries of the union of every primitive's intervals along `ray`, in
+    /// increasing `t` within the ray's range.
+    fn boundaries(&self, ray: &Ray<f64>) -> Vec<Boundary<f64>> {
+        let mut ivs: Vec<Tagged<f64>> = Vec::new();
+        self.bvh.line_intervals(ray, &mut ivs);
+        let mut bounds = Vec::new();
+        union(&mut ivs, ray.t_min, ray.t_max, |b| bounds.push(b));
+        bounds
+    }
+}
+
+/// Front-to-back "over": a layer of opacity `a` and colour `c` behind what `acc`
+/// (premultiplied colour) and `trans` (transmittance) hold so far.
+fn over(acc: &mut [f32; 3], trans: &mut f32, a: f32, c: [f32; 3]) {
+    for (acc, c) in acc.iter_mut().zip(c) {
+        *acc += *trans * a * c;
+    }
+    *trans *= 1.0 - a;
 }
 
 /// One pixel's result: colour premultiplied by alpha, alpha, depth.
