@@ -248,3 +248,39 @@ fn solid_variant_never_sticks_out_and_covers_the_boundary() {
         assert!(md.dist(y) <= tol, "boundary point {} from the mesh", md.dist(y));
     }
 }
+
+#[test]
+fn solid_variant_lies_inside_the_exact_solid_at_sharp_folds() {
+    // budget.rs (*Solid meshes*): every triangle has its corners on one convex piece of the
+    // exact solid (a node ball, or one link's round cone), so the mesh lies inside the union
+    // whatever the fold: the exact SDF at mesh samples is ≤ 0 up to rounding, not merely ≤ ε.
+    // And every exact-surface point is within the certified bound (joint sweep bound, exact).
+    let bends: [&[(P, f64)]; 4] = [
+        &[(v(0.0, 0.0, 0.0), 0.5), (v(2.0, 0.0, 0.0), 0.5), (v(2.0, 2.0, 0.0), 0.5)], // 90°
+        &[(v(0.0, 0.0, 0.0), 0.5), (v(2.0, 0.0, 0.0), 0.5), (v(0.6, 1.4, 0.2), 0.5)], // ~135°
+        &[(v(0.0, 0.0, 0.0), 0.2), (v(3.0, 0.0, 0.0), 0.6), (v(3.5, 2.0, 1.0), 0.1), (v(1.5, 2.5, 0.5), 0.4)],
+        &[(v(1e6, 0.0, 0.0), 0.01), (v(1e6 + 0.05, 0.0, 0.0), 0.01), (v(1e6 + 0.05, 0.04, 0.03), 0.012)],
+    ];
+    for nodes in bends {
+        let scale = nodes.iter().map(|n| n.0.max_abs() + n.1).fold(0.0, f64::max);
+        let r = nodes.iter().map(|n| n.1).fold(0.0, f64::max);
+        for eps in [1e-2 * r, 1e-3 * r] {
+            let mesh = tubecast::tessellate_chain_solid(nodes, eps).unwrap();
+            assert!(mesh.certified <= eps, "certified {} > ε {eps}", mesh.certified);
+            assert_watertight(&mesh);
+            let sdf = union_sdf(nodes, 0..=nodes.len() - 1);
+            for x in triangle_samples(&mesh, 3) {
+                assert!(sdf(x) <= slack(scale), "mesh point {x:?} outside the union by {}", sdf(x));
+            }
+            let md = MeshDist::new(&mesh);
+            for y in surface(nodes, 40).into_iter().filter(|&y| sdf(y) >= -slack(scale)) {
+                let d = md.dist(y);
+                assert!(
+                    d <= mesh.certified + slack(scale),
+                    "boundary point {d} from the mesh (bound {})",
+                    mesh.certified
+                );
+            }
+        }
+    }
+}

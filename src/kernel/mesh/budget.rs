@@ -23,6 +23,39 @@
 //!   union (the distance from a point `ψ` along a circle to the tangent line at the start).
 //!   It is inside, so it never makes the mesh stick out. Where `e_fold` would exceed its share
 //!   the chain is split at that node into two closed components that share the node sphere.
+//! * **Joint sweep (full 3-D bound)** — at an interior node `(c, r)` the rings are the circles
+//!   `C(s)` of polar angle `α(s) = α₋ + s(α₊ − α₋)` about the axis `w(s) = R(sφ)w₋` (`R` the
+//!   rotation about `e = w₋ × w₊/|…|`), `s ∈ [0, 1]`. *Coverage:* a point `x` of the node
+//!   sphere on the exact surface lies outside both links' solids, so its angle to `w₋` is
+//!   `≤ α₋` and to `w₊` is `≥ α₊`; `f(s) = ∠(x, w(s)) − α(s)` is continuous with `f(0) ≤ 0 ≤ f(1)`,
+//!   so `x` lies on some `C(s)`. *Discretisation:* with `σ = s(φ + |Δα|)` and the frame angle
+//!   `β`, the swept point is `p(σ, β) = c + r·R(sφ)·Q(α(s), β)` (`Q` the unit vector of polar
+//!   angle `α`, azimuth `β` in the joint's first frame) and the mesh vertices are exactly
+//!   `p(σᵢ, βⱼ)`, `Δβ = 2π/n`, `Δσ = (φ + |Δα|)/m`. Along a unit parameter direction `ξ`,
+//!   `∂²p/∂ξ² = r·R(Ω²Q + 2ΩQ' + Q'')` with `|Ω| = a₁|ξ₁|`, `|Q'| ≤ a₂|ξ₁| + |ξ₂|`,
+//!   `|Q''| ≤ (a₂|ξ₁| + |ξ₂|)²` (`|Q_αα| = 1`, `|Q_αβ| = |cos α|`, `|Q_ββ| = sin α`), with
+//!   `a₁ + a₂ = 1`, so `|∂²p/∂ξ²| ≤ r(|ξ₁| + |ξ₂|)² ≤ r((1+t)ξ₁² + (1+1/t)ξ₂²)` for any `t > 0`.
+//!   On each triangle `T` of the parameter grid (half a `Δσ × Δβ` cell) and any unit `ν`,
+//!   `g = (r/2)((1+t)(σ−σᵢ)(σᵢ₊₁−σ) + (1+1/t)(β−βⱼ)(βⱼ₊₁−β))` vanishes at `T`'s corners, so
+//!   `ν·(p − Lp) ∓ g` is convex / concave and zero at the corners (`Lp` the triangle), hence
+//!   `|p − Lp| ≤ max g = (r/8)((1+t)Δσ² + (1+1/t)Δβ²)`, at `t = Δβ/Δσ`:
+//!   `e_joint = (r/8)(Δσ + Δβ)²` (Waldron's argument for linear interpolation). This is exact,
+//!   not leading order; it is up to twice the ring + arc terms' leading order, so joints get
+//!   their own, finer ring spacing ([`joint_step`]) that keeps `e_joint` within the ring and
+//!   arc terms reached at `r_max` (possible: `(r/8)Δβ² − r(1 − cos(π/n)) ≤ r(π/n)⁴/6`, far
+//!   below the arc term). Cone strips join points at equal `β` on the two tangent circles:
+//!   cone generators, exact, so a strip is within the ring chord. Caps are surfaces of
+//!   revolution: arc + ring as above.
+//! * **Solid (render) meshes: folded triangles lie inside the exact solid** — every triangle
+//!   has its three vertices on one convex piece of the exact solid `K`: cap and joint triangles
+//!   on one node sphere (inside that ball), strip triangles on the two tangent circles of one
+//!   link (inside that link's round cone, the convex hull of its balls), the pole fans on a
+//!   sphere. So the whole mesh lies in `K`, whatever the fold (up to the rounding of the
+//!   vertex coordinates), and with the coverage above, every point of the exact surface is
+//!   within the certified bound of the mesh. A ray therefore never meets the mesh before it
+//!   enters `K`. Not derived: that a ray cannot slip between the mesh and `∂K` into a fold's
+//!   pocket deeper than the bound (each pocket is enclosed by mesh sheets; checked by ray
+//!   tests, `crates/render/tests/mesh_tracer.rs`).
 //! * **Axial (spline tubes)** — a quadratic sweep `(p(t), r(t))` is replaced by the links
 //!   between samples `h` apart in `t`; linear interpolation of a quadratic is off by at most
 //!   `h²/8·|p''| = h²/4·|b₀ − 2b₁ + b₂|` (likewise `r`), and the signed distance of a union of
@@ -94,6 +127,26 @@ pub fn budget(r_max: f64, eps: f64, terms: u32) -> Result<Budget, GeometryError>
     Ok(Budget { n, step, fold: e })
 }
 
+/// Largest parameter step `Δσ` between joint rings (see [`joint_term`]) that keeps a joint of
+/// radius `r` within `e`: `(r/8)(Δσ + 2π/n)² ≤ e`, at most the arc step. `None` when even
+/// `Δσ → 0` cannot (`(r/8)(2π/n)² > e`; it does not happen for `e` = [`reached`] at
+/// `r ≤ r_max`, see the module docs, but the caller then keeps the arc step and certifies
+/// the larger [`joint_term`]).
+pub fn joint_step(b: &Budget, r: f64, e: f64) -> Option<f64> {
+    if r <= 0.0 {
+        return Some(b.step);
+    }
+    let d = (8.0 * e / r).sqrt() - core::f64::consts::TAU / b.n as f64;
+    (d > 0.0).then(|| d.min(b.step))
+}
+
+/// The distance bound `(r/8)(Δσ + Δβ)²`, `Δβ = 2π/n`, between a joint's exact sweep and its
+/// triangles, for rings `Δσ` apart (see the module docs: *Joint sweep*).
+pub fn joint_term(b: &Budget, r: f64, d_sigma: f64) -> f64 {
+    let s = d_sigma + core::f64::consts::TAU / b.n as f64;
+    0.125 * r * s * s
+}
+
 /// The actual ring-chord and arc terms of a budget at radius `r_max`.
 pub fn reached(b: &Budget, r_max: f64) -> f64 {
     let ring = r_max * (1.0 - (core::f64::consts::PI / b.n as f64).cos());
@@ -122,6 +175,23 @@ mod tests {
             let s = arc_step(r, e);
             // acos rounds to ~1 ulp of its argument's distance from 1: the sagitta is e to ~1e-12 relative.
             assert!(r * (1.0 - (0.5 * s).cos()) <= e * (1.0 + 1e-9), "r {r} e {e}");
+        }
+    }
+
+    #[test]
+    fn joint_step_keeps_the_joint_term_within_ring_and_arc() {
+        // The module docs: the step exists for e = ring + arc reached at r ≤ r_max, and the
+        // joint term at that step (or any smaller one) is ≤ e.
+        for (r_max, eps) in [(1.0, 1e-2), (1.0, 1e-3), (3.0, 1e-5), (1.0, 0.9), (1e-6, 1e-9)] {
+            let b = budget(r_max, eps, 2).unwrap();
+            let e = reached(&b, r_max);
+            for r in [r_max, 0.5 * r_max, 1e-3 * r_max] {
+                let d = joint_step(&b, r, e).expect("a positive joint step");
+                assert!(d > 0.0 && d <= b.step);
+                for m in [1.0, 0.5, 0.1] {
+                    assert!(joint_term(&b, r, m * d) <= e * (1.0 + 1e-12), "r {r} eps {eps}");
+                }
+            }
         }
     }
 

@@ -217,6 +217,7 @@ fn tessellate_nodes(
     let b = budget(r_max, eps, terms)?;
     let rel: Vec<(V3<f64>, f64)> = nodes.iter().map(|&(c, r)| (c - origin, r)).collect();
     let mut folded: f64 = 0.0;
+    let (ring_arc, mut joints) = (reached(&b, r_max), 0.0f64);
     let mut covered = vec![false; rel.len()];
     let mut start = 0;
     let mut pieces: Vec<Piece> = Vec::new();
@@ -235,7 +236,7 @@ fn tessellate_nodes(
         if split || piece.is_none() {
             if !pieces.is_empty() {
                 let t0 = mesh.triangles.len();
-                tube(&mut mesh, &rel[start..=k], &pieces, &b, origin, start as u32);
+                joints = joints.max(tube(&mut mesh, &rel[start..=k], &pieces, &b, origin, start as u32, ring_arc));
                 mesh.parts.push(Part { triangles: t0..mesh.triangles.len(), nodes: start..=k });
                 covered[start..=k].iter_mut().for_each(|c| *c = true);
             }
@@ -256,6 +257,7 @@ fn tessellate_nodes(
             mesh.parts.push(Part { triangles: t0..mesh.triangles.len(), nodes: k..=k });
         }
     }
-    mesh.certified = reached(&b, r_max) + folded + axial;
+    // A joint's triangles are within its joint term; every other point within ring + arc.
+    mesh.certified = ring_arc.max(joints) + folded + axial;
     Ok(mesh)
 }

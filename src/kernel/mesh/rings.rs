@@ -6,7 +6,7 @@
 //! (the double-reflection method of Wang et al. 2008 reduces to it for straight pieces). Ring
 //! vertex `j` sits at the same frame angle `2πj/n` on every ring, so the quads do not twist.
 
-use super::budget::Budget;
+use super::budget::{joint_step, joint_term, Budget};
 use super::Mesh;
 use crate::math::frame::orthonormal_basis;
 use crate::vec::V3;
@@ -142,8 +142,19 @@ pub fn ball(mesh: &mut Mesh, (c, r): (P, f64), b: &Budget, origin: P, tag: u32) 
 }
 
 /// A run of at least two nodes whose consecutive pieces are valid ([`Piece::new`]) and whose
-/// interior nodes have a positive radius. `origin` is added to every vertex.
-pub fn tube(mesh: &mut Mesh, nodes: &[(P, f64)], pieces: &[Piece], b: &Budget, origin: P, tag0: u32) {
+/// interior nodes have a positive radius. `origin` is added to every vertex. Joint rings are
+/// spaced so that the joint sweep's bound ([`joint_term`]) stays within `bound`; returns the
+/// largest joint term reached (0 without joints).
+pub fn tube(
+    mesh: &mut Mesh,
+    nodes: &[(P, f64)],
+    pieces: &[Piece],
+    b: &Budget,
+    origin: P,
+    tag0: u32,
+    bound: f64,
+) -> f64 {
+    let mut worst: f64 = 0.0;
     let w0 = pieces[0].w;
     let (u0, _) = orthonormal_basis(w0);
     let (mut u, mut v) = (u0, w0.cross(u0));
@@ -156,7 +167,12 @@ pub fn tube(mesh: &mut Mesh, nodes: &[(P, f64)], pieces: &[Piece], b: &Budget, o
         let axis = prev.w.cross(next.w);
         let e = if axis.length() > 0.0 { axis.scale(1.0 / axis.length()) } else { axis };
         let da = next.alpha - prev.alpha;
-        let m = ((phi + da.abs()) / b.step).ceil() as usize;
+        let sweep = phi + da.abs();
+        let step = joint_step(b, nodes[k].1, bound).unwrap_or(b.step);
+        let m = (sweep / step).ceil() as usize;
+        if m > 0 {
+            worst = worst.max(joint_term(b, nodes[k].1, sweep / m as f64));
+        }
         for i in 0..=m {
             let s = if m == 0 { 0.0 } else { i as f64 / m as f64 };
             let (c, sn) = ((s * phi).cos(), (s * phi).sin());
@@ -177,4 +193,5 @@ pub fn tube(mesh: &mut Mesh, nodes: &[(P, f64)], pieces: &[Piece], b: &Budget, o
     let start = if r0 > 0.0 { c0 - w0.scale(r0) } else { c0 };
     let end = if rn > 0.0 { cn + last.w.scale(rn) } else { cn };
     emit(mesh, &rings, [start, end], b.n, origin);
+    worst
 }
