@@ -16,7 +16,7 @@ fn print_choice(scene: &Scene, eps: f64) {
     let (l, s) = (choose(scene, &t), choose_with(scene, &t, true));
     println!(
         "choice at {eps:e}: {} links → {} primitives with links only (worst {:e}); {} with quadratic splines: \
-         {} spline pieces, {} links merged, {} fitted (worst {:e})",
+         {} spline pieces, {} links merged, {} fitted (worst {:e}; render/info --tolerance only, not written)",
         scene.links.len(),
         l.prims.len(),
         l.worst,

@@ -46,6 +46,11 @@ enum Cmd {
     /// Tessellate a scene within a certified tolerance; write .ply, .obj or .glb.
     Mesh(MeshArgs),
     /// Merge consecutive links while the merged tube stays within --tolerance; same format out.
+    ///
+    /// Writes merged links only, each certified within ε of the links it replaces (both ways).
+    /// SWC, TRK, TCK and OBJ hold nodes, not quadratic pieces, so the spline fitting of the
+    /// automatic choice is not written: it applies where the model stays in memory
+    /// (`render`/`info --tolerance`), and this command prints its counts at the same ε.
     Simplify(SimplifyArgs),
 }
 

@@ -11,13 +11,50 @@ use std::time::Instant;
 use tubecast_render::accel::{Bvh, Tracer};
 use tubecast_render::mesh::{tessellate, MeshTracer};
 use tubecast_render::render::{render, Camera, Image, Options};
-use tubecast_render::scene::choice::{choose, Tolerance};
+use tubecast_render::scene::choice::{choose_with, Tolerance};
 use tubecast_render::scene::{generate, Model, Scene};
 
 /// Tolerances of the mesh path, in units of the scene's largest radius.
 pub const RELATIVE_EPS: [f64; 2] = [1e-2, 1e-3];
-/// Configurations whose estimated triangle count exceeds this are skipped (memory).
-pub const MAX_TRIANGLES: f64 = 3e7;
+/// A mesh whose estimated peak memory while building ([`Estimate::peak_bytes`]) exceeds this
+/// is not built; the report gives its estimate instead. The machine the reports run on has
+/// 23 GB shared with other jobs.
+pub const MAX_BUILD_BYTES: f64 = 4e9;
+/// The same limit in the tiny test run: the 10⁻²·r mesh of 10³ links (≈ 50 MB) is built and
+/// the 10⁻³·r one (≈ 0.3 GB) is skipped, so the test sees both paths.
+pub const QUICK_BUILD_BYTES: f64 = 1.5e8;
+
+/// A mesh's size, estimated before building it from a sample of the scene tessellated and
+/// traced for real, scaled by the scene's size over the sample's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Estimate {
+    /// Triangles.
+    pub triangles: f64,
+    /// Bytes the finished tracer holds ([`Tracer::memory_bytes`] per triangle of the sample).
+    pub tracer_bytes: f64,
+    /// Peak bytes while building: the finished tracer, the scene mesh it is built from
+    /// (`f64` vertices, indices, link tags, part ids) and the unordered `f32` triangle copy the
+    /// BVH builder reads (obvhs's own scratch not counted, so this is a lower bound).
+    pub peak_bytes: f64,
+}
+
+/// The estimate at absolute tolerance `eps` for a scene `scale` times the size of `sample`.
+pub(super) fn estimate(sample: &Scene, scale: f64, eps: f64) -> Result<Estimate, ReportError> {
+    let m = tessellate(sample, Model::Links, eps).map_err(err)?;
+    let t = m.mesh.triangles.len();
+    if t == 0 {
+        return Ok(Estimate { triangles: 0.0, tracer_bytes: 0.0, peak_bytes: 0.0 });
+    }
+    let mesh_bytes = m.mesh.memory_bytes() + 4 * (m.mesh.tags.len() + m.part.len());
+    let tracer = MeshTracer::build(&m, sample.primitives());
+    let tri = MeshTracer::TRIANGLE_BYTES;
+    let tracer_bytes = tracer.memory_bytes() as f64 * scale;
+    Ok(Estimate {
+        triangles: t as f64 * scale,
+        tracer_bytes,
+        peak_bytes: tracer_bytes + ((mesh_bytes + t * tri) as f64) * scale,
+    })
+}
 
 /// One measured configuration.
 #[derive(Clone, Debug, PartialEq)]
@@ -70,35 +107,64 @@ fn measure(
     opts: &ReportOptions,
     pool: &rayon::ThreadPool,
     notes: &mut String,
+    skipped: &mut Vec<Skipped>,
 ) -> Result<Vec<MeshRow>, ReportError> {
     let lines = generate::furball(n.div_ceil(78), 78, opts.seed);
     let scene = Scene::from_polylines(&lines, 0.05, "furball").map_err(err)?;
-    let one = Scene::from_polylines(&lines[..1], 0.05, "one").map_err(err)?;
-    let est = |eps: f64| -> Result<f64, ReportError> {
-        Ok(tessellate(&one, Model::Links, eps).map_err(err)?.mesh.triangles.len() as f64 * lines.len() as f64)
-    };
-    let plan = Plan { chosen: &RELATIVE_EPS, mesh: &RELATIVE_EPS, max_triangles: MAX_TRIANGLES };
-    measure_scene(&scene, &plan, &est, opts, pool, notes)
+    // Four hairs, scaled by the hair count (hairs differ in shape, not in link count).
+    let k = lines.len().min(4);
+    let sample = Scene::from_polylines(&lines[..k], 0.05, "sample").map_err(err)?;
+    let est = |eps: f64| estimate(&sample, lines.len() as f64 / k as f64, eps);
+    let max_bytes = if opts.max_segments < 10_000 { QUICK_BUILD_BYTES } else { MAX_BUILD_BYTES };
+    let plan = Plan { chosen: &RELATIVE_EPS, splines: false, mesh: &RELATIVE_EPS, max_bytes };
+    measure_scene(&scene, &plan, &est, opts, pool, notes, skipped)
 }
 
-/// What to measure on one scene: the automatic choice at `chosen`·r and the mesh at `mesh`·r
-/// (r the scene's largest radius), a mesh only where the estimated triangle count is at most
-/// `max_triangles`.
+/// What to measure on one scene: the automatic choice at `chosen`·r (links only, and also
+/// with quadratic spline pieces when `splines`) and the mesh at `mesh`·r (r the scene's
+/// largest radius), a mesh only where its estimated peak memory is at most `max_bytes`.
 pub(super) struct Plan<'a> {
     pub(super) chosen: &'a [f64],
+    pub(super) splines: bool,
     pub(super) mesh: &'a [f64],
-    pub(super) max_triangles: f64,
+    pub(super) max_bytes: f64,
+}
+
+/// A mesh configuration that was not built: its size and the estimate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Skipped {
+    /// Links in the scene.
+    pub segments: usize,
+    /// Mesh tolerance relative to the largest radius.
+    pub k: f64,
+    /// The estimate.
+    pub est: Estimate,
+}
+
+/// The note line of a skipped mesh.
+fn skipped_note(s: &Skipped, max_bytes: f64) -> String {
+    format!(
+        "- {} segments, mesh at ε = {}·r: not built — estimated {:.2e} triangles, {:.2} GB for the tracer, \
+         ≥ {:.2} GB peak while building (this run's limit: {:.2} GB).\n",
+        s.segments,
+        s.k,
+        s.est.triangles,
+        s.est.tracer_bytes / 1e9,
+        s.est.peak_bytes / 1e9,
+        max_bytes / 1e9
+    )
 }
 
 /// One scene: the exact row, a row per choice tolerance and per mesh tolerance (or a skipped
-/// note); `est(ε)` estimates the mesh's triangle count at absolute tolerance ε.
+/// note, and the estimate in `skipped`); `est(ε)` estimates the mesh at absolute tolerance ε.
 pub(super) fn measure_scene(
     scene: &Scene,
     plan: &Plan<'_>,
-    est: &dyn Fn(f64) -> Result<f64, ReportError>,
+    est: &dyn Fn(f64) -> Result<Estimate, ReportError>,
     opts: &ReportOptions,
     pool: &rayon::ThreadPool,
     notes: &mut String,
+    skipped: &mut Vec<Skipped>,
 ) -> Result<Vec<MeshRow>, ReportError> {
     let st = scene.stats();
     let cam = Camera::fit(st.bounds.0, st.bounds.1, 35.0, opts.image, opts.image).map_err(err)?;
@@ -126,17 +192,21 @@ pub(super) fn measure_scene(
         max_rgb_diff: 0.0,
     }];
     drop(bvh);
-    for &k in plan.chosen {
-        // The automatic choice: merged links, spheres, cylinders, cones within ε.
+    let variants: &[bool] = if plan.splines { &[false, true] } else { &[false] };
+    for (&k, &fit) in plan.chosen.iter().flat_map(|k| variants.iter().map(move |f| (k, f))) {
+        // The automatic choice: merged links, spheres, cylinders, cones (and with `fit`,
+        // quadratic spline pieces) within ε.
         let t0 = Instant::now();
-        let c = choose(scene, &Tolerance::Absolute(k * r_max));
+        let c = choose_with(scene, &Tolerance::Absolute(k * r_max), fit);
         let bvh = pool.install(|| Bvh::build(c.prims.clone()));
         let build_s = t0.elapsed().as_secs_f64();
         let (img, frame_s) = frame(&bvh)?;
         let (coverage_diff, max_rgb_diff) = diff(&exact, &img);
+        let (name, pieces) =
+            if fit { ("chosen+splines", format!(", {} spline pieces", c.splines)) } else { ("chosen", String::new()) };
         rows.push(MeshRow {
             segments,
-            model: format!("chosen ε = {k}·r ({} prims)", c.prims.len()),
+            model: format!("{name} ε = {k}·r ({} prims{pieces})", c.prims.len()),
             certified: c.worst,
             triangles: 0,
             build_s,
@@ -149,8 +219,10 @@ pub(super) fn measure_scene(
     for &k in plan.mesh {
         let eps = k * r_max;
         let est = est(eps)?;
-        if est > plan.max_triangles {
-            let _ = writeln!(notes, "- {segments} segments at ε = {k}·r skipped: about {est:.1e} triangles.");
+        if est.peak_bytes > plan.max_bytes {
+            let s = Skipped { segments, k, est };
+            notes.push_str(&skipped_note(&s, plan.max_bytes));
+            skipped.push(s);
             continue;
         }
         let t0 = Instant::now();
@@ -210,17 +282,18 @@ pub fn run_mesh(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, ReportE
         sizes.push(sizes[sizes.len() - 1] * 10);
     }
     let bar = progress(opts, sizes.len() as u64, "mesh");
-    let (mut rows, mut notes) = (Vec::new(), String::new());
+    let (mut rows, mut notes, mut skipped) = (Vec::new(), String::new(), Vec::new());
     for &n in &sizes {
-        rows.extend(measure(n, opts, &pool, &mut notes)?);
+        rows.extend(measure(n, opts, &pool, &mut notes, &mut skipped)?);
         bar.inc(1);
     }
     bar.finish_and_clear();
-    let mut md = header(
-        "Mesh path against the exact kernels (Salm's question)",
-        opts,
-        "cargo run --release -p tubecast-lab -- mesh",
-    );
+    let cmd = if opts.max_segments >= 1_000_000 {
+        "cargo run --release -p tubecast-lab -- mesh --big"
+    } else {
+        "cargo run --release -p tubecast-lab -- mesh"
+    };
+    let mut md = header("Mesh path against the exact kernels (Salm's question)", opts, cmd);
     let _ = write!(
         md,
         "Generated *Furball* scenes (tapering hairs of 78 cone links, radius ≤ r = 0.05·…, seed {}); the exact \
@@ -230,8 +303,15 @@ pub fn run_mesh(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, ReportE
          tessellation + BVH; memory = what the tracer holds; one opaque lit {}×{} frame on {} thread(s). \
          Image difference to the exact render: pixels whose coverage differs, and the largest channel \
          difference where both cover. Certified = the mesh's two-sided Hausdorff bound plus the f32 storage \
-         rounding.\n\n",
-        opts.seed, opts.image, opts.image, opts.threads
+         rounding. A mesh is built only where its estimated peak memory while building is ≤ {:.1} GB \
+         (estimate: four hairs tessellated and traced, scaled by the hair count); above it the \
+         notes below the table give the estimated triangles and bytes — on this machine that is the answer \
+         for those sizes — and the memory chart draws the estimated tracer memory (✕, `est.`).\n\n",
+        opts.seed,
+        opts.image,
+        opts.image,
+        opts.threads,
+        if opts.max_segments < 10_000 { QUICK_BUILD_BYTES } else { MAX_BUILD_BYTES } / 1e9
     );
     md.push_str(&table(&rows));
     if !notes.is_empty() {
@@ -261,6 +341,22 @@ pub fn run_mesh(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, ReportE
     };
     let mut all = series(&|r| r.frame_s * 1e3, 0, "frame ms");
     all.extend(series(&|r| r.bytes as f64 / 1e6, models.len(), "memory MB"));
+    for (i, &k) in RELATIVE_EPS.iter().enumerate() {
+        let points: Vec<Pt> = skipped
+            .iter()
+            .filter(|s| s.k == k)
+            .map(|s| Pt {
+                x: s.segments as f64,
+                y: s.est.tracer_bytes / 1e6,
+                marker: Marker::Cross,
+                text: Some("est.".into()),
+            })
+            .collect();
+        if !points.is_empty() {
+            let label = format!("memory MB, estimated (not built): mesh ε = {k}·r");
+            all.push(Series { label, color: 2 * models.len() + i, points, line: false });
+        }
+    }
     let c = Chart {
         title: format!("Mesh path vs exact kernels ({0}×{0}, {1} thread(s))", opts.image, opts.threads),
         x_desc: "segments (log)".into(),

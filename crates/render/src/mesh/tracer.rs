@@ -46,6 +46,10 @@ pub struct MeshTracer {
 }
 
 impl MeshTracer {
+    /// Bytes of one stored triangle (three `f32` vertices, SIMD-padded); the build also holds
+    /// an unordered copy of the triangles for the BVH builder.
+    pub const TRIANGLE_BYTES: usize = std::mem::size_of::<Triangle>();
+
     /// Builds the BVH (obvhs PLOC, medium quality) over the mesh; `prims` are the scene's
     /// primitives that hits name (every tagged link must have one).
     pub fn build(m: &SceneMesh, prims: Vec<Prim>) -> Self {

@@ -1,7 +1,9 @@
 //! Surface colours: by direction, radius, SWC type, data values or one colour.
 
 use super::ColorBy;
+use crate::scene::fit::RunIndex;
 use crate::scene::{Prim, Scene};
+use std::sync::OnceLock;
 
 /// Per-scene colour lookups.
 pub(super) struct Palette {
@@ -9,6 +11,9 @@ pub(super) struct Palette {
     r_hi: f64,
     /// Finite range of the scene's data values.
     v_range: Option<(f64, f64)>,
+    /// The runs of links fitted spline pieces replace, built on the first such piece coloured
+    /// by data.
+    runs: OnceLock<RunIndex>,
 }
 
 fn colormap(x: f64) -> [f32; 3] {
@@ -40,7 +45,7 @@ impl Palette {
             r_lo = r_lo.min(n.radius);
             r_hi = r_hi.max(n.radius);
         }
-        Self { r_lo, r_hi, v_range: super::value_range(&scene.values) }
+        Self { r_lo, r_hi, v_range: super::value_range(&scene.values), runs: OnceLock::new() }
     }
     /// Colour of primitive `prim` at its curve parameter `u`, and its coverage in `[0, 1]`:
     /// the scene's coverage where thin tubes were widened ([`super::clamp_thin`]), interpolated
@@ -93,7 +98,9 @@ impl Palette {
                 else {
                     return [0.5; 3];
                 };
-                let v = a + (b - a) * u.clamp(0.0, 1.0);
+                // A fitted spline piece interpolates the data of the whole run it replaces.
+                let run = spline.and_then(|_| self.runs.get_or_init(|| RunIndex::new(scene)).value(scene, prim, u));
+                let v = run.unwrap_or(a + (b - a) * u.clamp(0.0, 1.0));
                 if !v.is_finite() {
                     return [0.5; 3];
                 }

@@ -19,7 +19,7 @@ use tubecast::{QuadTube, RoundCone, V3};
 
 /// Longest run (in links) one quadratic piece may replace: bounds the fitting cost
 /// (`O(k²)` per run) on long, nearly straight chains, which merged links cover anyway.
-const MAX_FIT_LINKS: usize = 128;
+pub(crate) const MAX_FIT_LINKS: usize = 128;
 
 /// How large an error each segment may have.
 #[derive(Clone, Copy, Debug, PartialEq)]

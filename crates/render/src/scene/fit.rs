@@ -24,6 +24,7 @@
 //! the chord-length parameters, then the nodes' projections on the last fit's curve (a few
 //! rounds), and keeps the smallest `D`. `b₁`, `ρ₁` are least squares for the chosen `sᵢ` (4-space, separable).
 
+use super::{Chain, Prim, Scene};
 use tubecast::{QuadTube, V3};
 
 /// A fitted piece and its certified bound `D` (see the module docs).
@@ -193,3 +194,97 @@ fn tangent_corner(nodes: &[([f64; 3], f64)]) -> Option<V3<f64>> {
     let (u, v) = ((c * e - b * f) / det, (a * f - b * e) / det);
     (u > 0.0 && v > 0.0).then(|| (p0 + d0 * u + pn - d1 * v) * 0.5)
 }
+
+/// Where each scene link sits in the scene's chains, to find the run of nodes a fitted spline
+/// piece of [`super::choice::choose_with`] replaces (the piece names only the first link of
+/// its run; it starts at that link's chain node and ends on a later node of the same chain).
+///
+/// ```
+/// use tubecast_render::io::Polyline;
+/// use tubecast_render::scene::choice::{choose_with, Tolerance};
+/// use tubecast_render::scene::fit::RunIndex;
+/// use tubecast_render::scene::Scene;
+/// let pts: Vec<[f64; 3]> = (0..=32)
+///     .map(|i| { let a = i as f64 / 32.0 * std::f64::consts::FRAC_PI_2; [10.0 * a.cos(), 10.0 * a.sin(), 0.0] })
+///     .collect();
+/// let mut scene = Scene::from_polylines(&[Polyline { points: pts, radii: vec![] }], 0.5, "arc").unwrap();
+/// scene.values = (0..=32).map(|i| i as f64).collect(); // per node: its index along the arc
+/// let c = choose_with(&scene, &Tolerance::Absolute(0.01), true);
+/// let index = RunIndex::new(&scene);
+/// let piece = c.prims.iter().find(|p| p.quad().is_some()).unwrap();
+/// let run = index.run(&scene, piece).unwrap();
+/// assert!(run.len() >= 3); // a piece replaces two links or more
+/// // At its end the piece carries the value of the run's last node, not of its first link's.
+/// let v = index.value(&scene, piece, 1.0).unwrap();
+/// assert!((v - scene.values[run[run.len() - 1] as usize]).abs() < 1e-6);
+/// ```
+pub struct RunIndex {
+    chains: Vec<Chain>,
+    /// Per scene link: its chain and position in it.
+    at: Vec<Option<(u32, u32)>>,
+}
+
+impl RunIndex {
+    /// The index of `scene`'s chains (one pass over [`Scene::chains`]).
+    pub fn new(scene: &Scene) -> Self {
+        let chains = scene.chains();
+        let mut at = vec![None; scene.links.len()];
+        for (c, chain) in chains.iter().enumerate() {
+            for (i, &l) in chain.links.iter().enumerate() {
+                at[l as usize] = Some((c as u32, i as u32));
+            }
+        }
+        Self { chains, at }
+    }
+
+    /// The chain nodes (scene node indices, in order) of the run a spline primitive replaces:
+    /// from its link's chain node to the first later node at the piece's end (within the `f32`
+    /// rounding of the stored control point). `None` for other primitives and for pieces that
+    /// do not end on a node of their chain or replace a single link (the spline model's
+    /// sub-segments).
+    pub fn run(&self, scene: &Scene, prim: &Prim) -> Option<&[u32]> {
+        let q = prim.quad()?;
+        let (c, i) = (*self.at.get(prim.link as usize)?)?;
+        let nodes = &self.chains[c as usize].nodes;
+        let origin = V3::from(prim.origin);
+        let (start, end) = (origin + q.b[0].cast::<f64>(), origin + q.b[2].cast::<f64>());
+        // Each stored coordinate is within 2⁻²⁴ of its own size (relative to the origin);
+        // the f64 sums add a few ulps of the world coordinates.
+        let tol = |rel: V3<f32>, w: V3<f64>| {
+            4.0 * 2f64.powi(-24) * rel.cast::<f64>().length() + 8.0 * f64::EPSILON * w.max_abs()
+        };
+        let near = |n: u32, p: V3<f64>, t: f64| (V3::from(scene.nodes[n as usize].pos) - p).length() <= t;
+        let i = i as usize;
+        if !near(nodes[i], start, tol(q.b[0], start)) {
+            return None;
+        }
+        let last = (i + MAX_RUN_LINKS).min(nodes.len() - 1);
+        let j = (i + 1..=last).find(|&j| near(nodes[j], end, tol(q.b[2], end)))?;
+        (j >= i + 2).then(|| &nodes[i..=j])
+    }
+
+    /// Per-node data along a fitted piece at its curve parameter `u`: the piece's axis point
+    /// `q(u)` projected on the nearest link of its run, the scene's node values interpolated
+    /// linearly there. `None` where [`RunIndex::run`] is, or without node values.
+    pub fn value(&self, scene: &Scene, prim: &Prim, u: f64) -> Option<f64> {
+        let run = self.run(scene, prim)?;
+        let q = prim.quad()?.cast::<f64>();
+        let x = V3::from(prim.origin) + q.point(u.clamp(0.0, 1.0));
+        let mut best: Option<(f64, f64)> = None;
+        for w in run.windows(2) {
+            let (a, b) = (V3::from(scene.nodes[w[0] as usize].pos), V3::from(scene.nodes[w[1] as usize].pos));
+            let (va, vb) = (*scene.values.get(w[0] as usize)?, *scene.values.get(w[1] as usize)?);
+            let ab = b - a;
+            let l2 = ab.length2();
+            let lam = if l2 > 0.0 { ((x - a).dot(ab) / l2).clamp(0.0, 1.0) } else { 0.0 };
+            let d = (x - (a + ab * lam)).length();
+            if best.map_or(true, |(bd, _)| d < bd) {
+                best = Some((d, va + (vb - va) * lam));
+            }
+        }
+        best.map(|b| b.1)
+    }
+}
+
+/// Longest run one fitted piece may replace, in links (the choice's limit).
+const MAX_RUN_LINKS: usize = super::choice::MAX_FIT_LINKS;
