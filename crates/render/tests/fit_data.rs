@@ -11,6 +11,9 @@ use tubecast_render::scene::fit::RunIndex;
 use tubecast_render::scene::{Model, Scene};
 
 const R: f64 = 10.0;
+
+/// A data function of the angle, its name and its largest slope.
+type Data<'a> = (&'a str, &'a dyn Fn(f64) -> f64, f64);
 const LINKS: usize = 64;
 
 fn theta(i: usize) -> f64 {
@@ -29,8 +32,7 @@ fn along(data: &dyn Fn(f64) -> f64, phi: f64) -> f64 {
 fn a_fitted_piece_carries_the_data_of_its_whole_run() {
     let pts: Vec<[f64; 3]> = (0..=LINKS).map(|i| [R * theta(i).cos(), R * theta(i).sin(), 0.0]).collect();
     let base = Scene::from_polylines(&[Polyline { points: pts, radii: vec![] }], 0.5, "arc").unwrap();
-    let datas: [(&str, &dyn Fn(f64) -> f64, f64); 2] =
-        [("θ", &|t| t, 1.0), ("θ²", &|t| t * t, 2.0 * std::f64::consts::PI)];
+    let datas: [Data; 2] = [("θ", &|t| t, 1.0), ("θ²", &|t| t * t, 2.0 * std::f64::consts::PI)];
     for eps in [2e-2, 5e-3] {
         for (name, data, slope) in datas {
             let mut scene = base.clone();

@@ -128,13 +128,14 @@ pub fn tessellate_chain<T: Scalar>(nodes: &[(V3<T>, T)], eps: T) -> Result<Mesh,
 
 /// [`tessellate_chain`] for renderers: joints are never split for their fold, so a bent chain
 /// stays one closed surface (far fewer triangles than split parts with their caps). The
-/// surface folds into itself on the inner side of bends; the certified bound (ring and arc
-/// terms, ε/2 each) then holds for the **boundary of the region the mesh encloses** — what a
-/// ray's first hit sees — while the folded triangles lie inside that region, up to
-/// `r(1 − cos ψ)` deep. That the folds stay inside is checked by ray tests
-/// (`crates/render/tests/mesh_tracer.rs`: every first hit within the bound of the exact
-/// surface), not derived. Joints still split where a cone would not emerge from the fold
-/// (see `budget.rs`) and at zero radii.
+/// surface folds into itself on the inner side of bends. Derived in `budget.rs` (*Joint
+/// sweep*, *Solid meshes*), in 3-D: every triangle lies inside the exact solid (its corners are
+/// on one ball or one link's round cone), whatever the fold, so a ray never meets the mesh
+/// before the exact surface; and every point of the exact surface is within the certified
+/// bound (ring and arc terms, ε/2 each; joints spaced to stay within them) of the mesh. Not
+/// derived: that a ray cannot slip past the mesh into a fold's pocket deeper than the bound
+/// (checked by ray tests, `crates/render/tests/mesh_tracer.rs`). Joints still split where a
+/// cone would not emerge from the fold (see `budget.rs`) and at zero radii.
 ///
 /// ```
 /// use tubecast::{tessellate_chain, tessellate_chain_solid, V3};
