@@ -5,7 +5,7 @@
 //! - **Chunks.** Items are sorted by the Morton code of their box centres (10 bits per axis over
 //!   the centres' box, ties by item index: deterministic) and cut into `⌈n / chunk⌉` runs of
 //!   equal size (±1). Each run is built by [`cwbuild::build_within`] (PLOC, medium quality) over
-//!   its items' own boxes, at most [`MAX_PARALLEL`] runs at a time.
+//!   its items' own boxes, at most [`CHUNKS_AT_ONCE`] runs at a time.
 //! - **Top.** The runs' roots are grouped, in Morton order, into nodes of at most eight
 //!   children, level by level, until one node is left: the root. A top node's children are
 //!   placed in obvhs's slots by its own rule (the child whose centre lies farthest along a
@@ -36,7 +36,7 @@ pub const CHUNK: usize = 1 << 20;
 pub(crate) const MAX_CHUNK: usize = 1 << 24;
 
 /// Chunks built at the same time at most (each holds its builder's buffers).
-pub(crate) const MAX_PARALLEL: usize = 2;
+pub const CHUNKS_AT_ONCE: usize = 2;
 
 /// An 8-wide tree over `n` items, item `j` with the `f32` box `aabb(j)`: [`cwbuild::build`] when
 /// `n ≤ chunk`, otherwise built in chunks of at most `chunk` items (see the module docs).
@@ -49,7 +49,7 @@ pub(crate) fn build(n: usize, aabb: impl Fn(usize) -> Aabb + Sync, chunk: usize)
     let count = n.div_ceil(chunk);
     let levels = top_levels(count);
     let range = |c: usize| &keys[c * n / count..(c + 1) * n / count];
-    let par = rayon::current_num_threads().clamp(1, MAX_PARALLEL);
+    let par = rayon::current_num_threads().clamp(1, CHUNKS_AT_ONCE);
     let mut runs = Vec::with_capacity(count);
     for first in (0..count).step_by(par) {
         let batch = first..(first + par).min(count);

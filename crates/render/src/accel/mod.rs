@@ -42,7 +42,7 @@ mod table;
 mod tracer;
 mod wide;
 
-pub use chunked::CHUNK;
+pub use chunked::{CHUNK, CHUNKS_AT_ONCE};
 pub use table::{closest_table, crossings_table, hit_table, MISS_ROW};
 pub use tracer::Tracer;
 pub use wide::WideBvh;
