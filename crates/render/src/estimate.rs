@@ -4,12 +4,13 @@
 //! that would not fit ([`check`]), naming the figures and the options that help.
 //!
 //! # The model
-//! Peak bytes ≈ `links × (scene + tracer × (1 + BUILD_OVERHEAD)) + BASE_BYTES`, with `scene`
-//! and `tracer` the bytes per link of [`crate::scene::Scene::memory_bytes`] and
-//! [`crate::accel::Tracer::memory_bytes`] measured on a sample of the file (so they follow
-//! any change of the layouts), and [`BUILD_OVERHEAD`] the share of the tracer's size that its
-//! build holds on top of it at its peak (the primitives before reordering, their boxes, the
-//! builder's own tree), measured once (see the constant).
+//! Peak bytes ≈ `links × (scene + tracer × (1 + BUILD_OVERHEAD)) + min(links, BUILD_ITEMS) ×
+//! BUILD_BYTES_PER_ITEM + BASE_BYTES`, with `scene` and `tracer` the bytes per link of
+//! [`crate::scene::Scene::memory_bytes`] and [`crate::accel::Tracer::memory_bytes`] measured on
+//! a sample of the file (so they follow any change of the layouts), [`BUILD_OVERHEAD`] the
+//! share of the tracer's size its build holds on top of it (tables in item order, the clusters
+//! before reordering), and [`BUILD_BYTES_PER_ITEM`] the tree builder's buffers for each item it
+//! builds at once: at most [`BUILD_ITEMS`], as the compact tree is built in chunks.
 
 use crate::io::stream::{open, Selection};
 use crate::io::{self, IoError};
@@ -18,13 +19,22 @@ use std::io::BufRead;
 use std::path::Path;
 
 /// Extra bytes a tracer's build holds at its peak, as a share of the finished tracer's
-/// [`crate::accel::Tracer::memory_bytes`] (the primitives before reordering, their boxes,
-/// obvhs's binary tree before it is collapsed to 8 wide). Measured with
-/// `TUBECAST_PEAK_RSS=1 tubecast info FILE` on `generate bundle` scenes (peak resident set
-/// after the build, `VmHWM`): 10⁶ links (`--count 11905 --segments 84`, release build):
-/// 389 MB peak, 48.4 B scene + 92 B tree per link → 2.5; 5·10⁵ links (`--count 5000
-/// --segments 100`, test profile): 247 MB → 3.45. The larger, rounded up.
-pub const BUILD_OVERHEAD: f64 = 3.5;
+/// [`crate::accel::Tracer::memory_bytes`] (its item table, Morton keys and leaf order, the
+/// clusters before they are reordered), besides the builder's buffers
+/// ([`BUILD_BYTES_PER_ITEM`]). Fitted with it to the peaks of `TUBECAST_PEAK_RSS=1 tubecast
+/// info FILE --radius 0.12` on `generate bundle --segments 84` scenes (plain release build,
+/// `VmHWM`; 48.5 B scene and 33 B tree per link): 341.5 MB at 10⁶ links and 1534 MB at 10⁷
+/// give 0.75 and 218 B; both rounded up (the model is 26 % and 16 % above those peaks).
+pub const BUILD_OVERHEAD: f64 = 1.0;
+
+/// Bytes the tree builder holds per item it builds at once (obvhs's PLOC arrays, its binary
+/// tree, the 8-wide conversion's cost table, the items' boxes): fitted as 218 B (see
+/// [`BUILD_OVERHEAD`]), rounded up.
+pub const BUILD_BYTES_PER_ITEM: f64 = 300.0;
+
+/// Items the compact tree's builder holds at once at most: [`crate::accel::CHUNKS_AT_ONCE`]
+/// chunks of [`crate::accel::CHUNK`] (one item per link).
+pub const BUILD_ITEMS: u64 = (crate::accel::CHUNK * crate::accel::CHUNKS_AT_ONCE) as u64;
 
 /// Bytes a process needs whatever the scene (code, thread stacks, buffers).
 pub const BASE_BYTES: u64 = 16 << 20;
@@ -131,9 +141,15 @@ pub struct PerLink {
 }
 
 impl PerLink {
-    /// Peak bytes per link of loading and building ([module docs](self)).
+    /// Peak bytes per link of loading and building, the builder's buffers aside ([module
+    /// docs](self)).
     pub fn peak(&self) -> f64 {
         self.scene + self.tracer * (1.0 + BUILD_OVERHEAD)
+    }
+
+    /// Peak bytes of loading and building `links` links, the base aside ([module docs](self)).
+    pub fn needed(&self, links: u64) -> f64 {
+        links as f64 * self.peak() + links.min(BUILD_ITEMS) as f64 * BUILD_BYTES_PER_ITEM
     }
 }
 
@@ -168,7 +184,7 @@ impl fmt::Display for TooLarge {
         write!(
             f,
             "{}: the scene needs about {:.2} GiB ({} links × {:.0} B: scene {:.1} B + primitives and tree \
-             {:.1} B, built with {:.0}% more at the peak), more than the {:.2} GiB available ({}); \
+             {:.1} B, built with {:.0}% more and {:.0} B per link built at once), more than the {:.2} GiB available ({}); \
              load a part of it with --subsample F (F ≤ {share}) or --max-streamlines {n}, \
              or set --memory-limit BYTES",
             self.file,
@@ -178,6 +194,7 @@ impl fmt::Display for TooLarge {
             self.per_link.scene,
             self.per_link.tracer,
             100.0 * BUILD_OVERHEAD,
+            BUILD_BYTES_PER_ITEM,
             gib(self.available.0),
             self.available.1,
         )
@@ -194,7 +211,7 @@ pub fn check(
     per_link: PerLink,
     available: (u64, String),
 ) -> Result<u64, TooLarge> {
-    let needed = (links as f64 * per_link.peak()) as u64 + BASE_BYTES;
+    let needed = per_link.needed(links) as u64 + BASE_BYTES;
     if needed > available.0 {
         return Err(TooLarge { file: file.to_string(), links, streamlines, per_link, needed, available });
     }

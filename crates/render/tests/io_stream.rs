@@ -174,8 +174,10 @@ fn header_counts() {
 #[test]
 fn too_large_names_the_figures_and_the_way_out() {
     let per_link = PerLink { scene: 48.0, tracer: 100.0 };
-    // Peak per link 48 + 100·(1 + BUILD_OVERHEAD), plus the base.
-    let peak = 48.0 + 100.0 * (1.0 + estimate::BUILD_OVERHEAD);
+    // Peak per link 48 + 100·(1 + BUILD_OVERHEAD), plus the builder's bytes for each link (10⁶
+    // links are built at once: fewer than BUILD_ITEMS), plus the base.
+    const { assert!(estimate::BUILD_ITEMS >= 1_000_000) };
+    let peak = 48.0 + 100.0 * (1.0 + estimate::BUILD_OVERHEAD) + estimate::BUILD_BYTES_PER_ITEM;
     let need = (1e6 * peak) as u64 + estimate::BASE_BYTES;
     let kept = (1_000_000, Some(10_000));
     assert_eq!(estimate::check("f.trk", kept, per_link, (need, "test".into())), Ok(need));

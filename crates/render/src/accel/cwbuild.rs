@@ -26,6 +26,13 @@ pub(crate) const MAX_DEPTH: usize = 31;
 
 /// An 8-wide BVH over `aabbs` no deeper than [`MAX_DEPTH`] (see the module docs).
 pub(crate) fn build<T: Boundable>(aabbs: &[T]) -> CwBvh {
+    build_within(aabbs, MAX_DEPTH)
+}
+
+/// [`build`], falling back to the median tree where PLOC's is deeper than `max_depth` (for a
+/// tree that goes under other nodes: the `chunked` module). The fallback's depth is at most
+/// `⌈log₂ aabbs.len()⌉` whatever `max_depth` is.
+pub(crate) fn build_within<T: Boundable>(aabbs: &[T], max_depth: usize) -> CwBvh {
     if aabbs.is_empty() {
         return CwBvh::default();
     }
@@ -40,7 +47,7 @@ pub(crate) fn build<T: Boundable>(aabbs: &[T]) -> CwBvh {
     );
     ReinsertionOptimizer::default().run(&mut bvh2, p.reinsertion_batch_ratio, None);
     let cw = bvh2_to_cwbvh(&bvh2, leaf, true, false);
-    if depth(&cw) <= MAX_DEPTH {
+    if depth(&cw) <= max_depth {
         return cw;
     }
     bvh2_to_cwbvh(&median_bvh2(aabbs), leaf, true, false)

@@ -32,6 +32,7 @@ use tubecast::csg::Tagged;
 use tubecast::Ray;
 use tubecast::V3;
 
+mod chunked;
 mod cluster;
 mod cwbuild;
 pub mod grid;
@@ -41,6 +42,7 @@ mod table;
 mod tracer;
 mod wide;
 
+pub use chunked::{CHUNK, CHUNKS_AT_ONCE};
 pub use table::{closest_table, crossings_table, hit_table, MISS_ROW};
 pub use tracer::Tracer;
 pub use wide::WideBvh;
@@ -134,13 +136,22 @@ impl Frame {
 
     /// The frame of items with world boxes `boxes` and their padded `f32` boxes.
     fn of_boxes(boxes: &[([f64; 3], [f64; 3])]) -> (Self, Vec<BoxOf>) {
+        let frame = Self::bounding(boxes.iter().copied());
+        let aabbs = boxes.iter().map(|&b| BoxOf(frame.padded(b))).collect();
+        (frame, aabbs)
+    }
+
+    /// The frame of items with world boxes `boxes` (without storing them).
+    fn bounding(boxes: impl Iterator<Item = ([f64; 3], [f64; 3])>) -> Self {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
+        let mut any = false;
         for (a, b) in boxes {
             lo = std::array::from_fn(|i| lo[i].min(a[i]));
             hi = std::array::from_fn(|i| hi[i].max(b[i]));
+            any = true;
         }
-        if boxes.is_empty() {
+        if !any {
             lo = [0.0; 3];
             hi = [0.0; 3];
         }
@@ -154,14 +165,19 @@ impl Frame {
         // and it keeps every f32 quantity of a traversal far from obvhs's absolute constants:
         // a scene 1e-6 across was missed by the wide BVH, a fuzz finding).
         let scale = 2f64.powi(-(diag.max(f64::MIN_POSITIVE).log2().round() as i32).clamp(-1000, 1000));
-        let to32 = |v: [f64; 3], s: f64| {
-            let f = |i: usize| ((v[i] - centre[i] + s) * scale) as f32;
-            Vec3A::new(f(0), f(1), f(2))
-        };
-        let aabbs: Vec<BoxOf> = boxes.iter().map(|(a, b)| BoxOf(Aabb::new(to32(*a, -pad), to32(*b, pad)))).collect();
         let lo = std::array::from_fn(|i| lo[i] - 2.0 * pad);
         let hi = std::array::from_fn(|i| hi[i] + 2.0 * pad);
-        (Self { centre, lo, hi, pad, scale, any: !boxes.is_empty() }, aabbs)
+        Self { centre, lo, hi, pad, scale, any }
+    }
+
+    /// The padded `f32` box, in obvhs coordinates, of an item with world box `(a, b)`.
+    #[inline]
+    fn padded(&self, (a, b): ([f64; 3], [f64; 3])) -> Aabb {
+        let to32 = |v: [f64; 3], s: f64| {
+            let f = |i: usize| ((v[i] - self.centre[i] + s) * self.scale) as f32;
+            Vec3A::new(f(0), f(1), f(2))
+        };
+        Aabb::new(to32(a, -self.pad), to32(b, self.pad))
     }
 
     /// Clip the ray's line restricted to distances `[s_lo, s_hi]` along the unit direction to

@@ -10,6 +10,7 @@
 //! tracer's own primitives ([`Tracer::prim`]) bit for bit: the same exact kernel results,
 //! only visited in another order.
 
+use super::chunked::CHUNK;
 use super::cluster::Clusters;
 use super::{Bvh, Frame, Hit, Tracer};
 use crate::scene::{Model, Prim, Scene, SceneError};
@@ -64,7 +65,7 @@ impl WideBvh {
     /// Build over `prims`, each stored whole (obvhs PLOC, medium quality, then collapsed to 8
     /// wide). An empty list gives a tree that every ray misses.
     pub fn build(prims: Vec<Prim>) -> Self {
-        Self::assemble(prims, Clusters::default())
+        Self::assemble(prims, Clusters::default(), CHUNK)
     }
 
     /// Build over the primitives of `model` for `scene`, the compact way: with
@@ -74,6 +75,27 @@ impl WideBvh {
     /// models are stored whole as [`Self::build`] stores them. Errors: the spline model's, and
     /// [`SceneError::TooManyNodes`] for 2²⁸ or more runs of links (over 2·10⁸ isolated links).
     pub fn from_scene(scene: &Scene, model: Model) -> Result<Self, SceneError> {
+        Self::from_scene_chunked(scene, model, CHUNK)
+    }
+
+    /// [`Self::from_scene`], building the tree in spatial chunks of at most `chunk` items
+    /// ([`CHUNK`] there; clamped to `1..=2²⁴`) joined under top nodes, so that the builder's
+    /// buffers (about 300 bytes per item) are held for two chunks at a time, not for the whole
+    /// scene. At most `chunk` items the tree is the unchunked one; otherwise it is another tree
+    /// over the same primitives, with the same answers.
+    ///
+    /// ```
+    /// use tubecast::{Ray, V3};
+    /// use tubecast_render::accel::{Tracer, WideBvh};
+    /// use tubecast_render::scene::{generate, Model, Scene};
+    ///
+    /// let scene = Scene::from_polylines(&generate::bundle(20, 10, 1), 0.05, "b").unwrap();
+    /// let ray = Ray::new(V3::new(0.0, 0.0, -100.0), V3::new(0.0, 0.0, 1.0));
+    /// let whole = WideBvh::from_scene(&scene, Model::Links).unwrap();
+    /// let chunked = WideBvh::from_scene_chunked(&scene, Model::Links, 16).unwrap();
+    /// assert_eq!(chunked.closest_hit(&ray).map(|h| h.t), whole.closest_hit(&ray).map(|h| h.t));
+    /// ```
+    pub fn from_scene_chunked(scene: &Scene, model: Model, chunk: usize) -> Result<Self, SceneError> {
         match model {
             Model::Links => {
                 let (runs, single) = Clusters::group(scene);
@@ -81,9 +103,9 @@ impl WideBvh {
                     // An item addresses a cluster in 28 bits (`WHOLE`).
                     return Err(SceneError::TooManyNodes { file: "scene (2²⁸ or more runs of links)".into() });
                 }
-                Ok(Self::assemble(single, Clusters::from_runs(scene, &runs)))
+                Ok(Self::assemble(single, Clusters::from_runs(scene, &runs), chunk))
             }
-            Model::Splines => Ok(Self::build(scene.spline_primitives()?)),
+            Model::Splines => Ok(Self::assemble(scene.spline_primitives()?, Clusters::default(), chunk)),
         }
     }
 
@@ -99,27 +121,31 @@ impl WideBvh {
     }
 
     /// The tree over whole primitives and pieces of clusters (runs of up to `piece` links of a
-    /// cluster: the tree's items), all put in leaf order (a cluster where its first piece is).
-    fn assemble(prims: Vec<Prim>, clusters: Clusters) -> Self {
+    /// cluster: the tree's items), all put in leaf order (a cluster where its first piece is),
+    /// built in chunks of `chunk` items (`chunked` module). The items' boxes are computed where
+    /// they are needed, never all stored in `f64`.
+    fn assemble(prims: Vec<Prim>, clusters: Clusters, chunk: usize) -> Self {
         let piece = PIECE;
         let np = prims.len();
         let pieces: Vec<(u32, u32)> = (0..clusters.len())
             .flat_map(|c| (0..clusters.links(c)).step_by(piece).map(move |i| (c as u32, i as u32)))
             .collect();
         let end = |c: usize, i: usize| (i + piece).min(clusters.links(c));
-        let boxes: Vec<_> = prims
-            .iter()
-            .map(Prim::aabb)
-            .chain(pieces.iter().map(|&(c, i)| clusters.aabb(c as usize, i as usize, end(c as usize, i as usize))))
-            .collect();
-        let (frame, aabbs) = Frame::of_boxes(&boxes);
-        drop(boxes);
-        if aabbs.is_empty() {
+        let world = |j: usize| match j.checked_sub(np) {
+            None => prims[j].aabb(),
+            Some(k) => {
+                let (c, i) = (pieces[k].0 as usize, pieces[k].1 as usize);
+                clusters.aabb(c, i, end(c, i))
+            }
+        };
+        let n = np + pieces.len();
+        let frame = Frame::bounding((0..n).map(world));
+        if n == 0 {
             return Self { bvh: CwBvh::default(), items: Vec::new(), prims, clusters, frame, piece };
         }
-        // obvhs PLOC, medium quality, with a depth guard for degenerate scenes (cwbuild.rs).
-        let mut bvh = super::cwbuild::build(&aabbs);
-        drop(aabbs);
+        // obvhs PLOC, medium quality, with a depth guard for degenerate scenes (cwbuild.rs), in
+        // spatial chunks for large scenes (chunked.rs).
+        let mut bvh = super::chunked::build(n, |j| frame.padded(world(j)), chunk);
         // obvhs reserves one node per item; a node holds up to eight children (of up to three
         // items each), so most of that is spare: give it back.
         bvh.nodes.shrink_to_fit();
@@ -143,6 +169,7 @@ impl WideBvh {
                 }
             })
             .collect();
+        drop((order, pieces, new_c));
         let clusters = clusters.reordered(old_c.into_iter());
         Self { bvh, items, prims: whole, clusters, frame, piece }
     }
@@ -157,6 +184,12 @@ impl WideBvh {
     /// Number of nodes (each of up to eight children).
     pub fn node_count(&self) -> usize {
         self.bvh.nodes.len()
+    }
+
+    /// The obvhs tree (for the tests of its build).
+    #[cfg(test)]
+    pub(crate) fn tree(&self) -> &CwBvh {
+        &self.bvh
     }
 
     /// Number of clusters of links (0 when built by [`Self::build`]).
@@ -298,7 +331,7 @@ impl Tracer for WideBvh {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::scene::generate::{self, Rng};
     use crate::scene::{Model, Scene};
@@ -317,7 +350,7 @@ mod tests {
 
     /// A ray aimed near a random node of `scene`: from 40 away (`k` even), or from the node
     /// itself (inside).
-    fn aim(rng: &mut Rng, scene: &Scene, k: usize) -> Ray<f64> {
+    pub(in crate::accel) fn aim(rng: &mut Rng, scene: &Scene, k: usize) -> Ray<f64> {
         let node = scene.nodes[(rng.uniform() * scene.nodes.len() as f64) as usize].pos;
         let p = V3::from(node) + V3::from(rng.unit()) * rng.range(0.0, 0.1);
         let d = V3::from(rng.unit()) * rng.range(0.5, 2.0);
