@@ -36,6 +36,7 @@ mod speed;
 mod thin;
 mod voxel;
 mod voxel_ao;
+mod voxel_clock;
 mod voxel_levels;
 
 pub use mesh::run_mesh;
