@@ -38,6 +38,7 @@ mod voxel;
 mod voxel_ao;
 mod voxel_clock;
 mod voxel_levels;
+mod voxel_quantized;
 mod voxel_timing;
 
 pub use mesh::run_mesh;
@@ -49,6 +50,7 @@ pub use speed::run_speed;
 pub use thin::run_thin;
 pub use voxel::run_voxel;
 pub use voxel_ao::run_voxel_ao;
+pub use voxel_quantized::run_voxel_quantized;
 pub use voxel_timing::run_voxel_timing;
 
 use std::path::{Path, PathBuf};
