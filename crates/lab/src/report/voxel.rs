@@ -182,36 +182,44 @@ fn markdown(rows: &[Row], opts: &ReportOptions) -> String {
         opts.seed, opts.image, opts.image, opts.threads
     );
     md.push_str(
-        "| links | mode | grid build (ms) | grid render (ms) | BVH build (ms) | BVH render (ms) | Embree build (ms) \
-         | Embree render (ms) | grid / BVH | grid / Embree | BVH / Embree | coverage ≠ BVH: grid / Embree |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|---|\n",
+        "| links | mode | grid build (ms) | grid render (ms) | BVH build (ms) | BVH render (ms) | grid frame / BVH \
+         frame |\n|---|---|---|---|---|---|---|\n",
     );
     let find =
         |accel: &str, g: &Row| rows.iter().find(|r| r.accel == accel && r.links == g.links && r.opacity == g.opacity);
     let frame = |r: &Row| r.build_s + r.render_s;
-    let ms = |r: Option<&Row>, f: fn(&Row) -> f64| r.map_or("—".to_string(), |r| fmt_num(f(r) * 1e3));
-    let ratio = |a: Option<&Row>, b: Option<&Row>| match (a, b) {
-        (Some(a), Some(b)) => format!("{:.2}", frame(a) / frame(b)),
-        _ => "—".into(),
-    };
+    let mode = |r: &Row| if r.opacity < 1.0 { "transparent" } else { "opaque" };
     for g in rows.iter().filter(|r| r.accel == "grid") {
-        let (b, e) = (find("bvh", g), find("embree", g));
+        let Some(b) = find("bvh", g) else { continue };
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.1e} / {} |",
+            "| {} | {} | {} | {} | {} | {} | {:.2} |",
             g.links,
-            if g.opacity < 1.0 { "transparent" } else { "opaque" },
+            mode(g),
             fmt_num(g.build_s * 1e3),
             fmt_num(g.render_s * 1e3),
-            ms(b, |r| r.build_s),
-            ms(b, |r| r.render_s),
-            ms(e, |r| r.build_s),
-            ms(e, |r| r.render_s),
-            ratio(Some(g), b),
-            ratio(Some(g), e),
-            ratio(b, e),
+            fmt_num(b.build_s * 1e3),
+            fmt_num(b.render_s * 1e3),
+            frame(g) / frame(b)
+        );
+    }
+    md.push_str(
+        "\n| Embree: links | mode | Embree build (ms) | Embree render (ms) | grid / Embree | BVH / Embree | coverage \
+         ≠ BVH: grid / Embree |\n|---|---|---|---|---|---|---|\n",
+    );
+    for e in rows.iter().filter(|r| r.accel == "embree") {
+        let (Some(g), Some(b)) = (find("grid", e), find("bvh", e)) else { continue };
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} | {:.2} | {:.2} | {:.1e} / {:.1e} |",
+            e.links,
+            mode(e),
+            fmt_num(e.build_s * 1e3),
+            fmt_num(e.render_s * 1e3),
+            frame(g) / frame(e),
+            frame(b) / frame(e),
             g.coverage_diff,
-            e.map_or("—".into(), |e| format!("{:.1e}", e.coverage_diff)),
+            e.coverage_diff
         );
     }
     md
