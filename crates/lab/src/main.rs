@@ -1,7 +1,7 @@
 //! `tubecast-lab`: writes the reports (SVG charts, markdown, CSV) into a folder.
 //!
 //! ```text
-//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|thin|mesh|mesh-real|peers|voxel|voxel-ao|all|tables [--out DIR]
+//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|thin|mesh|mesh-real|peers|voxel|voxel-ao|voxel-quantized|voxel-timing|all|tables [--out DIR]
 //!     [--seed N] [--quick] [--big] [--threads N] [--quiet]
 //! ```
 //!
@@ -63,6 +63,10 @@ enum Which {
     Tables,
     /// Ambient occlusion: voxel cone tracing vs rays, error against cost.
     VoxelAo,
+    /// Kanzler's quantized lines: rendering from them, memory, and their LoD for AO.
+    VoxelQuantized,
+    /// Voxelization and pyramid build timings by repeated median.
+    VoxelTiming,
     /// Every report this build has (peers only with feature `embree`).
     All,
 }
@@ -89,6 +93,12 @@ fn jobs(which: Which) -> Result<Vec<(&'static str, Job)>, String> {
     }
     if all || which == Which::VoxelAo {
         jobs.push(("voxel-ao", report::run_voxel_ao));
+    }
+    if all || which == Which::VoxelQuantized {
+        jobs.push(("voxel-quantized", report::run_voxel_quantized));
+    }
+    if all || which == Which::VoxelTiming {
+        jobs.push(("voxel-timing", report::run_voxel_timing));
     }
     if all || which == Which::Mesh {
         jobs.push(("mesh", report::run_mesh));

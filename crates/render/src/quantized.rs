@@ -20,6 +20,9 @@
 use crate::io::Polyline;
 use tubecast::{voxel, V3};
 
+mod lod;
+pub use lod::{Lod, LodLevel, RepLine};
+
 /// One quantized segment: the voxel it lies in, its two packed ends, its source polyline, and
 /// the chord deviation `D` of the piece it replaces.
 ///
@@ -220,6 +223,35 @@ impl QuantizedLines {
             local[(axis + 2) % 3] = idx[1];
         }
         std::array::from_fn(|i| self.lo[i] + (c[i] as f64 + local[i]) * self.h)
+    }
+
+    /// The quantized lines as polylines to render: each source line's segments chained where
+    /// one's end decodes to the next one's start (always, inside the grid: both snap to the
+    /// same bin of the shared face), every point with radius `r`.
+    ///
+    /// ```
+    /// use tubecast_render::io::Polyline;
+    /// use tubecast_render::quantized::QuantizedLines;
+    /// let line = Polyline { points: vec![[0.1, 0.2, 0.3], [3.7, 1.4, 0.9]], radii: vec![] };
+    /// let q = QuantizedLines::new(&[line], [0.0; 3], 1.0, [4, 4, 4], 16);
+    /// let p = q.polylines(0.1);
+    /// assert_eq!((p.len(), p[0].points.len()), (1, 6)); // 5 segments, one chain
+    /// ```
+    pub fn polylines(&self, r: f64) -> Vec<Polyline> {
+        let mut out: Vec<Polyline> = Vec::new();
+        let mut last: Option<(u32, [f64; 3])> = None;
+        for s in &self.segments {
+            let (a, b) = (self.decode(s.ends[0], s.voxel), self.decode(s.ends[1], s.voxel));
+            match (last, out.last_mut()) {
+                (Some((line, end)), Some(p)) if line == s.line && end == a => p.points.push(b),
+                _ => out.push(Polyline { points: vec![a, b], radii: Vec::new() }),
+            }
+            last = Some((s.line, b));
+        }
+        for p in &mut out {
+            p.radii = vec![r; p.points.len()];
+        }
+        out
     }
 
     /// Bits of one end in a packed store: face (3) and the bin indices.

@@ -93,6 +93,7 @@ extern "C" {
     fn rtcAttachGeometry(scene: RtcScene, geometry: RtcGeometry) -> u32;
     fn rtcReleaseGeometry(geometry: RtcGeometry);
     fn rtcIntersect1(scene: RtcScene, context: *mut RtcIntersectContext, rayhit: *mut RtcRayHit);
+    fn rtcOccluded1(scene: RtcScene, context: *mut RtcIntersectContext, ray: *mut RtcRay);
     fn rtcSetDeviceMemoryMonitorFunction(
         device: RtcDevice,
         monitor: Option<unsafe extern "C" fn(*mut c_void, isize, bool) -> bool>,
@@ -171,8 +172,23 @@ unsafe impl Sync for Device {}
 impl Device {
     /// A device with the default configuration.
     pub fn new() -> Result<std::sync::Arc<Self>, EmbreeError> {
-        // SAFETY: a null config string is allowed (default configuration).
-        let device = unsafe { rtcNewDevice(std::ptr::null()) };
+        Self::with_config(None)
+    }
+
+    /// A device whose builds use at most `threads` worker threads (Embree's `threads=N`
+    /// configuration), so that a build can be timed against one on as many rayon threads.
+    pub fn with_threads(threads: usize) -> Result<std::sync::Arc<Self>, EmbreeError> {
+        Self::with_config(Some(format!("threads={}", threads.max(1))))
+    }
+
+    fn with_config(config: Option<String>) -> Result<std::sync::Arc<Self>, EmbreeError> {
+        let config = config
+            .map(|c| std::ffi::CString::new(c).map_err(|_| EmbreeError("config string holds a NUL".into())))
+            .transpose()?;
+        let ptr = config.as_ref().map_or(std::ptr::null(), |c| c.as_ptr());
+        // SAFETY: `ptr` is null (default configuration) or a NUL-terminated string that lives
+        // until the call returns (`config` is dropped at the end of this function).
+        let device = unsafe { rtcNewDevice(ptr) };
         if device.is_null() {
             return Err(EmbreeError("rtcNewDevice failed (is libembree3 installed and the CPU supported?)".into()));
         }
@@ -381,6 +397,18 @@ impl Scene {
     pub fn count_hits(&self, rays: &[([f32; 3], [f32; 3])]) -> usize {
         let _ftz = FlushDenormals::new();
         rays.iter().filter(|(o, d)| self.intersect_raw(*o, *d, 0.0, f32::INFINITY).is_some()).count()
+    }
+
+    /// True when the ray `o + t·d` meets any segment with `t ∈ [t_near, t_far]`
+    /// (`rtcOccluded1`: the first hit found, not the closest).
+    pub fn occluded(&self, o: [f32; 3], d: [f32; 3], t_near: f32, t_far: f32) -> bool {
+        let _ftz = FlushDenormals::new();
+        let mut ctx = RtcIntersectContext { flags: 0, filter: None, inst_id: [INVALID_ID] };
+        let mut ray = RtcRay { org: o, tnear: t_near, dir: d, time: 0.0, tfar: t_far, mask: u32::MAX, id: 0, flags: 0 };
+        // SAFETY: as in `intersect_raw`; `ray` has the C layout of RTCRay (layout test) and
+        // lives for the call. Embree sets `tfar` to -inf when it finds a hit.
+        unsafe { rtcOccluded1(self.scene, &mut ctx, &mut ray) };
+        ray.tfar == f32::NEG_INFINITY
     }
 
     #[inline]

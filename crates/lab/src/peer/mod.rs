@@ -15,6 +15,7 @@
 //! curve (not a sphere), so they are a different surface and are used for speed only.
 
 pub mod embree;
+pub mod embree_tracer;
 
 use tubecast::{Ray, RoundCone, V3};
 use tubecast_render::render::Camera;

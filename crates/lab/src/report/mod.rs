@@ -36,7 +36,10 @@ mod speed;
 mod thin;
 mod voxel;
 mod voxel_ao;
+mod voxel_clock;
 mod voxel_levels;
+mod voxel_quantized;
+mod voxel_timing;
 
 pub use mesh::run_mesh;
 pub use mesh_real::run_mesh_real;
@@ -47,6 +50,8 @@ pub use speed::run_speed;
 pub use thin::run_thin;
 pub use voxel::run_voxel;
 pub use voxel_ao::run_voxel_ao;
+pub use voxel_quantized::run_voxel_quantized;
+pub use voxel_timing::run_voxel_timing;
 
 use std::path::{Path, PathBuf};
 

@@ -1,13 +1,14 @@
 //! The dynamic-scene report: every frame moves the lines, so every frame rebuilds its
 //! acceleration structure; build + render per frame for the voxel grid
-//! (`tubecast_render::accel::grid::Grid`) against the BVH, opaque and transparent.
+//! (`tubecast_render::accel::grid::Grid`) against the BVH and (feature `embree`) Embree 3,
+//! opaque and transparent (Embree: opaque only).
 
 use super::chart::{self, Chart, Marker, Pt, Series, XAxis};
 use super::runs::CHART;
+use super::voxel_clock::Clock;
 use super::{ensure_dir, fmt_num, machine, progress, write_text, ReportError, ReportFiles, ReportOptions};
 use std::fmt::Write as _;
 use std::path::Path;
-use std::time::Instant;
 use tubecast_render::accel::grid::Grid;
 use tubecast_render::accel::{Bvh, Tracer};
 use tubecast_render::io::Polyline;
@@ -17,7 +18,8 @@ use tubecast_render::scene::{generate, Prim, Scene};
 /// Frames per configuration (the median is reported).
 const FRAMES: usize = 3;
 
-/// One measured configuration: median build and render time per frame, seconds.
+/// One measured configuration: median build and render time per frame, seconds, and the
+/// fraction of pixels whose coverage (hit or miss) differs from the BVH's in the last frame.
 #[derive(Clone, Copy, Debug)]
 struct Row {
     links: usize,
@@ -25,10 +27,37 @@ struct Row {
     opacity: f64,
     build_s: f64,
     render_s: f64,
+    coverage_diff: f64,
 }
 
-type Build = fn(Vec<Prim>) -> Box<dyn Tracer + Send>;
-const ACCELS: [(&str, Build); 2] = [("grid", |p| Box::new(Grid::build(p))), ("bvh", |p| Box::new(Bvh::build(p)))];
+/// Builds a tracer over one frame's primitives.
+type Build<'a> = Box<dyn Fn(Vec<Prim>) -> Result<Box<dyn Tracer + Send>, ReportError> + Send + Sync + 'a>;
+
+/// The accelerators of the report: grid, BVH and (feature `embree`) Embree 3 on as many threads
+/// as ours. The bool: whether it can render transparent frames (Embree cannot, see
+/// `crate::peer::embree_tracer`).
+fn accels<'a>(threads: usize) -> Result<Vec<(&'static str, bool, Build<'a>)>, ReportError> {
+    #[cfg_attr(not(feature = "embree"), allow(unused_mut))]
+    let mut v: Vec<(&'static str, bool, Build<'a>)> = vec![
+        ("grid", true, Box::new(|p| Ok(Box::new(Grid::build(p)) as Box<dyn Tracer + Send>))),
+        ("bvh", true, Box::new(|p| Ok(Box::new(Bvh::build(p)) as Box<dyn Tracer + Send>))),
+    ];
+    #[cfg(feature = "embree")]
+    {
+        use crate::peer::{embree::Device, embree_tracer::EmbreeTracer};
+        let dev = Device::with_threads(threads).map_err(|e| ReportError::Peer(e.to_string()))?;
+        v.push((
+            "embree",
+            false,
+            Box::new(move |p| {
+                let t = EmbreeTracer::build(&dev, p).map_err(|e| ReportError::Peer(e.to_string()))?;
+                Ok(Box::new(t) as Box<dyn Tracer + Send>)
+            }),
+        ));
+    }
+    let _ = threads;
+    Ok(v)
+}
 
 /// Russig's bundle (84 links per fibre) with every fibre swayed by the frame number.
 fn frame_scene(base: &[Polyline], frame: usize) -> Result<Scene, ReportError> {
@@ -44,29 +73,33 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// Median build and render seconds of `FRAMES` moved frames of `base` with `build`.
+/// Median build and render seconds of `FRAMES` moved frames of `base` with `build`, and the
+/// last frame's per-pixel coverage (alpha > 0).
 fn measure(
     base: &[Polyline],
-    build: Build,
+    build: &Build,
     opts: &Options,
     image: u32,
     pool: &rayon::ThreadPool,
-) -> Result<(f64, f64), ReportError> {
-    let (mut tb, mut tr) = (Vec::new(), Vec::new());
+) -> Result<(f64, f64, Vec<bool>), ReportError> {
+    let (mut tb, mut tr, mut cover) = (Vec::new(), Vec::new(), Vec::new());
     for f in 0..FRAMES {
         let scene = frame_scene(base, f)?;
         let prims = scene.primitives();
         let st = scene.stats_of(&prims);
         let cam = Camera::fit(st.bounds.0, st.bounds.1, 40.0, image, image)
             .map_err(|e| ReportError::Render(e.to_string()))?;
-        let t0 = Instant::now();
-        let tracer = pool.install(|| build(prims));
-        let t1 = Instant::now();
-        pool.install(|| render(&scene, tracer.as_ref(), &cam, opts)).map_err(|e| ReportError::Render(e.to_string()))?;
-        tb.push((t1 - t0).as_secs_f64());
-        tr.push(t1.elapsed().as_secs_f64());
+        let t0 = Clock::now();
+        let tracer = pool.install(|| build(prims))?;
+        let t1 = Clock::now();
+        let img = pool
+            .install(|| render(&scene, tracer.as_ref(), &cam, opts))
+            .map_err(|e| ReportError::Render(e.to_string()))?;
+        tb.push(t1.since(t0));
+        tr.push(Clock::now().since(t1));
+        cover = img.alpha.iter().map(|&a| a > 0.0).collect();
     }
-    Ok((median(tb), median(tr)))
+    Ok((median(tb), median(tr), cover))
 }
 
 /// Dynamic scenes: writes `voxel.md` and `voxel.svg` into `out`. Bundles of 10⁴ links up to
@@ -81,17 +114,25 @@ pub fn run_voxel(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
         .num_threads(opts.threads)
         .build()
         .map_err(|e| ReportError::Render(format!("thread pool: {e}")))?;
-    let bar = progress(opts, sizes.len() as u64 * 4, "voxel");
+    let accels = accels(opts.threads)?;
+    let bar = progress(opts, sizes.len() as u64 * 2 * accels.len() as u64, "voxel");
     let mut rows = Vec::new();
     for &links in &sizes {
         let base = generate::bundle(links.div_ceil(84), 84, opts.seed);
         for opacity in [1.0, 0.3] {
             let o = Options { opacity, ..Options::default() };
-            for (accel, build) in ACCELS {
-                let (build_s, render_s) = measure(&base, build, &o, opts.image, &pool)?;
-                rows.push(Row { links: base.len() * 84, accel, opacity, build_s, render_s });
+            let mut covers: Vec<(&str, Vec<bool>)> = Vec::new();
+            for (accel, transparent, build) in &accels {
+                if opacity < 1.0 && !transparent {
+                    continue;
+                }
+                let (build_s, render_s, cover) = measure(&base, build, &o, opts.image, &pool)?;
+                let links = base.len() * 84;
+                rows.push(Row { links, accel, opacity, build_s, render_s, coverage_diff: 0.0 });
+                covers.push((accel, cover));
                 bar.inc(1);
             }
+            coverage_against_bvh(&mut rows, &covers);
         }
     }
     bar.finish_and_clear();
@@ -105,10 +146,23 @@ pub fn run_voxel(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
     Ok(ReportFiles { markdown: mdp, charts: vec![cp] })
 }
 
+/// Sets `coverage_diff` of the last `covers.len()` rows: the fraction of pixels whose coverage
+/// differs from the BVH's.
+fn coverage_against_bvh(rows: &mut [Row], covers: &[(&str, Vec<bool>)]) {
+    let Some((_, bvh)) = covers.iter().find(|(a, _)| *a == "bvh") else { return };
+    let n = rows.len();
+    for (row, (_, c)) in rows[n - covers.len()..].iter_mut().zip(covers) {
+        let diff = c.iter().zip(bvh).filter(|(a, b)| a != b).count();
+        row.coverage_diff = diff as f64 / bvh.len().max(1) as f64;
+    }
+}
+
 fn markdown(rows: &[Row], opts: &ReportOptions) -> String {
     let mut md = format!(
-        "# Dynamic line sets: voxel grid vs BVH\n\nGenerated by `cargo run --release -p tubecast-lab -- voxel` \
-         (plain release build, no RUSTFLAGS).\nMachine: {}.\n\n",
+        "# Dynamic line sets: voxel grid vs BVH vs Embree\n\nGenerated by `cargo run --release -p tubecast-lab \
+         --features embree -- voxel{}` (plain release build, no RUSTFLAGS; without `--features embree` the Embree \
+         columns are empty).\nMachine: {}.\n\n",
+        if opts.max_segments >= 1_000_000 { " --big" } else { "" },
         machine()
     );
     let _ = write!(
@@ -116,26 +170,56 @@ fn markdown(rows: &[Row], opts: &ReportOptions) -> String {
         "Russig's *Bundle* (84 links per fibre, radius 0.12, seed {}) swayed every frame, so every frame rebuilds \
          its structure from scratch: grid (conservative voxelization, cubic cells ≈ 2 per link, each link voxelized \
          once into (voxel, link) pairs, counted, prefix-summed and scattered into per-voxel lists; the walk skips \
-         empty 4³ blocks) or BVH (obvhs PLOC). Per frame: build and one {}×{} render (primary rays, lit), opaque and \
-         transparent (opacity 0.3, CSG union); median of {FRAMES} frames, {} thread(s). Ratio: grid frame / BVH \
-         frame in the same run (below 1: the grid wins).\n\n",
+         empty 4³ blocks), BVH (obvhs PLOC), or Embree 3 (`ROUND_LINEAR_CURVE`, one isolated segment per link, \
+         build quality high, robust flag, device limited to as many threads as ours; its answers are its own `f32` \
+         ones). Per frame: build and one {}×{} render (primary rays, lit) through the same renderer, opaque and \
+         transparent (opacity 0.3, CSG union); median of {FRAMES} frames, {} thread(s); times are process CPU \
+         time (all threads, from `/proc/self/task/*/schedstat`), not wall time, because this machine is shared. Embree has no transparent \
+         rows: its curve intersector reports where a ray enters a segment but not where it leaves, so it cannot \
+         supply the intervals of the CSG union. Ratios: frame (build + render) over frame in the same run (below \
+         1: the first wins). *Coverage ≠ BVH*: the share of pixels of the last frame that one tracer sees as hit \
+         and the BVH as miss or back (the grid's must be 0: same kernels).\n\n",
         opts.seed, opts.image, opts.image, opts.threads
     );
-    md.push_str("| links | mode | grid build (ms) | grid render (ms) | BVH build (ms) | BVH render (ms) | grid frame / BVH frame |\n|---|---|---|---|---|---|---|\n");
+    md.push_str(
+        "| links | mode | grid build (ms) | grid render (ms) | BVH build (ms) | BVH render (ms) | grid frame / BVH \
+         frame |\n|---|---|---|---|---|---|---|\n",
+    );
+    let find =
+        |accel: &str, g: &Row| rows.iter().find(|r| r.accel == accel && r.links == g.links && r.opacity == g.opacity);
+    let frame = |r: &Row| r.build_s + r.render_s;
+    let mode = |r: &Row| if r.opacity < 1.0 { "transparent" } else { "opaque" };
     for g in rows.iter().filter(|r| r.accel == "grid") {
-        let Some(b) = rows.iter().find(|r| r.accel == "bvh" && r.links == g.links && r.opacity == g.opacity) else {
-            continue;
-        };
+        let Some(b) = find("bvh", g) else { continue };
         let _ = writeln!(
             md,
             "| {} | {} | {} | {} | {} | {} | {:.2} |",
             g.links,
-            if g.opacity < 1.0 { "transparent" } else { "opaque" },
+            mode(g),
             fmt_num(g.build_s * 1e3),
             fmt_num(g.render_s * 1e3),
             fmt_num(b.build_s * 1e3),
             fmt_num(b.render_s * 1e3),
-            (g.build_s + g.render_s) / (b.build_s + b.render_s)
+            frame(g) / frame(b)
+        );
+    }
+    md.push_str(
+        "\n| Embree: links | mode | Embree build (ms) | Embree render (ms) | grid / Embree | BVH / Embree | coverage \
+         ≠ BVH: grid / Embree |\n|---|---|---|---|---|---|---|\n",
+    );
+    for e in rows.iter().filter(|r| r.accel == "embree") {
+        let (Some(g), Some(b)) = (find("grid", e), find("bvh", e)) else { continue };
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} | {:.2} | {:.2} | {:.1e} / {:.1e} |",
+            e.links,
+            mode(e),
+            fmt_num(e.build_s * 1e3),
+            fmt_num(e.render_s * 1e3),
+            frame(g) / frame(e),
+            frame(b) / frame(e),
+            g.coverage_diff,
+            e.coverage_diff
         );
     }
     md
@@ -143,13 +227,17 @@ fn markdown(rows: &[Row], opts: &ReportOptions) -> String {
 
 fn frame_chart(rows: &[Row], opts: &ReportOptions) -> Chart {
     let mut series = Vec::new();
-    for (k, (accel, opacity)) in [("grid", 1.0), ("bvh", 1.0), ("grid", 0.3), ("bvh", 0.3)].into_iter().enumerate() {
+    let lines = [("grid", 1.0), ("bvh", 1.0), ("grid", 0.3), ("bvh", 0.3), ("embree", 1.0)];
+    for (k, (accel, opacity)) in lines.into_iter().enumerate() {
         let mode = if opacity < 1.0 { "transparent" } else { "opaque" };
         let points = rows
             .iter()
             .filter(|r| r.accel == accel && r.opacity == opacity)
             .map(|r| Pt { x: r.links as f64, y: (r.build_s + r.render_s) * 1e3, marker: Marker::Dot, text: None })
-            .collect();
+            .collect::<Vec<_>>();
+        if points.is_empty() {
+            continue;
+        }
         series.push(Series { label: format!("{accel} {mode}: build + render"), color: k, points, line: true });
     }
     Chart {

@@ -41,10 +41,10 @@ struct Row {
 
 /// A shaded point `q` (offset off the surface as the renderer does) and its unit normal
 /// facing the camera.
-type Point = (V3<f64>, V3<f64>);
+pub(super) type Point = (V3<f64>, V3<f64>);
 
 /// The primary hits of a `side × side` camera fitted to the scene.
-fn shaded_points(scene: &Scene, bvh: &dyn Tracer, side: u32) -> Result<Vec<Point>, ReportError> {
+pub(super) fn shaded_points(scene: &Scene, bvh: &dyn Tracer, side: u32) -> Result<Vec<Point>, ReportError> {
     let st = scene.stats();
     let cam =
         Camera::fit(st.bounds.0, st.bounds.1, 40.0, side, side).map_err(|e| ReportError::Render(e.to_string()))?;
@@ -64,7 +64,7 @@ fn shaded_points(scene: &Scene, bvh: &dyn Tracer, side: u32) -> Result<Vec<Point
 }
 
 /// Mean and max absolute error and the mean signed error of `est` against `reference`.
-fn errors(est: &[f64], reference: &[f64]) -> (f64, f64, f64) {
+pub(super) fn errors(est: &[f64], reference: &[f64]) -> (f64, f64, f64) {
     let n = est.len().max(1) as f64;
     let d: Vec<f64> = est.iter().zip(reference).map(|(e, r)| e - r).collect();
     // `+ 0.0`: an empty sum is −0.0.
@@ -75,7 +75,7 @@ fn errors(est: &[f64], reference: &[f64]) -> (f64, f64, f64) {
 
 /// Values of `f` on every point and the best time per point (ns) over repetitions within
 /// `budget_ms` (at least one), on this thread.
-fn timed(pts: &[Point], budget_ms: u64, f: impl Fn(usize, &Point) -> f64) -> (Vec<f64>, f64) {
+pub(super) fn timed(pts: &[Point], budget_ms: u64, f: impl Fn(usize, &Point) -> f64) -> (Vec<f64>, f64) {
     let start = Instant::now();
     let per = |t0: Instant| t0.elapsed().as_secs_f64() * 1e9 / pts.len().max(1) as f64;
     let t0 = Instant::now();

@@ -6,7 +6,11 @@
 //! empty), down to a single voxel.
 
 use crate::scene::Scene;
+use rayon::prelude::*;
 use tubecast::voxel::{self, Clip};
+
+/// Links whose contributions are computed in parallel before they are added.
+const CHUNK: usize = 4096;
 use tubecast::{RoundCone, V3};
 
 /// One level: its size and per-voxel occupancy in `[0, 1]`, x fastest.
@@ -78,7 +82,9 @@ impl Pyramid {
         let mut base = Level { dims, values: vec![0.0; cells] };
         let g = |p: V3<f64>| V3::new((p.x - lo[0]) / h, (p.y - lo[1]) / h, (p.z - lo[2]) / h);
         let rmin = r_min / h;
-        for (k, &[a, b]) in scene.links.iter().enumerate() {
+        // One link's (voxel, occupancy) contributions.
+        let contributions = |k: usize, out: &mut Vec<(u32, f32)>| {
+            let [a, b] = scene.links[k];
             let w = scene.link(k);
             let l = RoundCone { a: g(w.a), ra: w.ra / h, b: g(w.b), rb: w.rb / h };
             let along = l.b - l.a;
@@ -88,8 +94,24 @@ impl Pyramid {
             voxel::voxelize_round_cone(&reach, dims, |c| {
                 let x = V3::new(c[0] as f64 + 0.5, c[1] as f64 + 0.5, c[2] as f64 + 0.5);
                 let v = (c[2] as usize * dims[1] as usize + c[1] as usize) * dims[0] as usize + c[0] as usize;
-                base.values[v] += voxel::occupancy(x, &l, n0, n1, rmin) as f32;
+                out.push((v as u32, voxel::occupancy(x, &l, n0, n1, rmin) as f32));
             });
+        };
+        // Contributions are computed in parallel, a chunk of links at a time (bounded memory),
+        // and added in link order: the sums, so the pyramid, are the same bits on any number of
+        // threads.
+        for start in (0..scene.links.len()).step_by(CHUNK) {
+            let parts: Vec<Vec<(u32, f32)>> = (start..(start + CHUNK).min(scene.links.len()))
+                .into_par_iter()
+                .map(|k| {
+                    let mut out = Vec::new();
+                    contributions(k, &mut out);
+                    out
+                })
+                .collect();
+            for (v, o) in parts.into_iter().flatten() {
+                base.values[v as usize] += o;
+            }
         }
         base.values.iter_mut().for_each(|v| *v = v.min(1.0));
         let mut levels = vec![base];
@@ -100,21 +122,23 @@ impl Pyramid {
         Self { levels }
     }
 
-    /// The next coarser level: means of 2×2×2 voxels.
+    /// The next coarser level: means of 2×2×2 voxels, one z-slice per task.
     fn halve(fine: &Level) -> Level {
         let dims = fine.dims.map(|d| d.div_ceil(2));
-        let mut values = Vec::with_capacity(dims.iter().map(|&d| d as usize).product());
-        for z in 0..dims[2] {
+        let slice = dims[0] as usize * dims[1] as usize;
+        let mut values = vec![0.0; slice * dims[2] as usize];
+        values.par_chunks_mut(slice).enumerate().for_each(|(z, out)| {
+            let z = z as u32;
             for y in 0..dims[1] {
                 for x in 0..dims[0] {
                     let mut s = 0.0;
                     for k in 0..8u32 {
                         s += fine.get([2 * x + (k & 1), 2 * y + ((k >> 1) & 1), 2 * z + (k >> 2)]);
                     }
-                    values.push(s / 8.0);
+                    out[(y * dims[0] + x) as usize] = s / 8.0;
                 }
             }
-        }
+        });
         Level { dims, values }
     }
 }
