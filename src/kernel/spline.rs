@@ -83,7 +83,13 @@
 //! exact: its proof is there), and the Polynomial solver forms `P` only when one of `g`'s
 //! breakpoints is real (they hold `g`'s maxima, so otherwise the line misses the tube deflated
 //! by `E`: a miss is right). At `t_v = 0` the two expansions of `P` coincide bit for bit and
-//! one cascade serves both. Lanes take an exit only when every lane does, and mask the same
+//! one cascade serves both. `P`'s roots are sought only on the hull of the pieces of `g` next
+//! to its real breakpoints (`Direct::real_hull`, proof there: it holds every point where
+//! `g ≥ 0`, so every critical point that can be the entry or the exit); for a thin tube that
+//! is a short stretch of `[0, 1]` and most cascade brackets hold no sign change. Before all
+//! this a chord-capsule filter (`capsule.rs`, exact, proof there) rejects lines farther than
+//! `max rᵢ + ½|b₁ − (b₀+b₂)/2|` (plus a margin over `E`) from the chord `[b₀, b₂]` with a
+//! dozen dot products. Lanes take an exit only when every lane does, and mask the same
 //! lanes otherwise, so a lane still equals the scalar call.
 //!
 //! The kernel returns the hull `[first entry, last exit]` ([`QuadTube::intersect_with`]). A strongly
@@ -91,12 +97,14 @@
 //! interval per real interval of `g` (each exact: the part of the sweep over a connected
 //! `t`-interval meets the line in one interval), which is what CSG needs.
 
+mod capsule;
 mod direct;
 mod ray_space;
 mod sdf;
 
 pub use sdf::quadratic_tube;
 
+use self::capsule::capsule_misses;
 use self::ray_space::RaySpace;
 use super::roots::Solver;
 use crate::error::GeometryError;
@@ -242,6 +250,18 @@ impl<T: Real> QuadTube<T> {
     /// chosen solver; [`Self::intersect_with`] clips it to the ray.
     #[inline(always)]
     pub fn line_interval_with(&self, ray: &Ray<T>, solver: Solver) -> Interval<T> {
+        // The chord-capsule filter (exact: `capsule.rs`); masking its lanes keeps every lane
+        // equal to the scalar call.
+        let far = capsule_misses(self, ray);
+        if far.all() {
+            return Interval::miss();
+        }
+        self.line_interval_unfiltered(ray, solver).masked(!far)
+    }
+
+    /// [`Self::line_interval_with`] without the capsule filter.
+    #[inline(always)]
+    fn line_interval_unfiltered(&self, ray: &Ray<T>, solver: Solver) -> Interval<T> {
         let Some(rs) = RaySpace::new(self, ray) else {
             return Interval::miss();
         };
@@ -252,14 +272,11 @@ impl<T: Real> QuadTube<T> {
                 // ≥ −τ): the line misses the tube deflated by the band (see "Conditioning"), a
                 // miss is a right answer and P's cascade is skipped.
                 let z = rs.dg.g_breakpoints(Bracket::Newton);
-                let mut real = T::Mask::splat(false);
-                for &t in &z {
-                    real = real | rs.dg.gap_g(t).0.ge(-rs.dg.tau);
-                }
+                let (lo, hi, real) = rs.dg.real_hull(&z);
                 if (real & rs.near).none() {
                     return Interval::miss();
                 }
-                let (bp, n) = rs.p_breakpoints();
+                let (bp, n) = rs.p_breakpoints(lo, hi);
                 let (x, any) = rs.polished_candidates(&bp[..n], &z, T::zero(), T::one(), false);
                 // `& real`: a lane decides as the scalar call does (which returned above).
                 rs.interval(ray, x, any & real, false)
@@ -310,7 +327,7 @@ impl<T: Real> QuadTube<T> {
             let rj = real[j - 1] & real[j];
             cut[j] = !rj | rs.dg.g(z[j]).le(T::zero());
         }
-        let ppoly = if solver == Solver::Polynomial { Some(rs.p_breakpoints()) } else { None };
+        let ppoly = if solver == Solver::Polynomial { Some(rs.p_breakpoints(T::zero(), T::one())) } else { None };
         let mut out = [Interval::miss(); 5];
         for k in 0..5 {
             // Process piece k only where it starts a merged real interval.
