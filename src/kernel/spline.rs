@@ -83,13 +83,9 @@
 //! exact: its proof is there), and the Polynomial solver forms `P` only when one of `g`'s
 //! breakpoints is real (they hold `g`'s maxima, so otherwise the line misses the tube deflated
 //! by `E`: a miss is right). At `t_v = 0` the two expansions of `P` coincide bit for bit and
-//! one cascade serves both. `P`'s roots are sought only on the hull of the pieces of `g` next
-//! to its real breakpoints (`Direct::real_hull`, proof there: it holds every point where
-//! `g ≥ 0`, so every critical point that can be the entry or the exit); for a thin tube that
-//! is a short stretch of `[0, 1]` and most cascade brackets hold no sign change. Before all
-//! this a chord-capsule filter (`capsule.rs`, exact, proof there) rejects lines farther than
-//! `max rᵢ + ½|b₁ − (b₀+b₂)/2|` (plus a margin over `E`) from the chord `[b₀, b₂]` with a
-//! dozen dot products. Lanes take an exit only when every lane does, and mask the same
+//! one cascade serves both. Before all this a chord-capsule filter (`capsule.rs`, exact, proof
+//! there) rejects lines farther than `max rᵢ + ½|b₁ − (b₀+b₂)/2|` (plus a margin over `E`)
+//! from the chord `[b₀, b₂]` with a dozen dot products. Lanes take an exit only when every lane does, and mask the same
 //! lanes otherwise, so a lane still equals the scalar call.
 //!
 //! The kernel returns the hull `[first entry, last exit]` ([`QuadTube::intersect_with`]). A strongly
@@ -272,11 +268,14 @@ impl<T: Real> QuadTube<T> {
                 // ≥ −τ): the line misses the tube deflated by the band (see "Conditioning"), a
                 // miss is a right answer and P's cascade is skipped.
                 let z = rs.dg.g_breakpoints(Bracket::Newton);
-                let (lo, hi, real) = rs.dg.real_hull(&z);
+                let mut real = T::Mask::splat(false);
+                for &t in &z {
+                    real = real | rs.dg.gap_g(t).0.ge(-rs.dg.tau);
+                }
                 if (real & rs.near).none() {
                     return Interval::miss();
                 }
-                let (bp, n) = rs.p_breakpoints(lo, hi);
+                let (bp, n) = rs.p_breakpoints();
                 let (x, any) = rs.polished_candidates(&bp[..n], &z, T::zero(), T::one(), false);
                 // `& real`: a lane decides as the scalar call does (which returned above).
                 rs.interval(ray, x, any & real, false)
@@ -327,7 +326,7 @@ impl<T: Real> QuadTube<T> {
             let rj = real[j - 1] & real[j];
             cut[j] = !rj | rs.dg.g(z[j]).le(T::zero());
         }
-        let ppoly = if solver == Solver::Polynomial { Some(rs.p_breakpoints(T::zero(), T::one())) } else { None };
+        let ppoly = if solver == Solver::Polynomial { Some(rs.p_breakpoints()) } else { None };
         let mut out = [Interval::miss(); 5];
         for k in 0..5 {
             // Process piece k only where it starts a merged real interval.

@@ -4,7 +4,7 @@
 //! `ε·(L/r)²` of the values `≈ (r/L)²` that decide a thin tube's hits.
 
 use crate::math::roots::{cascade_level, Bracket};
-use crate::real::{Mask, Real};
+use crate::real::Real;
 use crate::vec::V3;
 
 /// The power-basis vectors `w = wa t² + wb t + wc` (`w = q × d̂`, the centre's offset from the
@@ -98,27 +98,6 @@ impl<T: Real> Direct<T> {
     #[inline(always)]
     fn g3_coeffs(&self) -> (T, T) {
         (self.ra * self.rb - self.wa.dot(self.wb), self.ra * self.ra - self.wa.dot(self.wa))
-    }
-
-    /// The hull `[lo, hi]` of the pieces next to the breakpoints `z` ([`Self::g_breakpoints`])
-    /// that count as real (computed gap `≥ −τ`), and the lanes with one. Lanes without
-    /// get `lo = hi = 0`.
-    ///
-    /// *Why it holds every point where `g ≥ 0`.* `g` is monotone on each piece
-    /// `[z_j, z_{j+1}]`, so where `g ≥ 0` somewhere on a piece it is `≥ 0` at one of the
-    /// piece's ends; there the computed gap is `≥ −τ` (`τ` bounds its rounding), so that end
-    /// is flagged and the piece lies in the hull. (The breakpoints are roots of `g'` to the
-    /// solver's tolerance `4ε`: within it `g` moves by `O(g''·(4ε)²)`, far inside `τ`.)
-    #[inline(always)]
-    pub(super) fn real_hull(&self, z: &[T; 6]) -> (T, T, T::Mask) {
-        let (mut lo, mut hi, mut any) = (T::one(), T::zero(), T::Mask::splat(false));
-        for j in 0..6 {
-            let real = self.gap_g(z[j]).0.ge(-self.tau);
-            lo = T::select(real, lo.min(z[j.saturating_sub(1)]), lo);
-            hi = T::select(real, hi.max(z[(j + 1).min(5)]), hi);
-            any = any | real;
-        }
-        (T::select(any, lo, T::zero()), T::select(any, hi, T::zero()), any)
     }
 
     /// Breakpoints `0 = z₀ ≤ … ≤ z₅ = 1` with `g` monotone between them (its real intervals

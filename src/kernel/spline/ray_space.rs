@@ -305,16 +305,16 @@ impl<T: Real> RaySpace<T> {
         (T::select(better, vx, v), T::select(better, x, t))
     }
 
-    /// All roots of `P` in `[a, b]` as sorted breakpoints (`buf[0] = a`, `buf[n−1] = b`):
+    /// All roots of `P` in `[0, 1]` as sorted breakpoints (`buf[0] = 0`, `buf[n−1] = 1`):
     /// the union of those found in powers of `t` and in powers of `t − tv` (shifted back),
     /// merged by a fixed compare-exchange network (`select` on `<`: every lane bit-equal to
     /// the scalar). Each expansion can be the noisy one: about `tv` for a slow end
     /// (regression-pinched-slow-end), in powers of `t` elsewhere; a spare candidate costs
     /// nothing (every candidate is a point of the sweep), a lost one can lose the entry.
     #[inline(always)]
-    pub(super) fn p_breakpoints(&self, a: T, b: T) -> ([T; 16], usize) {
-        let (lo, hi) = (a - self.tv, b - self.tv);
-        let (bt, nt) = poly_breakpoints(&self.p_poly_t(), a, b, Bracket::Newton);
+    pub(super) fn p_breakpoints(&self) -> ([T; 16], usize) {
+        let (lo, hi) = (-self.tv, T::one() - self.tv);
+        let (bt, nt) = poly_breakpoints(&self.p_poly_t(), T::zero(), T::one(), Bracket::Newton);
         // At tv = 0 both expansions are the same numbers (hv = h, gv = g bit for bit: the
         // Bernstein weights at 0 are exactly 1, 0, 0), so their roots are too: reuse them.
         let (bv, nv) = if self.tv.eq(T::zero()).all() {
@@ -327,8 +327,8 @@ impl<T: Real> RaySpace<T> {
         // out = bt ascending, then the shifted bv descending: a bitonic sequence.
         out[..8].copy_from_slice(&bt);
         for i in 0..8 {
-            let t = (self.tv + bv[i]).clamp(a, b);
-            out[15 - i] = T::select(bv[i].le(lo), a, T::select(bv[i].ge(hi), b, t));
+            let t = (self.tv + bv[i]).clamp(T::zero(), T::one());
+            out[15 - i] = T::select(bv[i].le(lo), T::zero(), T::select(bv[i].ge(hi), T::one(), t));
         }
         let mut stride = 8;
         while stride > 0 {
