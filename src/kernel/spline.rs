@@ -83,7 +83,9 @@
 //! exact: its proof is there), and the Polynomial solver forms `P` only when one of `g`'s
 //! breakpoints is real (they hold `g`'s maxima, so otherwise the line misses the tube deflated
 //! by `E`: a miss is right). At `t_v = 0` the two expansions of `P` coincide bit for bit and
-//! one cascade serves both. Lanes take an exit only when every lane does, and mask the same
+//! one cascade serves both. Before all this a chord-capsule filter (`capsule.rs`, exact, proof
+//! there) rejects lines farther than `max rᵢ + ½|b₁ − (b₀+b₂)/2|` (plus a margin over `E`)
+//! from the chord `[b₀, b₂]` with a dozen dot products. Lanes take an exit only when every lane does, and mask the same
 //! lanes otherwise, so a lane still equals the scalar call.
 //!
 //! The kernel returns the hull `[first entry, last exit]` ([`QuadTube::intersect_with`]). A strongly
@@ -91,12 +93,14 @@
 //! interval per real interval of `g` (each exact: the part of the sweep over a connected
 //! `t`-interval meets the line in one interval), which is what CSG needs.
 
+mod capsule;
 mod direct;
 mod ray_space;
 mod sdf;
 
 pub use sdf::quadratic_tube;
 
+use self::capsule::capsule_misses;
 use self::ray_space::RaySpace;
 use super::roots::Solver;
 use crate::error::GeometryError;
@@ -242,6 +246,18 @@ impl<T: Real> QuadTube<T> {
     /// chosen solver; [`Self::intersect_with`] clips it to the ray.
     #[inline(always)]
     pub fn line_interval_with(&self, ray: &Ray<T>, solver: Solver) -> Interval<T> {
+        // The chord-capsule filter (exact: `capsule.rs`); masking its lanes keeps every lane
+        // equal to the scalar call.
+        let far = capsule_misses(self, ray);
+        if far.all() {
+            return Interval::miss();
+        }
+        self.line_interval_unfiltered(ray, solver).masked(!far)
+    }
+
+    /// [`Self::line_interval_with`] without the capsule filter.
+    #[inline(always)]
+    fn line_interval_unfiltered(&self, ray: &Ray<T>, solver: Solver) -> Interval<T> {
         let Some(rs) = RaySpace::new(self, ray) else {
             return Interval::miss();
         };

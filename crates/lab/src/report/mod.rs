@@ -34,6 +34,7 @@ mod peers_speed;
 mod runs;
 mod speed;
 mod thin;
+mod thin_render;
 mod voxel;
 mod voxel_ao;
 mod voxel_clock;

@@ -178,6 +178,7 @@ pub fn run_thin(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, ReportE
             }
         }
     }
+    md.push_str(&super::thin_render::helix_section(opts)?);
     let mdp = out.join("thin.md");
     write_text(&mdp, &md)?;
     let c1 = out.join("thin_error.svg");
