@@ -4,12 +4,15 @@
 //! that would not fit ([`check`]), naming the figures and the options that help.
 //!
 //! # The model
-//! Peak bytes ≈ `links × (scene + tracer × (1 + BUILD_OVERHEAD)) + BASE_BYTES`, with `scene`
-//! and `tracer` the bytes per link of [`crate::scene::Scene::memory_bytes`] and
+//! Peak bytes ≈ `links × (scene + tracer + build) + BASE_BYTES`, with `scene` and `tracer`
+//! the bytes per link of [`crate::scene::Scene::memory_bytes`] and
 //! [`crate::accel::Tracer::memory_bytes`] measured on a sample of the file (so they follow
-//! any change of the layouts), and [`BUILD_OVERHEAD`] the share of the tracer's size that its
-//! build holds on top of it at its peak (the primitives before reordering, their boxes, the
-//! builder's own tree), measured once (see the constant).
+//! any change of the layouts), and `build` what the tracer's build holds on top of both at
+//! its peak (the primitives before reordering, their boxes, the builder's own tree):
+//! `max(BUILD_OVERHEAD × tracer, BUILD_BYTES_PER_LINK)`, both measured (see the constants).
+//! The builder's buffers are per tree item, not a share of the finished tree: the compact
+//! tree (33 B per link) is built through the same ≈ 250 B per link as a tree of whole
+//! primitives (92 B per link).
 
 use crate::io::stream::{open, Selection};
 use crate::io::{self, IoError};
@@ -25,6 +28,15 @@ use std::path::Path;
 /// 389 MB peak, 48.4 B scene + 92 B tree per link → 2.5; 5·10⁵ links (`--count 5000
 /// --segments 100`, test profile): 247 MB → 3.45. The larger, rounded up.
 pub const BUILD_OVERHEAD: f64 = 3.5;
+
+/// Least bytes per link a build holds at its peak on top of the finished scene and tracer
+/// (obvhs's PLOC buffers and binary tree, one box per tree item). Measured with
+/// `TUBECAST_PEAK_RSS=1 tubecast info --radius 0.12 FILE` on `generate bundle --count N
+/// --segments 84` scenes (release build, `VmHWM` after the build, the compact tree), as
+/// `(peak − BASE_BYTES)/links − scene − tracer`: 10⁵ links 48.2 MB → 244 B, 10⁶ 342 MB →
+/// 252 B, 10⁷ 3.36 GB → 261 B (main at f8636be: 48.5 B scene, 32.8–34.5 B tracer). Rounded
+/// up to 280.
+pub const BUILD_BYTES_PER_LINK: f64 = 280.0;
 
 /// Bytes a process needs whatever the scene (code, thread stacks, buffers).
 pub const BASE_BYTES: u64 = 16 << 20;
@@ -133,7 +145,13 @@ pub struct PerLink {
 impl PerLink {
     /// Peak bytes per link of loading and building ([module docs](self)).
     pub fn peak(&self) -> f64 {
-        self.scene + self.tracer * (1.0 + BUILD_OVERHEAD)
+        self.scene + self.tracer + self.build()
+    }
+
+    /// Bytes per link the build holds on top of the scene and the tracer at its peak
+    /// ([module docs](self)).
+    pub fn build(&self) -> f64 {
+        (self.tracer * BUILD_OVERHEAD).max(BUILD_BYTES_PER_LINK)
     }
 }
 
@@ -168,7 +186,7 @@ impl fmt::Display for TooLarge {
         write!(
             f,
             "{}: the scene needs about {:.2} GiB ({} links × {:.0} B: scene {:.1} B + primitives and tree \
-             {:.1} B, built with {:.0}% more at the peak), more than the {:.2} GiB available ({}); \
+             {:.1} B, built with {:.0} B more at the peak), more than the {:.2} GiB available ({}); \
              load a part of it with --subsample F (F ≤ {share}) or --max-streamlines {n}, \
              or set --memory-limit BYTES",
             self.file,
@@ -177,7 +195,7 @@ impl fmt::Display for TooLarge {
             self.per_link.peak(),
             self.per_link.scene,
             self.per_link.tracer,
-            100.0 * BUILD_OVERHEAD,
+            self.per_link.build(),
             gib(self.available.0),
             self.available.1,
         )
@@ -216,4 +234,26 @@ pub fn available() -> Option<(u64, String)> {
         }
     }
     Some(best)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_estimate_covers_a_measured_compact_tree_build() {
+        // `generate bundle --count 119048 --segments 84`, `TUBECAST_PEAK_RSS=1 tubecast info
+        // --radius 0.12` (release, main at f8636be): 10⁷ links (1.0000032·10⁷), 48.5 B scene +
+        // 32.8 B tracer per link, peak 3 356 436 kB. The old model, scene + 4.5 × tracer =
+        // 196 B per link, said 1.98 GB: 41 % under what the build took. The estimate must not
+        // be under it (a refusal is better than running out of memory), nor more than a quarter
+        // over it (a needless refusal).
+        let links = 10_000_032u64;
+        let measured = 3_356_436.0 * 1024.0;
+        let p = PerLink { scene: 48.5, tracer: 32.8 };
+        let est = links as f64 * p.peak() + BASE_BYTES as f64;
+        assert!(est >= measured && est <= 1.25 * measured, "{est:e} against {measured:e}");
+        // A tree of whole primitives (the old Bvh, 92 B per link) still scales with its size.
+        assert_eq!(PerLink { scene: 48.5, tracer: 92.0 }.build(), 92.0 * BUILD_OVERHEAD);
+    }
 }

@@ -7,8 +7,8 @@ use tubecast_render::render::{self, clamp_thin, Camera, ColorBy, Options, Shadin
 use tubecast_render::scene::{Node, Scene};
 
 fn thin_line(r: f64) -> Scene {
-    let n = |x: f64| Node { pos: [x, 0.0, 0.0], radius: r, kind: 0 };
-    Scene { nodes: vec![n(-4.0), n(0.0), n(4.0)], links: vec![[0, 1], [1, 2]], ..Scene::default() }
+    let n = |x: f64| Node { pos: [x, 0.0, 0.0], radius: r };
+    Scene { nodes: vec![n(-4.0), n(0.0), n(4.0)], links: vec![[0, 1], [1, 2]].into(), ..Scene::default() }
 }
 
 fn draw(scene: &Scene, cam: &Camera) -> render::Image {
@@ -64,15 +64,16 @@ fn a_faded_line_in_front_of_a_tube_shows_the_tube_through_it() {
     // radius 0.05 along x at z = 0, clamped to 2 pixels: r_min = 0.2, coverage α = 0.25. Behind
     // it a blue (type 2) tube of radius 1 along y at z = −3 (its pixel is 0.26 wide: left alone).
     let cam = Camera::look_at(V3::new(0.0, 0.0, 10.0), V3::zero(), V3::new(0.0, 1.0, 0.0), 90.0, 100, 100).unwrap();
-    let n = |p: [f64; 3], radius: f64, kind: i32| Node { pos: p, radius, kind };
+    let n = |p: [f64; 3], radius: f64| Node { pos: p, radius };
     let mut scene = Scene {
         nodes: vec![
-            n([-4.0, 0.0, 0.0], 0.05, 3),
-            n([4.0, 0.0, 0.0], 0.05, 3),
-            n([0.0, -6.0, -3.0], 1.0, 2),
-            n([0.0, 6.0, -3.0], 1.0, 2),
+            n([-4.0, 0.0, 0.0], 0.05),
+            n([4.0, 0.0, 0.0], 0.05),
+            n([0.0, -6.0, -3.0], 1.0),
+            n([0.0, 6.0, -3.0], 1.0),
         ],
-        links: vec![[0, 1], [2, 3]],
+        links: vec![[0, 1], [2, 3]].into(),
+        kinds: vec![3, 3, 2, 2],
         ..Scene::default()
     };
     assert_eq!(clamp_thin(&mut scene, &cam, 2.0), 2);

@@ -54,7 +54,12 @@ fn estimate(scene: &Scene, eps: f64) -> Result<f64, ReportError> {
     if k == 0 {
         return Ok(0.0);
     }
-    let part = Scene { links: scene.links[..k].to_vec(), values: Vec::new(), coverage: Vec::new(), ..scene.clone() };
+    let part = Scene {
+        links: scene.links.iter().take(k).collect(),
+        values: Vec::new(),
+        coverage: Vec::new(),
+        ..scene.clone()
+    };
     let t = tessellate(&part, Model::Links, eps).map_err(err)?.mesh.triangles.len() as f64;
     Ok(t * scene.links.len() as f64 / k as f64)
 }

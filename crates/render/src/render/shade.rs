@@ -47,7 +47,7 @@ impl Palette {
     /// along the link, 1 elsewhere. The renderer treats the coverage as an opacity.
     pub(super) fn color(&self, scene: &Scene, by: ColorBy, prim: &Prim, u: f64) -> ([f32; 3], f32) {
         let c = self.base_color(scene, by, prim, u);
-        let l = scene.links[prim.link as usize];
+        let l = scene.links.get(prim.link as usize);
         match (scene.coverage.get(l[0] as usize), scene.coverage.get(l[1] as usize)) {
             (Some(&a), Some(&b)) => {
                 let t = u.clamp(0.0, 1.0) as f32;
@@ -59,7 +59,7 @@ impl Palette {
 
     fn base_color(&self, scene: &Scene, by: ColorBy, prim: &Prim, u: f64) -> [f32; 3] {
         let link = prim.link;
-        let l = scene.links[link as usize];
+        let l = scene.links.get(link as usize);
         let spline = prim.quad().map(|q| q.cast::<f64>());
         match by {
             ColorBy::Solid(c) => c,
@@ -86,7 +86,7 @@ impl Palette {
                 let span = self.r_hi - self.r_lo;
                 colormap(if span > 0.0 { (r - self.r_lo) / span } else { 0.5 })
             }
-            ColorBy::Type => type_color(scene.nodes[l[1] as usize].kind),
+            ColorBy::Type => type_color(scene.kind(l[1] as usize)),
             ColorBy::Values(map) => {
                 let (Some((lo, hi)), Some(&a), Some(&b)) =
                     (self.v_range, scene.values.get(l[0] as usize), scene.values.get(l[1] as usize))

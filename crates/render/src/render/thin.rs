@@ -26,7 +26,7 @@ use tubecast::V3;
 /// use tubecast::V3;
 /// use tubecast_render::render::{clamp_thin, Camera};
 /// use tubecast_render::scene::{Node, Scene};
-/// let mut s = Scene { nodes: vec![Node { pos: [0.0; 3], radius: 0.001, kind: 0 }], links: vec![[0, 0]], ..Scene::default() };
+/// let mut s = Scene { nodes: vec![Node { pos: [0.0; 3], radius: 0.001 }], links: vec![[0, 0]].into(), ..Scene::default() };
 /// let cam = Camera::look_at(V3::new(0.0, 0.0, 10.0), V3::zero(), V3::new(0.0, 1.0, 0.0), 90.0, 100, 100).unwrap();
 /// // A pixel at depth 10 is 2·10·tan(45°)/100 = 0.2 wide: r_min = 0.1 for one pixel.
 /// assert_eq!(clamp_thin(&mut s, &cam, 1.0), 1);

@@ -68,7 +68,7 @@ impl Pyramid {
     /// voxels; `r_min` is the PWAA radius clamp in world units.
     pub fn build(scene: &Scene, lo: [f64; 3], h: f64, dims: [u32; 3], r_min: f64) -> Self {
         let mut adj = vec![Vec::new(); scene.nodes.len()];
-        for &[a, b] in &scene.links {
+        for [a, b] in &scene.links {
             if a != b {
                 adj[a as usize].push(b);
                 adj[b as usize].push(a);
@@ -78,7 +78,7 @@ impl Pyramid {
         let mut base = Level { dims, values: vec![0.0; cells] };
         let g = |p: V3<f64>| V3::new((p.x - lo[0]) / h, (p.y - lo[1]) / h, (p.z - lo[2]) / h);
         let rmin = r_min / h;
-        for (k, &[a, b]) in scene.links.iter().enumerate() {
+        for (k, [a, b]) in scene.links.iter().enumerate() {
             let w = scene.link(k);
             let l = RoundCone { a: g(w.a), ra: w.ra / h, b: g(w.b), rb: w.rb / h };
             let along = l.b - l.a;
