@@ -123,7 +123,7 @@ pub fn run_mesh_real(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Re
     for (name, scene) in &scenes {
         let mut notes = String::new();
         let rs = measure_scene(scene, &plan, &|e| estimate(scene, e), opts, &pool, &mut notes)?;
-        let rm = scene.nodes.iter().map(|n| n.radius).fold(0.0, f64::max);
+        let rm = (0..scene.nodes.len()).map(|i| scene.radius(i)).fold(0.0, f64::max);
         let _ = write!(
             md_tables,
             "\n## {name}\n\n{} nodes, {} links, largest radius r = {}.\n\n{}",

@@ -125,7 +125,7 @@ impl Clusters {
             for &i in &ids {
                 let n = &scene.nodes[i as usize];
                 let p = (V3::from(n.pos) - V3::from(origin)).cast::<f32>();
-                nodes.push([p.x, p.y, p.z, n.radius as f32]);
+                nodes.push([p.x, p.y, p.z, scene.radius(i as usize) as f32]);
             }
         }
         heads.push(Head { origin: [0.0; 3], node: nodes.len() as u32, link: 0 });
@@ -316,7 +316,7 @@ mod tests {
                     let exact = V3::from(nd.pos) - o;
                     let err = (V3::new(x as f64, y as f64, z as f64) - exact).max_abs();
                     assert!(err <= u * h * (1.0 + 1e-9), "error {err:e} > u·h = {:e}", u * h);
-                    assert_eq!(r, nd.radius as f32);
+                    assert_eq!(r, scene.radius(i as usize) as f32);
                 }
             }
             assert!(seen.iter().all(|&s| s == 1), "every link once");

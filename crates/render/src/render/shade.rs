@@ -36,9 +36,9 @@ fn type_color(t: i32) -> [f32; 3] {
 impl Palette {
     pub(super) fn new(scene: &Scene) -> Self {
         let (mut r_lo, mut r_hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for n in &scene.nodes {
-            r_lo = r_lo.min(n.radius);
-            r_hi = r_hi.max(n.radius);
+        for r in (0..scene.nodes.len()).map(|i| scene.radius(i)) {
+            r_lo = r_lo.min(r);
+            r_hi = r_hi.max(r);
         }
         Self { r_lo, r_hi, v_range: super::value_range(&scene.values) }
     }
@@ -80,7 +80,7 @@ impl Palette {
                 let r = if let Some(q) = spline {
                     q.radius(u)
                 } else {
-                    let (a, b) = (scene.nodes[l[0] as usize].radius, scene.nodes[l[1] as usize].radius);
+                    let (a, b) = (scene.radius(l[0] as usize), scene.radius(l[1] as usize));
                     a + (b - a) * u
                 };
                 let span = self.r_hi - self.r_lo;

@@ -149,7 +149,7 @@ impl Scene {
         for c in self.chains() {
             let nn = c.links.len(); // segments; nodes 0..=nn
             let p = |i: usize| V3::from(self.nodes[c.nodes[i] as usize].pos);
-            let r = |i: usize| self.nodes[c.nodes[i] as usize].radius;
+            let r = |i: usize| self.radius(c.nodes[i] as usize);
             // Central differences in the interior (wrapping around a closed chain, whose node
             // nn is node 0), one-sided at the ends of an open chain.
             let deriv = |i: usize| {
