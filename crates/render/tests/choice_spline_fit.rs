@@ -47,8 +47,8 @@ fn check_against_oracle(scene: &Scene, c: &Choice, seed: u64) {
     let mut rng = splitmix(seed);
     let mut worst_seen: f64 = 0.0;
     for _ in 0..200 {
-        let node = &scene.nodes[(rng.uniform() * scene.nodes.len() as f64) as usize % scene.nodes.len()];
-        let (u, r) = (rng.unit(), rng.range(0.0, 3.0 * node.radius));
+        let i = (rng.uniform() * scene.nodes.len() as f64) as usize % scene.nodes.len();
+        let (node, u, r) = (&scene.nodes[i], rng.unit(), rng.range(0.0, 3.0 * scene.radius(i)));
         let x = v(node.pos) + Vec3::new(u[0], u[1], u[2]) * r;
         let f = link_field(&orig, x);
         let (mut g, mut slack) = (link_field(&chosen, x), 0.0f64);

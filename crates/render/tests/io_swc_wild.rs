@@ -46,7 +46,7 @@ fn field_files_read_with_lines_and_link_child_to_parent() {
     assert_eq!(rep, LoadReport::default());
     // Links (parent index, child index) in file order: 40→500, 7→40, 9001→12.
     assert_eq!(s.links, vec![[1, 0], [2, 1], [3, 4]]);
-    assert_eq!(s.nodes[2].radius, 2.0);
+    assert_eq!(s.radius(2), 2.0);
 }
 
 #[test]
@@ -86,7 +86,7 @@ fn zero_radius_links_without_volume_are_refused_at_their_line() {
     // A tapering tip (radius 0 next to a positive radius) is a cone to a point: kept.
     let tip = "1 1 0 0 0 1 -1\n2 3 1 0 0 0 1\n";
     let (s, rep) = Scene::load_with(&file("tip.swc", tip), &strict()).unwrap();
-    assert_eq!((s.nodes[1].radius, rep), (0.0, LoadReport::default()));
+    assert_eq!((s.radius(1), rep), (0.0, LoadReport::default()));
 }
 
 #[test]
@@ -98,7 +98,7 @@ fn min_radius_replaces_placeholders_and_small_radii_and_counts_them() {
     assert_eq!((f.replaced, f.placeholders), (3, 2));
     let (s, rep) = Scene::load_with(&file("m.swc", text), &with_min(0.1)).unwrap();
     assert_eq!(rep, LoadReport { replaced: 3, placeholders: 2 });
-    assert!(s.nodes.iter().all(|n| n.radius >= 0.1));
+    assert!((0..s.nodes.len()).all(|i| s.radius(i) >= 0.1));
     assert_eq!(s.links.len(), 4);
     // The same file without the option: refused at the negative radius.
     assert!(Scene::load_with(&file("m.swc", text), &strict()).is_err());
@@ -118,7 +118,7 @@ fn min_radius_applies_to_every_format() {
     let obj = "v 0 0 0 0\nv 1 0 0 0.5\nv 2 0 0 0\nl 1 2 3\n";
     let (s, rep) = Scene::load_with(&file("r.obj", obj), &with_min(0.25)).unwrap();
     assert_eq!(rep, LoadReport { replaced: 2, placeholders: 2 });
-    assert_eq!(s.nodes.iter().map(|n| n.radius).collect::<Vec<_>>(), vec![0.25, 0.5, 0.25]);
+    assert_eq!((0..s.nodes.len()).map(|i| s.radius(i)).collect::<Vec<_>>(), vec![0.25, 0.5, 0.25]);
     let tck = tubecast_render::io::tck::write(
         &[tubecast_render::io::Polyline { points: vec![[0.0; 3], [1.0, 0.0, 0.0]], radii: vec![] }],
         false,
@@ -127,9 +127,9 @@ fn min_radius_applies_to_every_format() {
     std::fs::write(&p, tck).unwrap();
     let (s, rep) = Scene::load_with(&p, &LoadOptions { default_radius: 0.2, min_radius: Some(0.3) }).unwrap();
     assert_eq!(rep, LoadReport { replaced: 2, placeholders: 0 });
-    assert!(s.nodes.iter().all(|n| n.radius == 0.3));
+    assert!((0..s.nodes.len()).all(|i| s.radius(i) == 0.3));
     // Radii at or above the minimum are untouched.
     let (s, rep) = Scene::load_with(&p, &LoadOptions { default_radius: 0.2, min_radius: Some(0.2) }).unwrap();
     assert_eq!(rep, LoadReport::default());
-    assert!(s.nodes.iter().all(|n| n.radius == 0.2));
+    assert!((0..s.nodes.len()).all(|i| s.radius(i) == 0.2));
 }

@@ -11,13 +11,13 @@
 use tubecast::V3;
 use tubecast_render::accel::Bvh;
 use tubecast_render::render::{self, clamp_thin, Camera, ColorBy, Image, Options, Shading};
-use tubecast_render::scene::{Node, Scene};
+use tubecast_render::scene::{Node, Radii, Scene};
 
 const RED: [f32; 3] = [1.0, 0.0, 0.0];
 
 fn tube(a: [f64; 3], b: [f64; 3], r: f64) -> Scene {
-    let n = |pos| Node { pos, radius: r, kind: 0 };
-    Scene { nodes: vec![n(a), n(b)], links: vec![[0, 1]], ..Scene::default() }
+    let n = |pos| Node { pos };
+    Scene { nodes: vec![n(a), n(b)], links: vec![[0, 1]].into(), radii: Radii::uniform(r), ..Scene::default() }
 }
 
 fn draw(scene: &Scene, cam: &Camera, opacity: f64, background: [f32; 3]) -> Image {
@@ -83,10 +83,7 @@ fn stacked_surfaces_accumulate_and_the_background_stays_clear() {
     let one = tube([-8.0, 0.0, 0.0], [8.0, 0.0, 0.0], 1.0);
     // A second tube 5 below it: four surfaces, α = 1 − (1 − a)⁴.
     let mut two = one.clone();
-    two.nodes.extend([
-        Node { pos: [-8.0, 0.0, -5.0], radius: 1.0, kind: 0 },
-        Node { pos: [8.0, 0.0, -5.0], radius: 1.0, kind: 0 },
-    ]);
+    two.nodes.extend([Node { pos: [-8.0, 0.0, -5.0] }, Node { pos: [8.0, 0.0, -5.0] }]);
     two.links.push([2, 3]);
     for (scene, k) in [(&one, 2), (&two, 4)] {
         let img = draw(scene, &cam, a, [1.0; 3]);

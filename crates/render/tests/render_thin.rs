@@ -4,11 +4,12 @@
 use tubecast::V3;
 use tubecast_render::accel::Bvh;
 use tubecast_render::render::{self, clamp_thin, Camera, ColorBy, Options, Shading};
-use tubecast_render::scene::{Node, Scene};
+use tubecast_render::scene::{Node, Radii, Scene};
 
 fn thin_line(r: f64) -> Scene {
-    let n = |x: f64| Node { pos: [x, 0.0, 0.0], radius: r, kind: 0 };
-    Scene { nodes: vec![n(-4.0), n(0.0), n(4.0)], links: vec![[0, 1], [1, 2]], ..Scene::default() }
+    let n = |x: f64| Node { pos: [x, 0.0, 0.0] };
+    let links = vec![[0, 1], [1, 2]].into();
+    Scene { nodes: vec![n(-4.0), n(0.0), n(4.0)], links, radii: Radii::uniform(r), ..Scene::default() }
 }
 
 fn draw(scene: &Scene, cam: &Camera) -> render::Image {
@@ -29,7 +30,7 @@ fn a_sub_pixel_line_is_widened_and_faded_by_its_coverage() {
     // Clamped to 2 pixels: r_min = ½·2·0.2 = 0.2, coverage α = 0.001/0.2 = 0.005, and a covered
     // pixel is α·red + (1 − α)·white = (1, 0.995, 0.995) (hand-computed).
     assert_eq!(clamp_thin(&mut scene, &cam, 2.0), 3);
-    assert!(scene.nodes.iter().all(|n| (n.radius - 0.2).abs() < 1e-12));
+    assert!((0..3).all(|i| (scene.radius(i) - 0.2).abs() < 1e-12));
     let img = draw(&scene, &cam);
     let want = [1.0f32, 0.995, 0.995];
     for y in [49, 50] {
@@ -47,7 +48,7 @@ fn thick_tubes_and_bad_footprints_are_left_alone() {
     let cam = Camera::look_at(V3::new(0.0, 0.0, 10.0), V3::zero(), V3::new(0.0, 1.0, 0.0), 90.0, 100, 100).unwrap();
     let mut scene = thin_line(0.5);
     assert_eq!(clamp_thin(&mut scene, &cam, 1.0), 0);
-    assert!(scene.coverage.is_empty() && scene.nodes.iter().all(|n| n.radius == 0.5));
+    assert!(scene.coverage.is_empty() && (0..3).all(|i| scene.radius(i) == 0.5));
     let mut thin = thin_line(0.001);
     for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         assert_eq!(clamp_thin(&mut thin, &cam, bad), 0);
@@ -55,7 +56,7 @@ fn thick_tubes_and_bad_footprints_are_left_alone() {
     // Orthographic: the pixel size is 2·ortho/height everywhere.
     let o = cam.orthographic([0.0; 3]);
     assert_eq!(clamp_thin(&mut thin, &o, 1.0), 3);
-    assert!(thin.nodes.iter().all(|n| (n.radius - 0.5 * 2.0 * o.ortho / 100.0).abs() < 1e-12));
+    assert!((0..3).all(|i| (thin.radius(i) - 0.5 * 2.0 * o.ortho / 100.0).abs() < 1e-12));
 }
 
 #[test]
@@ -64,15 +65,12 @@ fn a_faded_line_in_front_of_a_tube_shows_the_tube_through_it() {
     // radius 0.05 along x at z = 0, clamped to 2 pixels: r_min = 0.2, coverage α = 0.25. Behind
     // it a blue (type 2) tube of radius 1 along y at z = −3 (its pixel is 0.26 wide: left alone).
     let cam = Camera::look_at(V3::new(0.0, 0.0, 10.0), V3::zero(), V3::new(0.0, 1.0, 0.0), 90.0, 100, 100).unwrap();
-    let n = |p: [f64; 3], radius: f64, kind: i32| Node { pos: p, radius, kind };
+    let n = |p: [f64; 3]| Node { pos: p };
     let mut scene = Scene {
-        nodes: vec![
-            n([-4.0, 0.0, 0.0], 0.05, 3),
-            n([4.0, 0.0, 0.0], 0.05, 3),
-            n([0.0, -6.0, -3.0], 1.0, 2),
-            n([0.0, 6.0, -3.0], 1.0, 2),
-        ],
-        links: vec![[0, 1], [2, 3]],
+        nodes: vec![n([-4.0, 0.0, 0.0]), n([4.0, 0.0, 0.0]), n([0.0, -6.0, -3.0]), n([0.0, 6.0, -3.0])],
+        radii: Radii::from_vec(vec![0.05, 0.05, 1.0, 1.0]),
+        links: vec![[0, 1], [2, 3]].into(),
+        kinds: vec![3, 3, 2, 2],
         ..Scene::default()
     };
     assert_eq!(clamp_thin(&mut scene, &cam, 2.0), 2);

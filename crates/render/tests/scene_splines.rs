@@ -6,7 +6,7 @@ use tubecast::QuadTube;
 use tubecast::{GeometryError, V3};
 use tubecast_render::io::swc::SwcNode;
 use tubecast_render::io::Polyline;
-use tubecast_render::scene::{Chain, Node, Prim, PrimKind, Scene, SPLINE_MAX_DEPTH, SPLINE_TOLERANCE};
+use tubecast_render::scene::{Chain, Node, Prim, PrimKind, Radii, Scene, SPLINE_MAX_DEPTH, SPLINE_TOLERANCE};
 
 /// Pieces of the certified split over the scene's spline segments (all curved here).
 fn pieces(s: &Scene) -> usize {
@@ -49,12 +49,14 @@ fn chains_split_at_bifurcations_and_loops_are_closed() {
     assert_eq!((st.splines, st.spheres, st.cylinders, st.cones), (9, 1, 0, 0));
 
     // A closed loop (a square): one periodic chain.
-    let node = |x: f64, y: f64| Node { pos: [x, y, 0.0], radius: 0.2, kind: 0 };
+    let node = |x: f64, y: f64| Node { pos: [x, y, 0.0] };
     let sq = Scene {
         values: Vec::new(),
         coverage: Vec::new(),
         nodes: vec![node(0.0, 0.0), node(1.0, 0.0), node(1.0, 1.0), node(0.0, 1.0)],
-        links: vec![[0, 1], [1, 2], [2, 3], [3, 0]],
+        links: vec![[0, 1], [1, 2], [2, 3], [3, 0]].into(),
+        radii: Radii::uniform(0.2),
+        kinds: Vec::new(),
     };
     assert_eq!(sq.chains(), vec![Chain { nodes: vec![0, 1, 2, 3, 0], links: vec![0, 1, 2, 3], closed: true }]);
     // Central differences wrap around: at node 0, (p₁ − p₃)/2 = (½, −½, 0), on both sides.

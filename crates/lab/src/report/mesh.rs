@@ -168,7 +168,7 @@ pub(super) fn measure_scene(
 ) -> Result<Vec<MeshRow>, ReportError> {
     let st = scene.stats();
     let cam = Camera::fit(st.bounds.0, st.bounds.1, 35.0, opts.image, opts.image).map_err(err)?;
-    let r_max = scene.nodes.iter().map(|n| n.radius).fold(0.0, f64::max);
+    let r_max = (0..scene.nodes.len()).map(|i| scene.radius(i)).fold(0.0, f64::max);
     let frame = |t: &dyn Tracer| -> Result<(Image, f64), ReportError> {
         let t0 = Instant::now();
         let img = pool.install(|| render(scene, t, &cam, &Options::default())).map_err(err)?;

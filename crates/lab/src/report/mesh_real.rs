@@ -54,7 +54,7 @@ pub fn scenes(opts: &ReportOptions, quick: bool) -> Result<Vec<(String, Scene)>,
 /// scale `links / k`.
 fn sample(scene: &Scene) -> (Scene, f64) {
     let k = scene.links.len().min(200);
-    let part = Scene { links: scene.links[..k].to_vec(), values: Vec::new(), coverage: Vec::new(), ..scene.clone() };
+    let part = Scene { links: scene.links.iter().take(k).collect(), values: Vec::new(), coverage: Vec::new(), ..scene.clone() };
     (part, scene.links.len() as f64 / k.max(1) as f64)
 }
 
@@ -127,7 +127,7 @@ pub fn run_mesh_real(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Re
         let (mut notes, mut skipped) = (String::new(), Vec::new());
         let (part, scale) = sample(scene);
         let rs = measure_scene(scene, &plan, &|e| estimate(&part, scale, e), opts, &pool, &mut notes, &mut skipped)?;
-        let rm = scene.nodes.iter().map(|n| n.radius).fold(0.0, f64::max);
+        let rm = (0..scene.nodes.len()).map(|i| scene.radius(i)).fold(0.0, f64::max);
         let _ = write!(
             md_tables,
             "\n## {name}\n\n{} nodes, {} links, largest radius r = {}.\n\n{}",

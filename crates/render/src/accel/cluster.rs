@@ -86,11 +86,11 @@ impl Clusters {
                 runs.extend(cur.take().map(|c| c.0));
                 continue;
             }
-            let [na, nb] = scene.links[k];
+            let [na, nb] = scene.links.get(k);
             let size = (l.b - l.a).max_abs() + l.ra.max(l.rb);
             let (pa, pb) = (pos(na).to_array(), pos(nb).to_array());
             if let Some((run, lo, hi, m)) = cur.as_mut() {
-                let joins = run.n < MAX_LINKS as u32 && scene.links[k - 1][1] == na;
+                let joins = run.n < MAX_LINKS as u32 && scene.links.get(k - 1)[1] == na;
                 let (lo2, hi2) = (min3(*lo, pb), max3(*hi, pb));
                 let h = (0..3).map(|i| 0.5 * (hi2[i] - lo2[i])).fold(0.0, f64::max);
                 if joins && h <= SPREAD * m.min(size) {
@@ -113,7 +113,7 @@ impl Clusters {
         for r in runs {
             let ids = (0..=r.n).map(|i| {
                 let k = (r.first + i.min(r.n - 1)) as usize;
-                scene.links[k][usize::from(i == r.n)]
+                scene.links.get(k)[usize::from(i == r.n)]
             });
             let ids: Vec<u32> = ids.collect();
             let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
@@ -125,7 +125,7 @@ impl Clusters {
             for &i in &ids {
                 let n = &scene.nodes[i as usize];
                 let p = (V3::from(n.pos) - V3::from(origin)).cast::<f32>();
-                nodes.push([p.x, p.y, p.z, n.radius as f32]);
+                nodes.push([p.x, p.y, p.z, scene.radius(i as usize) as f32]);
             }
         }
         heads.push(Head { origin: [0.0; 3], node: nodes.len() as u32, link: 0 });
@@ -296,9 +296,9 @@ mod tests {
                 let ids: Vec<u32> = (0..=n)
                     .map(|i| {
                         if i < n {
-                            scene.links[cl.link(c, i) as usize][0]
+                            scene.links.get(cl.link(c, i) as usize)[0]
                         } else {
-                            scene.links[cl.link(c, n - 1) as usize][1]
+                            scene.links.get(cl.link(c, n - 1) as usize)[1]
                         }
                     })
                     .collect();
@@ -306,7 +306,7 @@ mod tests {
                 for i in 0..n {
                     let k = cl.link(c, i) as usize;
                     seen[k] += 1;
-                    assert!(i == 0 || scene.links[k - 1][1] == scene.links[k][0], "a chain");
+                    assert!(i == 0 || scene.links.get(k - 1)[1] == scene.links.get(k)[0], "a chain");
                     let l = scene.link(k);
                     assert!(h <= SPREAD * ((l.b - l.a).max_abs() + l.ra.max(l.rb)) * (1.0 + 1e-12), "spread");
                 }
@@ -316,7 +316,7 @@ mod tests {
                     let exact = V3::from(nd.pos) - o;
                     let err = (V3::new(x as f64, y as f64, z as f64) - exact).max_abs();
                     assert!(err <= u * h * (1.0 + 1e-9), "error {err:e} > u·h = {:e}", u * h);
-                    assert_eq!(r, nd.radius as f32);
+                    assert_eq!(r, scene.radius(i as usize) as f32);
                 }
             }
             assert!(seen.iter().all(|&s| s == 1), "every link once");

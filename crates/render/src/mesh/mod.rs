@@ -103,7 +103,7 @@ pub fn tessellate(scene: &Scene, model: Model, eps: f64) -> Result<SceneMesh, Me
             let nodes: Vec<(V3<f64>, f64)> = chain
                 .nodes
                 .iter()
-                .map(|&n| (V3::from(scene.nodes[n as usize].pos), scene.nodes[n as usize].radius))
+                .map(|&n| (V3::from(scene.nodes[n as usize].pos), scene.radius(n as usize)))
                 .collect();
             tubecast::tessellate_chain_solid(&nodes, eps).map_err(err)?
         };

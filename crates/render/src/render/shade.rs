@@ -41,9 +41,9 @@ fn type_color(t: i32) -> [f32; 3] {
 impl Palette {
     pub(super) fn new(scene: &Scene) -> Self {
         let (mut r_lo, mut r_hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for n in &scene.nodes {
-            r_lo = r_lo.min(n.radius);
-            r_hi = r_hi.max(n.radius);
+        for r in (0..scene.nodes.len()).map(|i| scene.radius(i)) {
+            r_lo = r_lo.min(r);
+            r_hi = r_hi.max(r);
         }
         Self { r_lo, r_hi, v_range: super::value_range(&scene.values), runs: OnceLock::new() }
     }
@@ -52,7 +52,7 @@ impl Palette {
     /// along the link, 1 elsewhere. The renderer treats the coverage as an opacity.
     pub(super) fn color(&self, scene: &Scene, by: ColorBy, prim: &Prim, u: f64) -> ([f32; 3], f32) {
         let c = self.base_color(scene, by, prim, u);
-        let l = scene.links[prim.link as usize];
+        let l = scene.links.get(prim.link as usize);
         match (scene.coverage.get(l[0] as usize), scene.coverage.get(l[1] as usize)) {
             (Some(&a), Some(&b)) => {
                 let t = u.clamp(0.0, 1.0) as f32;
@@ -64,7 +64,7 @@ impl Palette {
 
     fn base_color(&self, scene: &Scene, by: ColorBy, prim: &Prim, u: f64) -> [f32; 3] {
         let link = prim.link;
-        let l = scene.links[link as usize];
+        let l = scene.links.get(link as usize);
         let spline = prim.quad().map(|q| q.cast::<f64>());
         match by {
             ColorBy::Solid(c) => c,
@@ -85,13 +85,13 @@ impl Palette {
                 let r = if let Some(q) = spline {
                     q.radius(u)
                 } else {
-                    let (a, b) = (scene.nodes[l[0] as usize].radius, scene.nodes[l[1] as usize].radius);
+                    let (a, b) = (scene.radius(l[0] as usize), scene.radius(l[1] as usize));
                     a + (b - a) * u
                 };
                 let span = self.r_hi - self.r_lo;
                 colormap(if span > 0.0 { (r - self.r_lo) / span } else { 0.5 })
             }
-            ColorBy::Type => type_color(scene.nodes[l[1] as usize].kind),
+            ColorBy::Type => type_color(scene.kind(l[1] as usize)),
             ColorBy::Values(map) => {
                 let (Some((lo, hi)), Some(&a), Some(&b)) =
                     (self.v_range, scene.values.get(l[0] as usize), scene.values.get(l[1] as usize))

@@ -25,12 +25,13 @@ use tubecast::V3;
 /// ```
 /// use tubecast::V3;
 /// use tubecast_render::render::{clamp_thin, Camera};
-/// use tubecast_render::scene::{Node, Scene};
-/// let mut s = Scene { nodes: vec![Node { pos: [0.0; 3], radius: 0.001, kind: 0 }], links: vec![[0, 0]], ..Scene::default() };
+/// use tubecast_render::scene::{Node, Radii, Scene};
+/// let (nodes, radii) = (vec![Node { pos: [0.0; 3] }], Radii::uniform(0.001));
+/// let mut s = Scene { nodes, radii, links: vec![[0, 0]].into(), ..Scene::default() };
 /// let cam = Camera::look_at(V3::new(0.0, 0.0, 10.0), V3::zero(), V3::new(0.0, 1.0, 0.0), 90.0, 100, 100).unwrap();
 /// // A pixel at depth 10 is 2·10·tan(45°)/100 = 0.2 wide: r_min = 0.1 for one pixel.
 /// assert_eq!(clamp_thin(&mut s, &cam, 1.0), 1);
-/// assert!((s.nodes[0].radius - 0.1).abs() < 1e-12);
+/// assert!((s.radius(0) - 0.1).abs() < 1e-12);
 /// assert!((s.coverage[0] - 0.01).abs() < 1e-6);
 /// ```
 pub fn clamp_thin(scene: &mut Scene, cam: &Camera, min_px: f64) -> usize {
@@ -41,7 +42,8 @@ pub fn clamp_thin(scene: &mut Scene, cam: &Camera, min_px: f64) -> usize {
     let tan = (cam.fov_deg * 0.5).to_radians().tan();
     let mut coverage = vec![1.0f32; scene.nodes.len()];
     let mut raised = 0;
-    for (n, c) in scene.nodes.iter_mut().zip(coverage.iter_mut()) {
+    for (i, c) in coverage.iter_mut().enumerate() {
+        let (n, radius) = (&scene.nodes[i], scene.radius(i));
         let pixel = if cam.ortho > 0.0 {
             2.0 * cam.ortho / h
         } else {
@@ -52,9 +54,9 @@ pub fn clamp_thin(scene: &mut Scene, cam: &Camera, min_px: f64) -> usize {
             2.0 * d * tan / h
         };
         let r_min = 0.5 * min_px * pixel;
-        if n.radius < r_min && r_min.is_finite() {
-            *c = (n.radius.max(0.0) / r_min) as f32;
-            n.radius = r_min;
+        if radius < r_min && r_min.is_finite() {
+            *c = (radius.max(0.0) / r_min) as f32;
+            scene.set_radius(i, r_min);
             raised += 1;
         }
     }

@@ -1,17 +1,17 @@
 //! Building a [`Scene`] from reader output, with validation.
 
-use super::{Node, Scene, SceneError, MAX_COORD};
+use super::{Links, Node, Radii, Scene, SceneError, MAX_COORD};
 use crate::io::{self, Polyline};
 
-/// Nodes and links before validation.
-pub(super) type Parts = (Vec<Node>, Vec<[u32; 2]>);
+/// Nodes, links, node kinds (empty: all 0) and radii before validation.
+pub(super) type Parts = (Vec<Node>, Links, Vec<i32>, Radii);
 
 impl Scene {
     /// A scene from SWC rows (links child → parent; ids mapped to indices). No rows give the
     /// empty scene.
     pub fn from_swc(rows: &[io::swc::SwcNode], name: &str) -> Result<Self, SceneError> {
-        let (nodes, links) = Self::swc_parts(rows, name)?;
-        Self::finish(nodes, links, name)
+        let (nodes, links, kinds, radii) = Self::swc_parts(rows, name)?;
+        Self::finish((nodes, links, kinds, radii), name)
     }
 
     /// The nodes and links of SWC rows.
@@ -20,8 +20,10 @@ impl Scene {
         for (i, r) in rows.iter().enumerate() {
             index.insert(r.id, i as u32);
         }
-        let nodes = rows.iter().map(|r| Node { pos: r.pos, radius: r.radius, kind: r.kind }).collect();
-        let mut links = Vec::new();
+        let nodes = rows.iter().map(|r| Node { pos: r.pos }).collect();
+        let radii = Radii::from_vec(rows.iter().map(|r| r.radius).collect());
+        let kinds = rows.iter().map(|r| r.kind).collect();
+        let mut links = Links::default();
         for (i, r) in rows.iter().enumerate() {
             if r.parent >= 0 {
                 let p = *index.get(&r.parent).ok_or_else(|| SceneError::MissingParent {
@@ -32,14 +34,14 @@ impl Scene {
                 links.push([p, i as u32]);
             }
         }
-        Ok((nodes, links))
+        Ok((nodes, links, kinds, radii))
     }
 
     /// A scene from polylines; points without a radius get `default_radius`. No polylines
     /// (or only empty ones) give the empty scene.
     pub fn from_polylines(lines: &[Polyline], default_radius: f64, name: &str) -> Result<Self, SceneError> {
-        let (nodes, links) = Self::polyline_parts(lines, default_radius)?;
-        Self::finish(nodes, links, name)
+        let parts = Self::polyline_parts(lines, default_radius)?;
+        Self::finish(parts, name)
     }
 
     /// The nodes and links of polylines.
@@ -47,32 +49,35 @@ impl Scene {
         if !(default_radius.is_finite() && default_radius > 0.0) {
             return Err(SceneError::DefaultRadius(default_radius));
         }
-        let mut nodes = Vec::new();
-        let mut links = Vec::new();
+        let (mut nodes, mut links, mut radii) = (Vec::new(), Links::default(), Radii::default());
         for l in lines {
             let base = nodes.len() as u32;
             for (k, p) in l.points.iter().enumerate() {
                 let radius = l.radii.get(k).copied().unwrap_or(default_radius);
-                nodes.push(Node { pos: *p, radius, kind: 0 });
+                radii.push(radius, nodes.len());
+                nodes.push(Node { pos: *p });
                 if k > 0 {
                     links.push([base + k as u32 - 1, base + k as u32]);
                 }
             }
         }
-        Ok((nodes, links))
+        Ok((nodes, links, Vec::new(), radii))
     }
 
-    /// Validate nodes and links into a scene (no nodes: the empty scene).
-    pub(super) fn finish(nodes: Vec<Node>, mut links: Vec<[u32; 2]>, name: &str) -> Result<Self, SceneError> {
+    /// Validate nodes and links into a scene (no nodes: the empty scene); `kinds` is dropped
+    /// when every kind is 0.
+    pub(super) fn finish(parts: Parts, name: &str) -> Result<Self, SceneError> {
+        let (mut nodes, mut links, mut kinds, mut radii) = parts;
         if nodes.len() > u32::MAX as usize - 1 {
             return Err(SceneError::TooManyNodes { file: name.to_string() });
         }
         for (i, n) in nodes.iter().enumerate() {
-            if n.pos.iter().chain([&n.radius]).any(|v| !v.is_finite() || v.abs() > MAX_COORD) {
+            let radius = radii.get(i);
+            if n.pos.iter().chain([&radius]).any(|v| !v.is_finite() || v.abs() > MAX_COORD) {
                 return Err(SceneError::OutOfRange { file: name.to_string(), node: i });
             }
-            if n.radius < 0.0 {
-                return Err(SceneError::NegativeRadius { file: name.to_string(), node: i, radius: n.radius });
+            if radius < 0.0 {
+                return Err(SceneError::NegativeRadius { file: name.to_string(), node: i, radius });
             }
         }
         let mut used = vec![false; nodes.len()];
@@ -85,10 +90,17 @@ impl Scene {
                 links.push([i as u32, i as u32]);
             }
         }
-        let s = Self { nodes, links, values: Vec::new(), coverage: Vec::new() };
+        if kinds.iter().all(|&k| k == 0) {
+            kinds = Vec::new();
+        }
+        nodes.shrink_to_fit();
+        links.shrink_to_fit();
+        kinds.shrink_to_fit();
+        radii.shrink_to_fit();
+        let s = Self { nodes, links, radii, kinds, values: Vec::new(), coverage: Vec::new() };
         for (k, l) in s.links.iter().enumerate() {
-            if s.nodes[l[0] as usize].radius == 0.0 && s.nodes[l[1] as usize].radius == 0.0 {
-                return Err(SceneError::NoVolume { file: name.to_string(), link: k, nodes: *l });
+            if s.radius(l[0] as usize) == 0.0 && s.radius(l[1] as usize) == 0.0 {
+                return Err(SceneError::NoVolume { file: name.to_string(), link: k, nodes: l });
             }
         }
         Ok(s)

@@ -93,7 +93,7 @@ impl Scene {
     pub fn chains(&self) -> Vec<Chain> {
         let n = self.nodes.len();
         let mut adj: Vec<Vec<(u32, u32)>> = vec![Vec::new(); n];
-        for (k, &[a, b]) in self.links.iter().enumerate() {
+        for (k, [a, b]) in self.links.iter().enumerate() {
             if a != b {
                 adj[a as usize].push((k as u32, b));
                 adj[b as usize].push((k as u32, a));
@@ -131,7 +131,7 @@ impl Scene {
             }
         }
         for k in 0..self.links.len() {
-            let [a, b] = self.links[k];
+            let [a, b] = self.links.get(k);
             if a != b && !seen[k] {
                 // Every node here has two links: a loop.
                 let mut c = walk(&mut seen, a, (k as u32, b));
@@ -149,7 +149,7 @@ impl Scene {
         for c in self.chains() {
             let nn = c.links.len(); // segments; nodes 0..=nn
             let p = |i: usize| V3::from(self.nodes[c.nodes[i] as usize].pos);
-            let r = |i: usize| self.nodes[c.nodes[i] as usize].radius;
+            let r = |i: usize| self.radius(c.nodes[i] as usize);
             // Central differences in the interior (wrapping around a closed chain, whose node
             // nn is node 0), one-sided at the ends of an open chain.
             let deriv = |i: usize| {
@@ -232,7 +232,7 @@ impl Scene {
                 out.push(Prim::from_link(&self.link(s.link as usize), s.link));
                 continue;
             }
-            let [a, b] = self.links[s.link as usize];
+            let [a, b] = self.links.get(s.link as usize);
             let err = |cause| SceneError::Spline { link: s.link, nodes: [a, b], cause };
             let quads = if faithful {
                 s.seg.split_adaptive(SPLINE_TOLERANCE, SPLINE_MAX_DEPTH).map_err(err)?.quads

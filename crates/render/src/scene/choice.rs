@@ -160,7 +160,7 @@ pub fn choose_with(scene: &Scene, tol: &Tolerance, splines: bool) -> Choice {
     let mut c = Choice::default();
     for chain in scene.chains() {
         let nodes: Vec<([f64; 3], f64)> =
-            chain.nodes.iter().map(|&n| (scene.nodes[n as usize].pos, scene.nodes[n as usize].radius)).collect();
+            chain.nodes.iter().map(|&n| (scene.nodes[n as usize].pos, scene.radius(n as usize))).collect();
         let eps: Vec<f64> = chain
             .links
             .iter()

@@ -1,7 +1,7 @@
 //! Loading a scene from a file, streamed ([`crate::io::stream`]), with the fallback for
 //! placeholder radii and a selection of streamlines.
 
-use super::{Node, Scene, SceneError};
+use super::{Links, Node, Radii, Scene, SceneError};
 use crate::estimate;
 use crate::io::data::Field;
 use crate::io::stream::{Flow, Line, Selection};
@@ -153,10 +153,10 @@ fn load_swc(
     if opts.min_radius.is_none() {
         check_swc_volume(&file, name)?;
     }
-    let (nodes, links) = Scene::swc_parts(&file.nodes, name)?;
+    let parts = Scene::swc_parts(&file.nodes, name)?;
     drop(file.nodes);
     let report = LoadReport { replaced: file.replaced, placeholders: file.placeholders };
-    let scene = Scene::finish(nodes, links, name)?;
+    let scene = Scene::finish(parts, name)?;
     let fields = if data { node_fields(&scene, Vec::new(), Vec::new()) } else { Vec::new() };
     Ok((scene, report, fields))
 }
@@ -175,9 +175,9 @@ fn load_obj(
         let keep = lines.into_iter().enumerate().filter(|(i, _)| sel.keeps(*i as u64)).map(|(_, l)| l);
         lines = keep.take(sel.max_streamlines.unwrap_or(usize::MAX)).collect();
     }
-    let (mut nodes, links) = Scene::polyline_parts(&lines, opts.default_radius)?;
-    let report = opts.min_radius.map(|r| raise(&mut nodes, r)).unwrap_or_default();
-    let scene = Scene::finish(nodes, links, name)?;
+    let (nodes, links, kinds, mut radii) = Scene::polyline_parts(&lines, opts.default_radius)?;
+    let report = opts.min_radius.map(|r| raise(&mut radii, nodes.len(), r)).unwrap_or_default();
+    let scene = Scene::finish((nodes, links, kinds, radii), name)?;
     let fields = if data { node_fields(&scene, Vec::new(), Vec::new()) } else { Vec::new() };
     Ok((scene, report, fields))
 }
@@ -231,7 +231,7 @@ struct Sink<'a> {
     name: &'a str,
     kept: usize,
     nodes: Vec<Node>,
-    links: Vec<[u32; 2]>,
+    links: Links,
     scalars: Vec<f64>,
     properties: Vec<f64>,
     /// Points of each kept streamline (with `data`: per-streamline values go to its nodes).
@@ -244,7 +244,7 @@ impl<'a> Sink<'a> {
     fn new(sel: &'a Selection, data: bool, radius: f64, hint: u64, name: &'a str) -> Self {
         let share = (hint as f64 * sel.subsample.unwrap_or(1.0).min(1.0) * 1.01) as usize;
         let share = share.min(u32::MAX as usize);
-        let (nodes, links) = (Vec::with_capacity(share), Vec::with_capacity(share));
+        let (nodes, links) = (Vec::with_capacity(share), Links::default());
         let (scalars, properties, lens) = (Vec::new(), Vec::new(), Vec::new());
         Self { sel, data, radius, name, kept: 0, nodes, links, scalars, properties, lens, error: None }
     }
@@ -262,8 +262,7 @@ impl<'a> Sink<'a> {
             self.error = Some(SceneError::TooManyNodes { file: self.name.to_string() });
             return Flow::Stop;
         }
-        let radius = self.radius;
-        self.nodes.extend(l.points.iter().map(|&pos| Node { pos, radius, kind: 0 }));
+        self.nodes.extend(l.points.iter().map(|&pos| Node { pos }));
         self.links.extend((base + 1..self.nodes.len()).map(|i| [i as u32 - 1, i as u32]));
         if self.data {
             self.scalars.extend_from_slice(l.scalars);
@@ -282,9 +281,9 @@ impl<'a> Sink<'a> {
         if let Some(e) = self.error {
             return Err(e);
         }
-        let mut nodes = self.nodes;
-        let report = opts.min_radius.map(|r| raise(&mut nodes, r)).unwrap_or_default();
-        let scene = Scene::finish(nodes, self.links, self.name)?;
+        let (nodes, mut radii) = (self.nodes, Radii::uniform(self.radius));
+        let report = opts.min_radius.map(|r| raise(&mut radii, nodes.len(), r)).unwrap_or_default();
+        let scene = Scene::finish((nodes, self.links, Vec::new(), radii), self.name)?;
         if !self.data {
             return Ok((scene, report, Vec::new()));
         }
@@ -312,8 +311,8 @@ type Loaded = Result<(Scene, LoadReport, Vec<Field>), SceneError>;
 fn node_fields(scene: &Scene, per_point: Vec<Field>, per_line: Vec<Field>) -> Vec<Field> {
     let n = scene.nodes.len();
     let mut out = vec![
-        Field { name: "scalar:radius".into(), width: 1, values: scene.nodes.iter().map(|v| v.radius).collect() },
-        Field { name: "scalar:type".into(), width: 1, values: scene.nodes.iter().map(|v| v.kind as f64).collect() },
+        Field { name: "scalar:radius".into(), width: 1, values: (0..n).map(|i| scene.radius(i)).collect() },
+        Field { name: "scalar:type".into(), width: 1, values: (0..n).map(|i| scene.kind(i) as f64).collect() },
     ];
     for f in per_point {
         if f.values.len() == n * f.width {
@@ -326,15 +325,10 @@ fn node_fields(scene: &Scene, per_point: Vec<Field>, per_line: Vec<Field>) -> Ve
     out
 }
 
-/// Raise every radius below `r` to `r`, counting.
-fn raise(nodes: &mut [Node], r: f64) -> LoadReport {
-    let mut rep = LoadReport::default();
-    for n in nodes.iter_mut().filter(|n| n.radius < r) {
-        rep.replaced += 1;
-        rep.placeholders += (n.radius <= 0.0) as usize;
-        n.radius = r;
-    }
-    rep
+/// Raise every radius of `n` nodes below `r` to `r`, counting.
+fn raise(radii: &mut Radii, n: usize, r: f64) -> LoadReport {
+    let (replaced, placeholders) = radii.raise(r, n);
+    LoadReport { replaced, placeholders }
 }
 
 /// The first SWC node (in file order) whose radius 0 leaves a link without volume: its parent

@@ -2,6 +2,10 @@
 //! renderer's primitives ("model no more than a scene needs").
 //!
 //! A [`Scene`] is a set of nodes `(position, radius, type)` and links `(node a, node b)`.
+//! It keeps per link only what it needs: a 24-byte [`Node`] (`f64` position), the radius once
+//! while every node has the same one ([`Scene::radii`]), the type only where some node has one
+//! ([`Scene::kinds`]), and chains of links as runs ([`Links`]): about 24.4 bytes per link for a
+//! tractogram's streamlines of 84 links.
 //! [`Scene::primitives`] turns each link into the cheapest exact primitive: a **cylinder**
 //! link when the radii are equal, a **tangent-cone** link when they differ, or a **sphere**
 //! when one end sphere contains the other ([`RoundCone::shape`]). Primitives are stored in
@@ -50,16 +54,20 @@ pub mod choice;
 mod error;
 pub mod fit;
 pub mod generate;
+mod links;
 mod load;
 mod prim;
+mod radii;
 pub mod simplify;
 mod stats;
 
 pub use chains::{Chain, SplineFidelity, SplineSegment, SPLINE_MAX_DEPTH, SPLINE_TOLERANCE};
 pub use error::SceneError;
+pub use links::{Iter as LinkIter, Links};
 pub use load::{LoadOptions, LoadReport};
 pub(crate) use prim::{link_interval, local_origin};
 pub use prim::{Prim, PrimKind, Shape};
+pub use radii::Radii;
 pub use stats::Stats;
 
 use tubecast::RoundCone;
@@ -71,15 +79,19 @@ use tubecast::{HermiteSegment, QuadTube};
 /// finite in `f32` (`(2·1e18)² ≈ 4e36 < 3.4e38`), since primitives are stored in `f32`.
 pub const MAX_COORD: f64 = 1e18;
 
-/// One node of a tube.
+/// One node of a tube: 24 bytes (its radius is in [`Scene::radii`], its SWC structure type,
+/// when it has one, in [`Scene::kinds`]).
+///
+/// ```
+/// use tubecast_render::scene::Node;
+/// let n = Node { pos: [1.0, 2.0, 3.0] };
+/// assert_eq!(std::mem::size_of::<Node>(), 24); // 3 × 8 (position)
+/// assert_eq!(n.pos[2], 3.0);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Node {
     /// Position.
     pub pos: [f64; 3],
-    /// Radius (≥ 0).
-    pub radius: f64,
-    /// SWC structure type (0 when the input has none).
-    pub kind: i32,
 }
 
 /// Nodes and links. A scene may be empty (a file without streamlines or nodes): it has no
@@ -88,9 +100,15 @@ pub struct Node {
 pub struct Scene {
     /// Nodes.
     pub nodes: Vec<Node>,
-    /// Links as node index pairs. A node that no link uses is stored as the zero-length link
-    /// `[i, i]` (a sphere), so every primitive has a link index.
-    pub links: Vec<[u32; 2]>,
+    /// Links as node index pairs ([`Links`]: chains of consecutive nodes stored implicitly).
+    /// A node that no link uses is stored as the zero-length link `[i, i]` (a sphere), so
+    /// every primitive has a link index.
+    pub links: Links,
+    /// Radius (≥ 0) of each node ([`Scene::radius`]), stored once while they are all equal.
+    pub radii: Radii,
+    /// SWC structure type of each node ([`Scene::kind`]), or empty when every node's is 0
+    /// (tractography, polylines).
+    pub kinds: Vec<i32>,
     /// One data value per node for colouring ([`crate::render::ColorBy::Values`]), or empty;
     /// set by [`Scene::select_values`] from the fields [`Scene::load_fields`] returns.
     pub values: Vec<f64>,
@@ -112,9 +130,10 @@ pub enum Model {
 impl Scene {
     /// Link `k` as a validated `f64` round cone.
     pub fn link(&self, k: usize) -> RoundCone<f64> {
-        let [a, b] = self.links[k];
-        let (a, b) = (&self.nodes[a as usize], &self.nodes[b as usize]);
-        RoundCone::new(V3::from(a.pos), a.radius, V3::from(b.pos), b.radius)
+        let [a, b] = self.links.get(k);
+        let (a, b) = (a as usize, b as usize);
+        let (pa, pb) = (V3::from(self.nodes[a].pos), V3::from(self.nodes[b].pos));
+        RoundCone::new(pa, self.radius(a), pb, self.radius(b))
             .expect("scene links are validated when the scene is built")
     }
 
@@ -131,14 +150,38 @@ impl Scene {
         }
     }
 
-    /// Bytes held by the nodes and links.
+    /// Bytes held by the nodes, links and per-node data (capacities): 24 per node
+    /// ([`Node`]), the links' [`Links::memory_bytes`], 8 per node for [`Self::radii`] where
+    /// they differ, 4 per node for [`Self::kinds`], 8 for [`Self::values`] and 4 for
+    /// [`Self::coverage`] where they are not empty.
     pub fn memory_bytes(&self) -> usize {
-        self.nodes.len() * std::mem::size_of::<Node>() + self.links.len() * std::mem::size_of::<[u32; 2]>()
+        self.nodes.capacity() * std::mem::size_of::<Node>()
+            + self.links.memory_bytes()
+            + self.radii.memory_bytes()
+            + self.kinds.capacity() * 4
+            + self.values.capacity() * 8
+            + self.coverage.capacity() * 4
+    }
+
+    /// Radius of node `i`.
+    #[inline]
+    pub fn radius(&self, i: usize) -> f64 {
+        self.radii.get(i)
+    }
+
+    /// Set the radius of node `i` (the scene then keeps one radius per node if it differs).
+    pub fn set_radius(&mut self, i: usize, r: f64) {
+        self.radii.set(i, r, self.nodes.len());
+    }
+
+    /// SWC structure type of node `i` (0 when the input has none).
+    pub fn kind(&self, i: usize) -> i32 {
+        self.kinds.get(i).copied().unwrap_or(0)
     }
 
     /// Unit direction of link `k` (zero for a zero-length link).
     pub fn link_direction(&self, k: usize) -> [f64; 3] {
-        let [a, b] = self.links[k];
+        let [a, b] = self.links.get(k);
         let v = V3::from(self.nodes[b as usize].pos) - V3::from(self.nodes[a as usize].pos);
         v.normalize_or_zero().to_array()
     }

@@ -72,7 +72,7 @@ impl Pyramid {
     /// voxels; `r_min` is the PWAA radius clamp in world units.
     pub fn build(scene: &Scene, lo: [f64; 3], h: f64, dims: [u32; 3], r_min: f64) -> Self {
         let mut adj = vec![Vec::new(); scene.nodes.len()];
-        for &[a, b] in &scene.links {
+        for [a, b] in &scene.links {
             if a != b {
                 adj[a as usize].push(b);
                 adj[b as usize].push(a);
@@ -84,7 +84,7 @@ impl Pyramid {
         let rmin = r_min / h;
         // One link's (voxel, occupancy) contributions.
         let contributions = |k: usize, out: &mut Vec<(u32, f32)>| {
-            let [a, b] = scene.links[k];
+            let [a, b] = scene.links.get(k);
             let w = scene.link(k);
             let l = RoundCone { a: g(w.a), ra: w.ra / h, b: g(w.b), rb: w.rb / h };
             let along = l.b - l.a;
