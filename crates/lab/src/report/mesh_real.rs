@@ -54,7 +54,12 @@ pub fn scenes(opts: &ReportOptions, quick: bool) -> Result<Vec<(String, Scene)>,
 /// scale `links / k`.
 fn sample(scene: &Scene) -> (Scene, f64) {
     let k = scene.links.len().min(200);
-    let part = Scene { links: scene.links.iter().take(k).collect(), values: Vec::new(), coverage: Vec::new(), ..scene.clone() };
+    let part = Scene {
+        links: scene.links.iter().take(k).collect(),
+        values: Vec::new(),
+        coverage: Vec::new(),
+        ..scene.clone()
+    };
     (part, scene.links.len() as f64 / k.max(1) as f64)
 }
 
