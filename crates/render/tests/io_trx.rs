@@ -160,3 +160,18 @@ fn streamed_scene_with_a_selection_keeps_its_own_values() {
     let (s, _, _) = Scene::load_selected(&p, &LoadOptions::default(), &Selection::default(), false, &hidden).unwrap();
     assert_eq!(s.nodes.len(), 3);
 }
+
+/// Fuzz finding (trx target, seed 1701 on f8636be): a stored `offsets.uint32` entry whose zip
+/// directory record says 16 bytes (4 offsets for 3 streamlines, so its size check passed) but
+/// whose data are 0 bytes long (compressed size 0; Python's `zipfile` reads it as b"" too).
+/// The reader decoded an empty array and indexed it: a panic. The decoded length must be the
+/// declared one, so this is a clear error naming the entry and both sizes.
+#[test]
+fn an_entry_shorter_than_its_directory_record_is_an_error() {
+    let d = include_bytes!("../../../fuzz/corpus/trx/regression-entry-shorter-than-directory.trx");
+    let e = read(d, "short.trx").expect_err("the offsets entry holds no data");
+    assert!(
+        e.problem.contains("offsets") && e.problem.contains("holds 0 bytes where the zip directory says 16"),
+        "{e}"
+    );
+}

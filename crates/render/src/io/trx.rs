@@ -118,7 +118,19 @@ fn values<R: Read + Seek>(zip: &mut Zip<R>, e: &Entry, name: &str) -> Result<Vec
     let path = format!("{}{}", e.folder, e.base);
     let mut f = zip.by_index(e.index).map_err(|err| IoError::file(name, format!("entry {path:?}: {err}")))?;
     let mut bytes = Vec::new();
-    f.read_to_end(&mut bytes).map_err(|err| IoError::file(name, format!("entry {path:?}: {err}")))?;
+    // At most one byte more than the directory declares: enough to tell a longer entry apart
+    // without reading a lying one to its end.
+    (&mut f)
+        .take(e.bytes.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(|err| IoError::file(name, format!("entry {path:?}: {err}")))?;
+    // The counts checked against the directory's sizes must be the counts decoded: an entry
+    // whose data are shorter or longer than its directory record says is an error, not a
+    // shorter array (which would index past its end).
+    if bytes.len() as u64 != e.bytes {
+        let problem = format!("entry {path:?} holds {} bytes where the zip directory says {}", bytes.len(), e.bytes);
+        return Err(IoError::file(name, problem));
+    }
     match decode(&bytes, &e.dtype) {
         Some(Ok(v)) => Ok(v),
         _ => Err(IoError::file(name, format!("entry {path:?}: {} bytes do not hold whole {}", bytes.len(), e.dtype))),
