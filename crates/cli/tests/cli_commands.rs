@@ -82,6 +82,12 @@ fn errors_exit_nonzero_with_a_message() {
     }
     let out = bin().args(["info"]).arg(&bad).output().unwrap();
     assert!(String::from_utf8_lossy(&out.stderr).contains("bad.swc: line 1: expected 7 columns"));
+    // One link past the generator's cap (2·10⁸ links: 10⁸, whole-brain scale, fits): refused
+    // before anything is allocated, naming the cap.
+    let big = ["generate", "bundle", "--count", "200000001", "--segments", "1", "-o"];
+    let out = bin().args(big).arg(tmp("big.tck")).output().unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("between 1 and 200000000"));
     // Bad rays: a zero direction is rejected with its row.
     let swc = tmp("h2.swc");
     assert!(bin().args(["generate", "helix", "--segments", "4", "-o"]).arg(&swc).status().unwrap().success());
