@@ -107,7 +107,6 @@ impl<T: Real> StableFrame<T> {
         let axis = v * (one / len_s);
         let s = T::select(has_cone, s, zero);
         let c2 = T::select(has_cone, c2, one);
-        let mid = (l.a + l.b) * half;
         let hl = len_s * half;
 
         let dl = ray.d.length();
@@ -115,14 +114,22 @@ impl<T: Real> StableFrame<T> {
         let zd = dn.dot(axis);
         let q = dn.cross(axis);
         let q2 = q.length2();
-        let w = mid - ray.o;
+        // Everything is formed relative to the end `a`, never in world coordinates: the ray
+        // origin `o − a` (one rounding of size ε·|o − a| ≤ ε·(D + S)) and the midpoint `v/2`.
+        // Forming the midpoint, the local centre or the new origin in world coordinates would
+        // round each to ε·|a| — for a link far from the world origin (|a| ≫ S + D) a move of
+        // the geometry far beyond E = 64ε(S + D) (a fuzz finding of the differential target: an
+        // f32 link 2e-3 long at 32.5 from the world origin, exit 1.7 E off).
+        let oa = ray.o - l.a;
+        let mid = v * half;
+        let w = mid - oa;
         let skew = q2.gt(T::cst(1e-12));
         let t_ax = (w.dot(dn) - w.dot(axis) * zd) / T::select(skew, q2, one);
         let t_ax = T::select(skew, t_ax, w.dot(dn));
-        let z0 = (ray.o + dn * t_ax - mid).dot(axis).clamp(-hl, hl);
+        let z0 = (oa + dn * t_ax - mid).dot(axis).clamp(-hl, hl);
         let c0 = mid + axis * z0;
-        let tc = (c0 - ray.o).dot(dn);
-        let o = ray.o + dn * tc - c0;
+        let tc = (c0 - oa).dot(dn);
+        let o = oa + dn * tc - c0;
         // End-sphere centres in the local frame.
         let ca = axis * (-hl - z0);
         let cb = axis * (hl - z0);
