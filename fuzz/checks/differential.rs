@@ -5,7 +5,10 @@
 // 2. f32 and f64 stable kernels on the same (f32-rounded) problem: the same hit/miss outside
 //    the band |gap| ≤ E₃₂ + E₆₄, and entry/exit t within the E-band of the line (`same_t`);
 // 3. Han (faithful) and stable in f64 where Han is well conditioned (apex ≤ 100 sizes away,
-//    r_min ≥ 1e-3 r_max, E_Han = 64ε·D·max(1, D/r_min) < 1e-6 S), within E_Han + E₆₄.
+//    r_min ≥ 1e-3 r_max, E_Han = 64ε·D·max(1, D/r_min) < 1e-6 S), within E_Han + E₆₄;
+// 4. the spline kernel on the same link as a straight segment (`QuadTube::from_link`, default
+//    solver), in f64 and in f32, against the stable f64 link, within E₆₄ + E_spline + the
+//    perturbation of forming the middle control point (derived at `spline_agrees_with_stable`).
 // Any disagreement outside its bound is a finding. Inputs whose lengths span ≥ 1e12 get only
 // check 1 (the bounds are stated below that span, as in checks/link.rs).
 #[allow(unused_imports)]
@@ -41,7 +44,8 @@ pub fn agree(link: &RoundCone<f64>, ray: &Ray<f64>) -> Result<(), String> {
         return Ok(());
     }
     f32_agrees_with_f64(link, ray)?;
-    han_agrees_with_stable(link, ray)
+    han_agrees_with_stable(link, ray)?;
+    spline_agrees_with_stable(link, ray)
 }
 
 fn lanes_equal_scalar(link: &RoundCone<f64>, ray: &Ray<f64>) -> Result<(), String> {
@@ -190,6 +194,43 @@ fn han_agrees_with_stable(link: &RoundCone<f64>, ray: &Ray<f64>) -> Result<(), S
         let dt = (a.t_in - b.t_in).abs();
         if dt.is_nan() || dt > tol {
             return Err(format!("Han vs stable t_in {} vs {} (tol {tol:e})", b.t_in, a.t_in));
+        }
+    }
+    Ok(())
+}
+
+/// The spline kernel on the link as a straight segment agrees with the stable link. The two
+/// solids differ only by rounding: `QuadTube::from_link` forms `b₁ = (a + b)/2` and
+/// `r₁ = (ra + rb)/2` once each (errors ≤ ε·|m|·√3 and ε·r_max), and a Bézier moves by at most
+/// half its middle control point's error (weight 2t(1 − t) ≤ ½), so every sphere of the sweep is
+/// within `p = ε·(√3·|m| + r_max)` of the link's. The spline kernel's interval is that of a tube
+/// whose radius is within `E_s = 1024·ε·R + 8·ε·|o − m|` of its own (spline.rs module docs, with
+/// `R ≤ L/2 + r_max`, taken as `L + r_max`), the stable link's within `E₆₄`: both intervals lie
+/// between the link's sweep eroded and dilated by `e = E₆₄ + E_s + p`, which `same_t` checks, and
+/// hit/miss may differ only inside the band `|gap| ≤ e`.
+fn spline_agrees_with_stable(link: &RoundCone<f64>, ray: &Ray<f64>) -> Result<(), String> {
+    let a = link.intersect(ray);
+    let (e64, gap) = bound_and_gap(link, ray, f64::EPSILON);
+    let m = (link.a + link.b) * 0.5;
+    let big_r = (link.b - link.a).length() + link.ra.max(link.rb);
+    let om = (ray.o - m).length();
+    let l32: RoundCone<f32> = link.cast();
+    let r32 = Ray::new(ray.o.cast::<f32>(), ray.d.cast::<f32>());
+    let runs = [
+        ("f64", f64::EPSILON, tubecast::QuadTube::from_link(link).map(|q| q.intersect(ray))),
+        ("f32", f32::EPSILON as f64, tubecast::QuadTube::from_link(&l32).map(|q| to64(q.intersect(&r32)))),
+    ];
+    for (what, eps, b) in runs {
+        let Ok(b) = b else { continue };
+        let e = e64 + 1024.0 * eps * big_r + 8.0 * eps * om + eps * (3f64.sqrt() * m.length() + link.ra.max(link.rb));
+        if a.hit != b.hit {
+            let t_out = if a.hit { a.t_out } else { b.t_out };
+            let edge = (t_out - ray.t_min).abs() <= e / ray.d.length() * 1e6;
+            if !(gap.abs() <= e || edge) {
+                return Err(format!("spline ({what}) and stable link disagree on hit outside the band: gap {gap:e}, E {e:e}"));
+            }
+        } else if a.hit && gap < -e {
+            same_t(&a, &b, link, ray, e).map_err(|msg| format!("spline ({what}) vs stable link: {msg}"))?;
         }
     }
     Ok(())
