@@ -272,24 +272,7 @@ impl<T: Real> QuadTube<T> {
             return Interval::miss();
         };
         match solver {
-            Solver::Polynomial => {
-                // g's breakpoints hold its maxima: a candidate in every real interval, whatever
-                // the rounding of P's coefficients does to P's roots. None of them real (gap
-                // ≥ −τ): the line misses the tube deflated by the band (see "Conditioning"), a
-                // miss is a right answer and P's cascade is skipped.
-                let z = rs.dg.g_breakpoints(Bracket::Newton);
-                let mut real = T::Mask::splat(false);
-                for &t in &z {
-                    real = real | rs.dg.gap_g(t).0.ge(-rs.dg.tau);
-                }
-                if (real & rs.near).none() {
-                    return Interval::miss();
-                }
-                let (c, n) = rs.p_candidates();
-                let (x, any) = rs.polished_candidates(&c[..n], &z, T::zero(), T::one(), false);
-                // `& real`: a lane decides as the scalar call does (which returned above).
-                rs.interval(ray, x, any & real, false)
-            }
+            Solver::Polynomial => polynomial_line(&rs, ray, |rs| rs.p_candidates()),
             _ => {
                 // Hull of the line pieces (a piece behind the origin still belongs to the line
                 // interval).
@@ -359,4 +342,30 @@ impl<T: Real> QuadTube<T> {
         }
         out
     }
+}
+
+/// The Polynomial solver's line interval from `P`'s candidates (`cands`: the production
+/// isolation, or the old cascades in the test oracle).
+#[inline(always)]
+fn polynomial_line<T: Real, const N: usize>(
+    rs: &RaySpace<T>,
+    ray: &Ray<T>,
+    cands: impl FnOnce(&RaySpace<T>) -> ([T; N], usize),
+) -> Interval<T> {
+    // g's breakpoints hold its maxima: a candidate in every real interval, whatever the
+    // rounding of P's coefficients does to P's roots. None of them real (gap ≥ −τ): the line
+    // misses the tube deflated by the band (see "Conditioning"), a miss is a right answer and
+    // P's isolation is skipped.
+    let z = rs.dg.g_breakpoints(Bracket::Newton);
+    let mut real = T::Mask::splat(false);
+    for &t in &z {
+        real = real | rs.dg.gap_g(t).0.ge(-rs.dg.tau);
+    }
+    if (real & rs.near).none() {
+        return Interval::miss();
+    }
+    let (c, n) = cands(rs);
+    let (x, any) = rs.polished_candidates(&c[..n], &z, T::zero(), T::one(), false);
+    // `& real`: a lane decides as the scalar call does (which returned above).
+    rs.interval(ray, x, any & real, false)
 }

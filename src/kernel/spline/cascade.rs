@@ -8,7 +8,7 @@ use super::QuadTube;
 use crate::math::bezier::bernstein2;
 use crate::math::roots::{poly_breakpoints, poly_mul, Bracket};
 use crate::ray::{Interval, Ray};
-use crate::real::{Mask, Real};
+use crate::real::Real;
 use crate::vec::V3;
 
 /// `h` and `g` (ascending powers of the parameter) from the power-basis position
@@ -73,16 +73,6 @@ impl<T: Real> QuadTube<T> {
         let Some(rs) = RaySpace::new(self, ray) else {
             return Interval::miss();
         };
-        let z = rs.dg.g_breakpoints(Bracket::Newton);
-        let mut real = T::Mask::splat(false);
-        for &t in &z {
-            real = real | rs.dg.gap_g(t).0.ge(-rs.dg.tau);
-        }
-        if (real & rs.near).none() {
-            return Interval::miss();
-        }
-        let bp = p_breakpoints_cascade(&rs);
-        let (x, any) = rs.polished_candidates(&bp, &z, T::zero(), T::one(), false);
-        rs.interval(ray, x, any & real, false).masked(!far)
+        super::polynomial_line(&rs, ray, |rs| (p_breakpoints_cascade(rs), 16)).masked(!far)
     }
 }

@@ -46,10 +46,11 @@
 //!    [`CAP`] candidates: the computed `P` has at most 6 roots per piece, so only subdivision
 //!    rounding or depth-limit midpoints can exceed it).
 //!
-//! `tests` in this module compare the kernel's answers with the old cascades' on every
-//! generator region (`tubecast_oracle::thin_case` families × `L/r = 1…10⁵`, plus scale and
-//! far-origin variants), in `f32`, `f64` and lanes: an answer that differs by more than the
-//! band `E` fails.
+//! `isolation_tests.rs` compares the kernel's answers with the old cascades' on every
+//! generator region (`tubecast_oracle::thin_case` families × `L/r = 1…10⁵`, each with
+//! `2^k` scale variants), in `f32` and `f64`: a different hit or miss fails, and so does an
+//! answer that differs and lies outside the band `E` of the exact tube; lanes must equal their
+//! scalar calls bit for bit.
 //!
 //! *Lanes.* The tree depends on the data, so it runs lane by lane on the lane's scalars (the
 //! coefficients are formed in lanes by the same IEEE operations as the scalar call, no fused
