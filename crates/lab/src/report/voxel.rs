@@ -138,6 +138,7 @@ pub fn run_voxel(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
     let mut md = markdown(&rows, opts);
     let small: Vec<usize> = sizes.iter().copied().filter(|&n| n <= 100_000).collect();
     md.push_str(&super::voxel_levels::ablation(&small, opts, &pool)?);
+    md.push_str(&super::voxel_lambda::section(&sizes, opts, &pool)?);
     let mdp = out.join("voxel.md");
     write_text(&mdp, &md)?;
     let cp = out.join("voxel.svg");
