@@ -48,7 +48,7 @@ pub(super) fn section(sizes: &[usize], opts: &ReportOptions, pool: &rayon::Threa
          thread(s), process CPU time, best of 2 (one at 10⁶ links). *Render*: the trace alone; *frame*: build + \
          render, the dynamic-scene cost. Ratios: the model's time over the best fixed λ's (1 = as good as the \
          best of the sweep; below 1 better than all of them).\n\n\
-         | scene | links | model λ (cells / link) | model build (ms) | model render (ms) | best fixed λ: render | \
+         | resolution: scene | links | model λ (cells / link) | model build (ms) | model render (ms) | best fixed λ: render | \
          best render (ms) | model / best render | best fixed λ: frame | best frame (ms) | model / best frame | \
          λ = 2 frame / best frame |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
         lams = LAMBDAS.map(|l| l.to_string()).join(", "),
