@@ -42,11 +42,16 @@ fn main() {
         .ok()
         .map(|s| s.split(',').filter_map(|x| x.trim().parse().ok()).collect())
         .unwrap_or_else(|| vec![10_000, 100_000]);
-    let builders: [(&str, Build); 4] = [
-        ("grid λ=2 (default)", |p| Box::new(Grid::build(p))),
-        ("grid λ=8", |p| Box::new(Grid::build_with(p, &GridParams { cells_per_prim: 8.0, ..GridParams::default() }))),
+    let builders: [(&str, Build); 5] = [
+        ("grid auto (default)", |p| Box::new(Grid::build(p))),
+        ("grid λ=2", |p| {
+            Box::new(Grid::build_with(p, &GridParams { cells_per_prim: Some(2.0), ..GridParams::default() }))
+        }),
+        ("grid λ=8", |p| {
+            Box::new(Grid::build_with(p, &GridParams { cells_per_prim: Some(8.0), ..GridParams::default() }))
+        }),
         ("grid λ=32", |p| {
-            Box::new(Grid::build_with(p, &GridParams { cells_per_prim: 32.0, ..GridParams::default() }))
+            Box::new(Grid::build_with(p, &GridParams { cells_per_prim: Some(32.0), ..GridParams::default() }))
         }),
         ("bvh", |p| Box::new(Bvh::build(p))),
     ];

@@ -141,7 +141,8 @@ fn grid_resolution_does_not_change_answers() {
     let prims = Scene::from_polylines(&generate::helix(40), 0.2, "h").unwrap().primitives();
     let bvh = Bvh::build(prims.clone());
     for lambda in [0.01, 0.5, 16.0, 200.0] {
-        let grid = Grid::build_with(prims.clone(), &GridParams { cells_per_prim: lambda, ..GridParams::default() });
+        let grid =
+            Grid::build_with(prims.clone(), &GridParams { cells_per_prim: Some(lambda), ..GridParams::default() });
         let rays = rays(&prims, &grid, 7);
         compare(&format!("helix λ={lambda}"), &grid, &bvh, &rays);
     }
@@ -155,7 +156,7 @@ fn centre_line_grid_has_false_misses() {
     let prims = Scene::from_polylines(&lines, 0.2, "b").unwrap().primitives();
     let bvh = Bvh::build(prims.clone());
     // Voxels about the tube diameter: the regime of Kraaijeveld's Fig. 7 artifacts.
-    let params = GridParams { cells_per_prim: 16.0, voxelizer: Voxelizer::CentreLine, ..GridParams::default() };
+    let params = GridParams { cells_per_prim: Some(16.0), voxelizer: Voxelizer::CentreLine, ..GridParams::default() };
     let grid = Grid::build_with(prims.clone(), &params);
     let (mut misses, mut wrong, mut hits) = (0, 0, 0);
     for ray in rays(&prims, &grid, 9) {

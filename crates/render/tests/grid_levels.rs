@@ -101,7 +101,10 @@ fn answers(t: &dyn Tracer, ray: &Ray<f64>) -> String {
 fn skip_levels_give_the_single_level_answers_bit_for_bit() {
     for (name, prims, cells_per_prim) in scenes() {
         let with = |skip_levels| {
-            Grid::build_with(prims.clone(), &GridParams { skip_levels, cells_per_prim, ..GridParams::default() })
+            Grid::build_with(
+                prims.clone(),
+                &GridParams { skip_levels, cells_per_prim: Some(cells_per_prim), ..GridParams::default() },
+            )
         };
         let single = with(1);
         let others = [with(0), with(2), with(u32::MAX)];
@@ -128,7 +131,10 @@ fn skip_levels_give_the_single_level_answers_bit_for_bit() {
 fn one_pass_build_gives_the_two_pass_answers() {
     for (name, prims, cells_per_prim) in scenes() {
         let with = |one_pass| {
-            Grid::build_with(prims.clone(), &GridParams { one_pass, cells_per_prim, ..GridParams::default() })
+            Grid::build_with(
+                prims.clone(),
+                &GridParams { one_pass, cells_per_prim: Some(cells_per_prim), ..GridParams::default() },
+            )
         };
         let (once, twice) = (with(true), with(false));
         assert_eq!(once.references(), twice.references(), "{name}");

@@ -38,6 +38,7 @@ mod thin_render;
 mod voxel;
 mod voxel_ao;
 mod voxel_clock;
+mod voxel_lambda;
 mod voxel_levels;
 mod voxel_quantized;
 mod voxel_timing;

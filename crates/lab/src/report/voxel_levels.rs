@@ -3,9 +3,9 @@
 //! the one-pass build (voxelize once, sort the pairs) against the two-pass one (voxelize
 //! twice).
 
+use super::voxel_clock::Clock;
 use super::{fmt_num, ReportError, ReportOptions};
 use std::fmt::Write as _;
-use std::time::Instant;
 use tubecast_render::accel::grid::{Grid, GridParams};
 use tubecast_render::io::Polyline;
 use tubecast_render::render::{render, Camera, Options};
@@ -14,10 +14,11 @@ use tubecast_render::scene::{generate, Scene};
 /// Repetitions per measurement (alternating the variants; the best is kept).
 const REPS: usize = 3;
 
+/// Process CPU seconds of `f` (`voxel_clock`).
 fn seconds(f: impl FnOnce()) -> f64 {
-    let t0 = Instant::now();
+    let t0 = Clock::now();
     f();
-    t0.elapsed().as_secs_f64()
+    Clock::now().since(t0)
 }
 
 /// One scene's row: skip levels, render ms for 0 / 1 / all levels, build ms two- / one-pass.
@@ -53,7 +54,7 @@ fn row(scene: &Scene, image: u32, pool: &rayon::ThreadPool) -> Result<(usize, [f
 pub(super) fn ablation(sizes: &[usize], opts: &ReportOptions, pool: &rayon::ThreadPool) -> Result<String, ReportError> {
     let mut md = format!(
         "\n## Grid ablations (same run)\n\nOpaque {0}×{0} frames (primary rays, lit) through grids built from the same \
-         primitives, {1} thread(s), best of {REPS}: the walk with every coarse skip level (each 4³ cells of the \
+         primitives at the default resolution (the cost model, next section), {1} thread(s), process CPU time, best of {REPS}: the walk with every coarse skip level (each 4³ cells of the \
          one below, up to ≤ 4 cells per axis) against the single level of 4³ blocks and against a plain DDA \
          (answers are bit-identical: `crates/render/tests/grid_levels.rs`); and the build voxelizing each link once \
          (pairs sorted by voxel) against voxelizing it twice (count, then fill). Ratios below 1 favour the new \

@@ -1,6 +1,7 @@
 //! Grid construction: resolution, then count → prefix sum → fill, each pass parallel over
 //! the primitives (rayon), voxel counters and cursors as relaxed atomics.
 
+use super::resolution::resolution;
 use super::{Grid, GridParams, Skip, Voxelizer, BLOCK};
 use crate::scene::{Prim, Shape};
 use rayon::prelude::*;
@@ -22,25 +23,6 @@ fn scene_box(prims: &[Prim]) -> ([f64; 3], [f64; 3], f64) {
     let diag = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
     let pad = diag.max(f64::MIN_POSITIVE) * 2f64.powi(-16);
     (lo.map(|x| x - 2.0 * pad), hi.map(|x| x + 2.0 * pad), pad)
-}
-
-/// Voxel side and counts for `n` primitives over `[lo, hi]` (module docs, "Resolution").
-fn resolution(lo: [f64; 3], hi: [f64; 3], n: usize, p: &GridParams) -> (f64, [u32; 3]) {
-    let ext: [f64; 3] = std::array::from_fn(|i| hi[i] - lo[i]);
-    let diag = (ext[0] * ext[0] + ext[1] * ext[1] + ext[2] * ext[2]).sqrt().max(f64::MIN_POSITIVE);
-    let e = ext.map(|x| x.max(diag * 1e-3));
-    let cells = (p.cells_per_prim * n.max(1) as f64).clamp(1.0, p.max_cells.max(1) as f64);
-    let mut h = (e[0] * e[1] * e[2] / cells).cbrt();
-    if !h.is_normal() {
-        return (1.0, [1, 1, 1]); // no primitives (or a subnormal scene): one voxel
-    }
-    loop {
-        let dims = e.map(|x| ((x / h).ceil().max(1.0)).min(u32::MAX as f64 / 4.0) as u32);
-        if dims.iter().map(|&d| d as f64).product::<f64>() <= p.max_cells.max(1) as f64 {
-            return (h, dims);
-        }
-        h *= 1.05; // rounding up each axis can overshoot the cap by a little
-    }
 }
 
 /// The world round cone of a link or sphere primitive with radii grown by `pad`; `None` for a
@@ -74,10 +56,10 @@ impl Grid {
     /// misses.
     pub fn build_with(prims: Vec<Prim>, params: &GridParams) -> Self {
         let (lo, hi, pad) = scene_box(&prims);
-        let (h, dims) = resolution(lo, hi, prims.len(), params);
+        let (h, dims) = resolution(std::array::from_fn(|i| hi[i] - lo[i]), &prims, params);
         let (offsets, ids, skip) = (Vec::new(), Vec::new(), Vec::new());
         let mut grid = Grid { prims, lo, h, inv_h: 1.0 / h, dims, offsets, ids, skip };
-        let cells = dims.iter().map(|&d| d as usize).product::<usize>();
+        let cells = grid.cells();
         let lists = if params.one_pass && cells <= u32::MAX as usize {
             grid.lists_once(pad, params.voxelizer)
         } else {
@@ -86,7 +68,8 @@ impl Grid {
         let Some((offsets, ids)) = lists else {
             // Lists too long for u32 offsets (huge radii against the voxel size): coarser. At
             // one voxel each primitive is listed once, so this ends.
-            let coarser = GridParams { cells_per_prim: params.cells_per_prim / 8.0, ..*params };
+            let lambda = grid.cells() as f64 / grid.prims.len().max(1) as f64;
+            let coarser = GridParams { cells_per_prim: Some(lambda / 8.0), ..*params };
             return Self::build_with(grid.prims, &coarser);
         };
         grid.offsets = offsets;

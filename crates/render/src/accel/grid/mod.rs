@@ -35,16 +35,41 @@
 //! the answers (`tests/grid_levels.rs` checks hits, any-hits and intervals bit for bit).
 //!
 //! # Resolution
-//! Cubic voxels of side `h = ∛(V/(λ·N))` over the padded scene box of volume `V` (each extent
-//! floored at `D/1000` so flat scenes get a volume), `N` primitives and `λ` cells per primitive
-//! ([`GridParams::cells_per_prim`], default 2: the Cleary–Wyvill/Wald rule "cells ≈ λ·N"), at
-//! most [`GridParams::max_cells`] cells.
+//! Cubic voxels of side `h` over the padded scene box of volume `V` (each extent floored at
+//! `D/1000` so flat scenes get a volume), at most [`GridParams::max_cells`] cells.
+//!
+//! By default (`cells_per_prim: None`) `h` minimises a per-ray cost model built from four
+//! numbers of the scene ([`SceneSums`], one pass): the link count `N`, total length
+//! `Λ = Σ lᵢ`, total radius `R = Σ rᵢ`, and `V`. A ray crossing the box over a chord `c`
+//! steps over `≈ 1.5·c/h` voxels (a random direction's `|d|₁/|d|₂` averages 3/2), each at cost
+//! `C_T`; it tests each primitive whose voxels it meets once (the walk's mailbox skips the
+//! repeats in consecutive voxels), at cost `C_I`. A primitive's voxels cover it grown by `≈ h/2`
+//! on every side, a capsule of radius `rᵢ + h/2` and length `lᵢ`, whose mean projected area over
+//! random directions is `π·(rᵢ + h/2)·(rᵢ + h/2 + lᵢ/2)`; a random line through the box meets it
+//! with probability that area over the box's projected area `V/c`. So
+//!
+//! `cost(h) = c·[1.5·C_T/h + (π·C_I/V)·Σ (rᵢ + h/2)(rᵢ + lᵢ/2 + h/2)]`,
+//!
+//! and `cost′(h) = 0` gives `N·h³ + (2R + Λ/2)·h² = (3/π)·ρ·V` with `ρ = C_T/C_I`
+//! ([`STEP_COST`]); the chord `c` cancels, so where rays stop early (opaque frames) does not
+//! move the optimum. Its positive root is unique ([`voxel_size_for`]). Two regimes: links short
+//! against `h` give `V/h³ = π·N/(3ρ)` cells, the classic "cells ≈ λ·N" rule with
+//! `λ = π/(3ρ)`; long links give `h = √(3ρV/(π·(2R + Λ/2)))`, a finer grid the longer
+//! they are. Scaling the scene scales `h` with it (same dims); doubling `N` at fixed `V`
+//! divides `h` by between `∛2` and `√2`. The model counts neither the build (references grow as
+//! `h` shrinks) nor empty-space skipping, so it is checked against a sweep of fixed `λ` in
+//! `tubecast-lab voxel` ("Grid resolution").
+//!
+//! With `cells_per_prim: Some(λ)`: `h = ∛(V/(λ·N))`, the Cleary–Wyvill/Wald rule "cells ≈ λ·N"
+//! (λ = 2 was the default before the cost model).
 
 mod build;
 mod pyramid;
+mod resolution;
 mod walk;
 
 pub use pyramid::{Level, Pyramid};
+pub use resolution::{voxel_size_for, SceneSums, STEP_COST};
 
 use super::{Hit, Tracer};
 use crate::scene::Prim;
@@ -59,7 +84,7 @@ use tubecast::Ray;
 /// use tubecast_render::scene::Scene;
 /// let line = Polyline { points: vec![[0.0; 3], [9.0, 3.0, 1.0]], radii: vec![] };
 /// let prims = Scene::from_polylines(&[line], 0.5, "tube").unwrap().primitives();
-/// let fine = GridParams { cells_per_prim: 64.0, ..GridParams::default() };
+/// let fine = GridParams { cells_per_prim: Some(64.0), ..GridParams::default() };
 /// let exact = Grid::build_with(prims.clone(), &fine);
 /// let thin = Grid::build_with(prims, &GridParams { voxelizer: Voxelizer::CentreLine, ..fine });
 /// assert!(thin.references() < exact.references()); // the centre line meets fewer voxels
@@ -77,8 +102,9 @@ pub enum Voxelizer {
 /// Grid build parameters ([`Grid::build_with`]; example at [`Voxelizer`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GridParams {
-    /// Target cells per primitive `λ` (the resolution rule in the module docs).
-    pub cells_per_prim: f64,
+    /// Fixed target cells per primitive `λ`; `None` (the default): the voxel side minimising
+    /// the cost model (both rules in the module docs, "Resolution").
+    pub cells_per_prim: Option<f64>,
     /// Upper bound on the number of cells.
     pub max_cells: usize,
     /// Voxel assignment.
@@ -99,7 +125,7 @@ pub struct GridParams {
 impl Default for GridParams {
     fn default() -> Self {
         Self {
-            cells_per_prim: 2.0,
+            cells_per_prim: None,
             max_cells: 1 << 24,
             voxelizer: Voxelizer::Conservative,
             skip_levels: 1,
@@ -196,6 +222,11 @@ impl Grid {
     /// Number of coarse occupancy levels the walk uses (module docs).
     pub fn skip_levels(&self) -> usize {
         self.skip.len()
+    }
+
+    /// Number of voxels.
+    fn cells(&self) -> usize {
+        self.dims.iter().map(|&d| d as usize).product()
     }
 
     /// Linear index of voxel `c`.

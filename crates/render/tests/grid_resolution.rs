@@ -1,0 +1,93 @@
+//! The grid's automatic resolution (module docs of `accel::grid`, "Resolution"): the root of
+//! `N·h³ + (2R + Λ/2)·h² = (3/π)·ρ·V` on hand-solved cubics, and grid dims that do not change
+//! when the scene is scaled.
+
+use std::f64::consts::PI;
+use tubecast_render::accel::grid::{voxel_size_for, Grid, SceneSums};
+use tubecast_render::io::Polyline;
+use tubecast_render::scene::Scene;
+
+/// The box volume whose right-hand side `(3/π)·ρ·V` is `k` at `ρ = 1`.
+fn volume_for(k: f64) -> f64 {
+    k * PI / 3.0
+}
+
+fn sums(count: usize, length: f64, radius: f64) -> SceneSums {
+    SceneSums { count, length, radius }
+}
+
+/// Relative tolerance: Newton stops when its step is below 1e-15·h; the residual's own
+/// rounding (a few ulps of k ≤ 100) moves the root by far less than 1e-12 relative.
+fn close(h: Option<f64>, want: f64) -> bool {
+    h.is_some_and(|h| (h - want).abs() <= 1e-12 * want)
+}
+
+#[test]
+fn the_root_solves_hand_computed_cubics() {
+    // 10·2³ + (2·0.5 + 8/2)·2² = 80 + 20 = 100.
+    assert!(close(voxel_size_for(&sums(10, 8.0, 0.5), volume_for(100.0), 1.0), 2.0));
+    // Point-like primitives (no length, no radius): h³ = k/N. N = 1, k = 8: h = 2; doubling
+    // N gives h³ = 4, the short-link regime's ∛2.
+    assert!(close(voxel_size_for(&sums(1, 0.0, 0.0), volume_for(8.0), 1.0), 2.0));
+    assert!(close(voxel_size_for(&sums(2, 0.0, 0.0), volume_for(8.0), 1.0), 4f64.cbrt()));
+    // Long links: N = 1, Λ = 6 (b = 3), k = 4: 1 + 3 = 4, h = 1. Doubling the links (N = 2,
+    // Λ = 12): 2h³ + 6h² = 4 ⇔ (h + 1)(h² + 2h − 2) = 0, h = √3 − 1.
+    assert!(close(voxel_size_for(&sums(1, 6.0, 0.0), volume_for(4.0), 1.0), 1.0));
+    assert!(close(voxel_size_for(&sums(2, 12.0, 0.0), volume_for(4.0), 1.0), 3f64.sqrt() - 1.0));
+    // ρ scales the right-hand side: ρ = 2 at half the volume is the first case again.
+    assert!(close(voxel_size_for(&sums(10, 8.0, 0.5), volume_for(50.0), 2.0), 2.0));
+    // No primitives, no volume, or a non-finite input: no answer (the grid uses one voxel).
+    assert_eq!(voxel_size_for(&sums(0, 1.0, 1.0), 1.0, 1.0), None);
+    assert_eq!(voxel_size_for(&sums(1, 1.0, 1.0), 0.0, 1.0), None);
+    assert_eq!(voxel_size_for(&sums(1, f64::INFINITY, 1.0), 1.0, 1.0), None);
+    assert_eq!(voxel_size_for(&sums(1, 1.0, 1.0), f64::NAN, 1.0), None);
+}
+
+/// Six fibres of 12 links each, scaled by `s`, radius `0.1·s`.
+fn fibres(s: f64) -> Scene {
+    let lines: Vec<Polyline> = (0..6)
+        .map(|f| Polyline {
+            points: (0..13)
+                .map(|k| {
+                    let (k, f) = (k as f64, f as f64);
+                    [s * k, s * (0.3 * f + 0.2 * (0.7 * k + f).sin()), s * (0.1 * k * f).cos()]
+                })
+                .collect(),
+            radii: vec![],
+        })
+        .collect();
+    Scene::from_polylines(&lines, 0.1 * s, "fibres").unwrap()
+}
+
+#[test]
+fn scaling_the_scene_keeps_the_grid_dims() {
+    // Scaling by a power of two scales every length, the box and the root exactly (IEEE
+    // operations commute with it), so the dims must be identical, down to tiny and up to huge
+    // scenes; the voxel side scales with the scene.
+    let base = Grid::build(fibres(1.0).primitives());
+    assert!(base.dims().iter().all(|&d| d > 1), "{:?}", base.dims());
+    for s in [2f64.powi(-20), 1.0 / 64.0, 1024.0, 2f64.powi(30)] {
+        let g = Grid::build(fibres(s).primitives());
+        assert_eq!(g.dims(), base.dims(), "scale {s}");
+        assert!((g.voxel_size() / (s * base.voxel_size()) - 1.0).abs() < 1e-12, "scale {s}");
+    }
+}
+
+#[test]
+fn the_grid_covers_its_box_and_the_sums_are_the_links() {
+    // Dims are the box extents over the model's side, rounded up, so they cover the scene.
+    let scene = fibres(1.0);
+    let g = Grid::build(scene.primitives());
+    let (lo, hi) = scene.stats().bounds;
+    for i in 0..3 {
+        let ext = hi[i] - lo[i];
+        assert!(g.dims()[i] as f64 * g.voxel_size() >= ext, "axis {i}");
+    }
+    let s = SceneSums::of(&scene.primitives());
+    assert_eq!(s.count, 72);
+    // Each link steps 1 in x, |Δy| ≤ 0.2·0.7 = 0.14 and |Δz| ≤ 0.1·5 = 0.5 (sin and cos are
+    // 1-Lipschitz), so it is in [1, √(1 + 0.14² + 0.5²) = 1.1268]; the 72 radii are 0.1 each,
+    // stored in f32 (relative error ≤ 6e-8).
+    assert!(s.length >= 72.0 && s.length <= 72.0 * 1.127, "{s:?}");
+    assert!((s.radius - 7.2).abs() < 72.0 * 1e-8, "{s:?}");
+}
