@@ -155,3 +155,34 @@ fn tiny_links_beside_a_huge_one_equal_brute_force() {
     }
     assert!(rays == 288 && hits > rays * 9 / 10, "{hits} hits of {rays} rays");
 }
+
+/// A second finding of the same campaign (`regression-point-scene-pad`): the check's chain of
+/// one point, a sphere of radius 2.4·10⁻³⁹ at `(−0.34, −0.58, 0.78)`. Its diagonal is 0, its
+/// box padding `64·ε·|centre| = 1.1·10⁻¹⁴`, and the frame scaled it by `2¹⁰⁰⁰` (from the
+/// diagonal), so the padded `f32` box was `±∞` and obvhs's child ordering panicked on its NaN
+/// centre. Now the frame is scaled by the padded box's size: the trees build, and every one of
+/// them equals brute force on the input's rays (the fuzz check), and the trees do on rays through
+/// the point.
+#[test]
+fn a_one_point_scene_builds_and_equals_brute_force() {
+    let data =
+        std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/../../fuzz/corpus/accel/regression-point-scene-pad"))
+            .unwrap();
+    accel::check(&data);
+    let c = V3::new(-0.3430919051170349, -0.5837545394897461, 0.7784315943717957);
+    let line = Polyline { points: vec![c.to_array()], radii: vec![2.3716710261989307e-39] };
+    let scene = Scene::from_polylines(&[line], 1.0, "point").unwrap();
+    let wide = WideBvh::from_scene(&scene, Model::Links).unwrap();
+    let own: Vec<Prim> = (0..wide.prim_count() as u32).map(|i| wide.prim(i)).collect();
+    let mut rng = Rng::new(7);
+    for _ in 0..50 {
+        let d = V3::from(rng.unit());
+        let ray = Ray::new(c - d * 2.0, d);
+        accel::agree("compact wide bvh", &wide, &own, &ray);
+        // (The grid, `accel/grid/`, misses these rays through the point's centre: a separate
+        // finding, reported to its owner, not fixed here; the fuzz check's own rays pass.)
+        for (name, tracer) in accel::tracers(&own).into_iter().filter(|(name, _)| *name != "grid") {
+            accel::agree(name, tracer.as_ref(), &own, &ray);
+        }
+    }
+}

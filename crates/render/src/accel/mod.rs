@@ -18,8 +18,8 @@
 //! The returned hits are exact kernel results in `f64`; only culling uses `f32`.
 //!
 //! # obvhs's absolute entry bound
-//! obvhs works in a frame scaled by a power of two so that the scene diagonal is
-//! `D·scale ∈ [2^-½, 2^½]`. Its 8-wide node test (`CwBvhNode::intersect_ray`) accepts a child
+//! obvhs works in a frame scaled by a power of two so that the padded scene box's size is
+//! `(D + 4·pad)·scale ∈ [2^-½, 2^½]`. Its 8-wide node test (`CwBvhNode::intersect_ray`) accepts a child
 //! only where `max(t_entry, 10⁻⁴) ≤ t_exit` — an absolute `10⁻⁴` (obvhs's `EPSILON`, in its
 //! units) — so a box that the obvhs ray leaves before `t = 10⁻⁴` is culled. Every hit we need
 //! lies at a distance `s* ≥ a` along the unit direction (`a`: the clipped entry), and the ray
@@ -192,7 +192,12 @@ impl Frame {
         // obvhs works in a frame scaled by a power of two so the scene is about unit size (exact,
         // and it keeps every f32 quantity of a traversal far from obvhs's absolute constants:
         // a scene 1e-6 across was missed by the wide BVH, a fuzz finding).
-        let scale = 2f64.powi(-(diag.max(f64::MIN_POSITIVE).log2().round() as i32).clamp(-1000, 1000));
+        // Scaled by the padded box's size, not the diagonal alone: a scene of one point away from
+        // the origin has diag = 0 and pad = 64·ε·|centre| (a fuzz finding, regression-point-scene-
+        // pad: scaled by 2¹⁰⁰⁰ from the diagonal, its padded box overflowed f32 to ±∞ and obvhs's
+        // child ordering panicked on the NaN centre).
+        let size = (diag + 4.0 * pad).max(f64::MIN_POSITIVE);
+        let scale = 2f64.powi(-(size.log2().round() as i32).clamp(-1000, 1000));
         let lo = std::array::from_fn(|i| lo[i] - 2.0 * pad);
         let hi = std::array::from_fn(|i| hi[i] + 2.0 * pad);
         Self { centre, lo, hi, pad, scale, any }
