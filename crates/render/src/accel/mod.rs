@@ -17,6 +17,29 @@
 //! a ray inside a padded slab still spans `±pad·2²³ = ±128·D`, far beyond the travel.
 //! The returned hits are exact kernel results in `f64`; only culling uses `f32`.
 //!
+//! # obvhs's absolute entry bound
+//! obvhs works in a frame scaled by a power of two so that the padded scene box's size is
+//! `(D + 4·pad)·scale ∈ [2^-½, 2^½]`. Its 8-wide node test (`CwBvhNode::intersect_ray`) accepts a child
+//! only where `max(t_entry, 10⁻⁴) ≤ t_exit` — an absolute `10⁻⁴` (obvhs's `EPSILON`, in its
+//! units) — so a box that the obvhs ray leaves before `t = 10⁻⁴` is culled. Every hit we need
+//! lies at a distance `s* ≥ a` along the unit direction (`a`: the clipped entry), and the ray
+//! stays inside the hit primitive's padded box (and every box above it) for `s* ± pad`, so its
+//! exit from them is at `t ≥ (a − s₀ + pad)·scale`, with `s₀` the restart. The restart therefore
+//! lies `4·pad` (the rounding margin) plus [`LEAD`]` = 2⁻¹²` obvhs units (`2.4·10⁻⁴ > 10⁻⁴`,
+//! with the slab errors above ≪ the remaining `1.4·10⁻⁴`) before `a`. Without the lead it lay
+//! `4·pad·scale ≤ 8.6·10⁻⁵` before, and the wide tree missed hits within about `2·pad` of the
+//! entry: a fuzz finding, `regression-long-link-epsilon` — six links near the origin and one
+//! 7.26·10⁶ long (`pad = 110.8`, `scale = 2⁻²³`), a ray starting inside the scene box whose hit
+//! link's padded box spans obvhs `t ∈ [3.8, 6.9]·10⁻⁵`. The lead lengthens the `f32` travel by
+//! `2⁻¹²·scale⁻¹ ≤ 2⁻¹¹·D`, which leaves the error bounds above as they are.
+//!
+//! obvhs's quantisation of a wide node's child boxes (8 bits per axis, plane `p + q·2ᵏ`) rounds
+//! outward (`floor`/`ceil` of `(child − p)·2⁻ᵏ`) after one `f32` subtraction of values
+//! `≤ 2` apart, `≤ 2⁻²⁴·2` off, and its exponent `k` (an `f32` `log2`, a few ulps) can be one
+//! too small where the node's extent is within those ulps of `255·2ᵏ`, clamping `q = 256` to
+//! 255: a box a few `2⁻²⁴·2` short. Both are below `pad·scale ≥ 2⁻¹⁶·2^-½ = 1.08·10⁻⁵` by a
+//! factor of 20 or more, so the padding covers them.
+//!
 //! # Lane packets
 //! With the `wide` feature, the links (cylinders and cones) of each leaf are moved to the
 //! leaf's front and gathered into packets of up to eight, tested by one call of the lane
@@ -46,6 +69,11 @@ pub use chunked::{CHUNK, CHUNKS_AT_ONCE};
 pub use table::{closest_table, crossings_table, hit_table, MISS_ROW};
 pub use tracer::Tracer;
 pub use wide::WideBvh;
+
+/// How far (in obvhs units, beyond the `4·pad` rounding margin) a clipped ray restarts before
+/// its entry into the scene box: more than obvhs's absolute `10⁻⁴` below which its wide node
+/// test culls boxes (see the module docs).
+const LEAD: f64 = 1.0 / 4096.0;
 
 /// `pack_at` entry of a primitive that starts no packet.
 #[cfg(feature = "wide")]
@@ -164,7 +192,12 @@ impl Frame {
         // obvhs works in a frame scaled by a power of two so the scene is about unit size (exact,
         // and it keeps every f32 quantity of a traversal far from obvhs's absolute constants:
         // a scene 1e-6 across was missed by the wide BVH, a fuzz finding).
-        let scale = 2f64.powi(-(diag.max(f64::MIN_POSITIVE).log2().round() as i32).clamp(-1000, 1000));
+        // Scaled by the padded box's size, not the diagonal alone: a scene of one point away from
+        // the origin has diag = 0 and pad = 64·ε·|centre| (a fuzz finding, regression-point-scene-
+        // pad: scaled by 2¹⁰⁰⁰ from the diagonal, its padded box overflowed f32 to ±∞ and obvhs's
+        // child ordering panicked on the NaN centre).
+        let size = (diag + 4.0 * pad).max(f64::MIN_POSITIVE);
+        let scale = 2f64.powi(-(size.log2().round() as i32).clamp(-1000, 1000));
         let lo = std::array::from_fn(|i| lo[i] - 2.0 * pad);
         let hi = std::array::from_fn(|i| hi[i] + 2.0 * pad);
         Self { centre, lo, hi, pad, scale, any }
@@ -211,7 +244,8 @@ impl Frame {
         // point is formed with one rounding per coordinate (fused o + d·t₀), so it lies within
         // ε·|p| of the ray's line — not ε·|o|, which for an origin far from a small scene would
         // exceed the box padding (a fuzz finding: origin 1e18 away from a 1e-6 scene).
-        let s0 = a - 4.0 * self.pad;
+        // Also `LEAD` before it in obvhs units, past obvhs's absolute entry bound (module docs).
+        let s0 = a - 4.0 * self.pad - LEAD / self.scale;
         let t0 = s0 / len;
         let p = V3::new(ray.d.x.mul_add(t0, ray.o.x), ray.d.y.mul_add(t0, ray.o.y), ray.d.z.mul_add(t0, ray.o.z));
         let sc = self.scale;
