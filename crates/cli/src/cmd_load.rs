@@ -88,7 +88,7 @@ impl Plan {
     fn work(&self, nodes_per_link: f64) -> Work {
         let compact = matches!(self.accel, Accel::Bvh) && self.model == Model::Links;
         let (thin, pixels) = self.render.unwrap_or((false, 0));
-        let thin_nodes = if thin { nodes_per_link } else { 0.0 };
+        let thin_nodes = if thin { nodes_per_link as f32 } else { 0.0 };
         Work { compact, prim_list: self.render.is_some(), thin_nodes, pixels }
     }
 }

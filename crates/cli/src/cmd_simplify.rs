@@ -124,6 +124,9 @@ fn write_simplified(a: &SimplifyArgs, kind: &str, path: &Path) -> Result<Counts,
     Ok((before, after, worst, None))
 }
 
+/// `.tck`'s end marker: an Inf triplet (little-endian, as [`tck::write`] writes it).
+const END: [u8; 12] = [0, 0, 0x80, 0x7f, 0, 0, 0x80, 0x7f, 0, 0, 0x80, 0x7f];
+
 /// Streamlines written as they come, in the layout [`trk::write`], [`tck::write`] and
 /// [`obj::write`] give the whole list: the header first, with a count of 0, then each record
 /// (cut from what the writer gives for that one streamline), and at the end the count, written
@@ -148,7 +151,7 @@ impl Out {
             }
             "tck" => {
                 let mut head = tck::write(&[], false);
-                head.truncate(head.len() - 4); // the end marker, written at the end
+                head.truncate(head.len() - END.len()); // the end marker, written at the end
                 w.write_all(&head).map_err(err)?;
                 Out::Tck { w, head, n: 0 }
             }
@@ -167,7 +170,7 @@ impl Out {
             Out::Tck { w, head, n } => {
                 *n += 1;
                 let rec = tck::write(one, false);
-                w.write_all(&rec[head.len()..rec.len() - 4])
+                w.write_all(&rec[head.len()..rec.len() - END.len()])
             }
             Out::Obj(w) => w.push(l),
         };
@@ -183,7 +186,7 @@ impl Out {
                 w.flush()
             })(),
             Out::Tck { mut w, head, n } => (|| {
-                w.write_all(&f32::INFINITY.to_le_bytes())?;
+                w.write_all(&END)?;
                 let at = head.windows(7).position(|s| s == b"count: ").expect("tck::write writes a count") + 7;
                 w.seek(SeekFrom::Start(at as u64))?;
                 w.write_all(format!("{n:010}").as_bytes())?;

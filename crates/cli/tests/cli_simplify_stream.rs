@@ -41,8 +41,8 @@ fn a_truncated_or_malformed_input_leaves_no_output() {
     let full = std::fs::read(repo("reference/readers/nibabel/standard.trk")).unwrap();
     let tck = std::fs::read(repo("reference/readers/nibabel/standard.tck")).unwrap();
     let obj = std::fs::read(data("bundle.obj")).unwrap();
-    // standard.trk: 1000-byte header, then 10 streamlines of 3 × 12 + 4 bytes... cut in the
-    // middle of the data; standard.tck without its Inf end marker; an OBJ whose 40th line is
+    // standard.trk cut at byte 3000, inside its streamlines (header: 1000 bytes); the
+    // standard.tck without its Inf end marker (12 bytes); an OBJ whose 40th line is
     // cut after "v" (no coordinates).
     let cut_obj: Vec<u8> = {
         let text = String::from_utf8(obj).unwrap();
@@ -52,7 +52,7 @@ fn a_truncated_or_malformed_input_leaves_no_output() {
     };
     let cases: [(&str, Vec<u8>, &str); 3] = [
         ("cut.trk", full[..3000].to_vec(), "truncated"),
-        ("cut.tck", tck[..tck.len() - 4].to_vec(), "Inf end marker"),
+        ("cut.tck", tck[..tck.len() - 12].to_vec(), "Inf end marker"),
         ("cut.obj", cut_obj, "line 40"),
     ];
     for (name, bytes, says) in cases {

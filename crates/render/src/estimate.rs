@@ -89,7 +89,7 @@ pub struct Work {
     /// (`render`).
     pub prim_list: bool,
     /// Nodes per link whose radius and coverage the thin-tube clamp stores (0: no clamp).
-    pub thin_nodes: f64,
+    pub thin_nodes: f32,
     /// Pixels of the image (0: no image).
     pub pixels: u64,
 }
@@ -217,7 +217,7 @@ impl PerLink {
     /// ([module docs](self)), plus its image.
     pub fn needed_for(&self, links: u64, work: &Work) -> f64 {
         let n = links as f64;
-        let scene = self.scene + THIN_BYTES_PER_NODE * work.thin_nodes;
+        let scene = self.scene + THIN_BYTES_PER_NODE * work.thin_nodes as f64;
         let build = match work.compact {
             true => {
                 n * (scene + self.tracer * (1.0 + BUILD_OVERHEAD))
@@ -260,7 +260,7 @@ impl TooLarge {
             help += ", --thin off";
         }
         let n = self.links as f64;
-        let scene = n * (p.scene + THIN_BYTES_PER_NODE * w.thin_nodes);
+        let scene = n * (p.scene + THIN_BYTES_PER_NODE * w.thin_nodes as f64);
         if w.compact {
             how += &format!(
                 ", built with {:.0}% more and {:.0} B per link built at once",
