@@ -16,7 +16,7 @@ pub fn with_threads<R: Send>(threads: Option<usize>, f: impl FnOnce() -> R + Sen
 
 /// `tubecast intersect`: the scene's BVH, the rays, and the table the query asks for.
 pub fn intersect(a: &IntersectArgs) -> Result<(), CliError> {
-    let plan = crate::cmd_load::Plan { model: crate::commands::model(a.splines), accel: a.accel };
+    let plan = crate::cmd_load::Plan { model: crate::commands::model(a.splines), accel: a.accel, render: None };
     let radius = (crate::render_opts::Radius::Absolute(a.radius), a.min_radius);
     let scene = crate::commands::load(&a.input, radius, &a.load, plan, "every ray misses", None)?;
     let name = a.rays.display().to_string();

@@ -15,7 +15,7 @@ use crate::error::CliError;
 use crate::render_opts::Radius;
 use clap::Args;
 use std::path::Path;
-use tubecast_render::estimate::{self, PerLink};
+use tubecast_render::estimate::{self, PerLink, Work};
 use tubecast_render::io::stream::Selection;
 use tubecast_render::scene::{generate, LoadOptions, Model, Scene};
 
@@ -69,13 +69,28 @@ pub fn parse_bytes(s: &str) -> Result<u64, String> {
     }
 }
 
-/// How a command will build its scene: model and accelerator (for the sample).
+/// How a command will build its scene: model and accelerator (for the sample), and what
+/// `render` holds besides.
 #[derive(Clone, Copy)]
 pub struct Plan {
     /// Links or splines.
     pub model: Model,
     /// The accelerator the command builds.
     pub accel: Accel,
+    /// `render`'s image: whether thin tubes may be clamped, and its pixels (`None`: no image).
+    pub render: Option<(bool, u64)>,
+}
+
+impl Plan {
+    /// What the command builds besides the scene, for the estimate (`nodes_per_link`: of the
+    /// sample). The clamp is counted whenever `--thin` is on, whether or not a tube turns out
+    /// thinner than `--min-pixels` (an over-estimate of 12 B per node otherwise).
+    fn work(&self, nodes_per_link: f64) -> Work {
+        let compact = matches!(self.accel, Accel::Bvh) && self.model == Model::Links;
+        let (thin, pixels) = self.render.unwrap_or((false, 0));
+        let thin_nodes = if thin { nodes_per_link as f32 } else { 0.0 };
+        Work { compact, prim_list: self.render.is_some(), thin_nodes, pixels }
+    }
 }
 
 /// Load `input` as the command will use it: configure progress, check the memory estimate,
@@ -123,15 +138,17 @@ pub fn check_memory(
     };
     // Unreadable or malformed files are reported by the load itself, with its own message.
     let Ok(counts) = estimate::probe(input) else { return Ok(None) };
-    let Some((per_link, avg)) = sample(input, opts, sel, plan) else { return Ok(None) };
+    let Some((per_link, avg, nodes_per_link)) = sample(input, opts, sel, plan) else { return Ok(None) };
     let kept = (counts.links(sel, avg), counts.kept_lines(sel, avg));
     let name = input.display().to_string();
-    Ok(Some(estimate::check(&name, kept, per_link, available).map_err(CliError::Memory)?))
+    let work = plan.work(nodes_per_link);
+    Ok(Some(estimate::check_with(&name, kept, per_link, work, available).map_err(CliError::Memory)?))
 }
 
 /// Bytes per link of the first streamlines of `input` (a generated bundle for SWC), built as
-/// `plan` says, and their points per streamline; `None` when the sample has no links.
-fn sample(input: &Path, opts: &LoadOptions, sel: &Selection, plan: Plan) -> Option<(PerLink, Option<f64>)> {
+/// `plan` says, their points per streamline and nodes per link; `None` when the sample has no
+/// links.
+fn sample(input: &Path, opts: &LoadOptions, sel: &Selection, plan: Plan) -> Option<(PerLink, Option<f64>, f64)> {
     let is_swc = input.extension().is_some_and(|e| e.eq_ignore_ascii_case("swc"));
     let scene = if is_swc {
         Scene::from_polylines(&generate::bundle(16, 64, 1), opts.default_radius, "sample").ok()?
@@ -150,7 +167,7 @@ fn sample(input: &Path, opts: &LoadOptions, sel: &Selection, plan: Plan) -> Opti
     let per_link = PerLink { scene: per(scene.memory_bytes()), tracer: per(tracer.memory_bytes()) };
     let lines = scene.nodes.len().saturating_sub(links);
     let avg = (!is_swc && lines > 0).then(|| scene.nodes.len() as f64 / lines as f64);
-    Some((per_link, avg))
+    Some((per_link, avg, scene.nodes.len() as f64 / links as f64))
 }
 
 /// The default radius: absolute, or the fraction of the diagonal of the bounding box of the

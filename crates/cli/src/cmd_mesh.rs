@@ -24,7 +24,11 @@ pub fn tracer(
 }
 
 pub fn mesh(a: &MeshArgs) -> Result<(), CliError> {
-    let plan = crate::cmd_load::Plan { model: crate::commands::model(a.splines), accel: crate::args::Accel::Bvh };
+    let plan = crate::cmd_load::Plan {
+        model: crate::commands::model(a.splines),
+        accel: crate::args::Accel::Bvh,
+        render: None,
+    };
     let radius = (crate::render_opts::Radius::Absolute(a.io.radius), a.min_radius);
     let args = crate::cmd_load::LoadArgs::default();
     let scene = crate::commands::load(&a.io.input, radius, &args, plan, "the mesh is empty", None)?;

@@ -2,13 +2,27 @@
 //! The file formats hold nodes only, so quadratic spline pieces cannot be written; the command
 //! prints what the automatic choice (`render`/`info --tolerance`) makes of the input at the
 //! same tolerance, links only and with quadratic spline fits.
+//!
+//! # Streaming
+//! `.trk`, `.tck` and `.obj` files are read streamline by streamline through the streaming
+//! readers ([`tubecast_render::io::stream`], [`io::obj::stream`]) and each simplified
+//! streamline is written as it comes ([`Out`]), so the command holds one streamline of each
+//! (an OBJ file: its vertices too, which its `l` elements may index anywhere). The output
+//! goes to a file beside `--out` that is renamed over it at the end (removed on an error), so
+//! a malformed input leaves no partial output and the output may be the input itself. The
+//! choice is then printed for the scene loaded again by the streaming loader (what it keeps:
+//! the scene, no copy of the file). An SWC tree is read line by line and simplified whole.
 
 use crate::args::SimplifyArgs;
 use crate::error::CliError;
-use tubecast_render::io::{self, IoError};
+use std::fs::File;
+use std::io::{BufWriter, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+use tubecast_render::io::stream::{open, Flow, Selection};
+use tubecast_render::io::{self, obj, tck, trk, IoError, Polyline};
 use tubecast_render::scene::choice::{choose, choose_with, Tolerance};
 use tubecast_render::scene::simplify::{simplify_polyline, simplify_swc};
-use tubecast_render::scene::Scene;
+use tubecast_render::scene::{LoadOptions, Scene};
 
 /// The counts of the automatic choice on `scene` at `eps`, links only and with splines.
 fn print_choice(scene: &Scene, eps: f64) {
@@ -29,53 +43,157 @@ fn print_choice(scene: &Scene, eps: f64) {
 }
 
 pub fn simplify(a: &SimplifyArgs) -> Result<(), CliError> {
-    if !(a.io.tolerance.is_finite() && a.io.tolerance >= 0.0) {
-        return Err(CliError::Tolerance(a.io.tolerance));
+    let eps = a.io.tolerance;
+    if !(eps.is_finite() && eps >= 0.0) {
+        return Err(CliError::Tolerance(eps));
     }
     let name = a.io.input.display().to_string();
-    let ext = |p: &std::path::Path| p.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let ext = |p: &Path| p.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     let (kind, out_kind) = (ext(&a.io.input), ext(&a.io.out));
     if kind != out_kind {
         return Err(
             IoError::file(&a.io.out.display().to_string(), format!("must have the input's extension .{kind}")).into()
         );
     }
-    let data = io::read_bytes(&a.io.input)?;
-    let (before, after, d, scene) = match kind.as_str() {
-        "swc" => {
-            let rows = io::swc::read(&data, &name)?;
-            let (out, d) = simplify_swc(&rows, a.io.tolerance);
-            io::write_bytes(&a.io.out, io::swc::write(&out).as_bytes())?;
-            (rows.len(), out.len(), d, Scene::from_swc(&rows, &name).ok())
-        }
-        "trk" | "tck" | "obj" => {
-            let (header, lines) = match kind.as_str() {
-                "trk" => {
-                    let (h, l) = io::trk::read(&data, &name)?;
-                    (Some(h), l)
-                }
-                "tck" => (None, io::tck::read(&data, &name)?),
-                _ => (None, io::obj::read(&data, &name)?),
-            };
-            let done: Vec<_> = lines.iter().map(|l| simplify_polyline(l, a.io.radius, a.io.tolerance)).collect();
-            let d = done.iter().map(|x| x.1).fold(0.0, f64::max);
-            let out: Vec<_> = done.into_iter().map(|x| x.0).collect();
-            match header {
-                Some(h) => io::write_bytes(&a.io.out, &io::trk::write(&h, &out, false))?,
-                None => io::write_polylines(&a.io.out, &out)?,
-            }
-            let count = |ls: &[io::Polyline]| ls.iter().map(|l| l.points.len()).sum::<usize>();
-            (count(&lines), count(&out), d, Scene::from_polylines(&lines, a.io.radius, &name).ok())
-        }
-        _ => return Err(IoError::file(&name, "simplify reads .swc, .trk, .tck or .obj").into()),
-    };
-    println!(
-        "{}: {after} of {before} nodes kept, largest merge bound {d:e} (tolerance {:e})",
-        a.io.out.display(),
-        a.io.tolerance
-    );
+    if !matches!(kind.as_str(), "swc" | "trk" | "tck" | "obj") {
+        return Err(IoError::file(&name, "simplify reads .swc, .trk, .tck or .obj").into());
+    }
+    let part = PathBuf::from(format!("{}.partial", a.io.out.display()));
+    let done = write_simplified(a, &kind, &part);
+    let renamed = done.and_then(|r| {
+        let err = |e: std::io::Error| IoError::file(&a.io.out.display().to_string(), format!("cannot write: {e}"));
+        std::fs::rename(&part, &a.io.out).map_err(err)?;
+        Ok(r)
+    });
+    let (before, after, d, swc_scene) = renamed.inspect_err(|_| drop(std::fs::remove_file(&part)))?;
+    println!("{}: {after} of {before} nodes kept, largest merge bound {d:e} (tolerance {eps:e})", a.io.out.display());
+    let scene = swc_scene.or_else(|| {
+        let opts = LoadOptions { default_radius: a.io.radius, min_radius: None };
+        let hidden = indicatif::ProgressBar::hidden();
+        Scene::load_selected(&a.io.input, &opts, &Selection::default(), false, &hidden).ok().map(|s| s.0)
+    });
     if let Some(scene) = scene {
-        print_choice(&scene, a.io.tolerance);
+        print_choice(&scene, eps);
     }
     Ok(())
+}
+
+/// Nodes before and after, the largest merge bound, and (SWC) the input's scene.
+type Counts = (usize, usize, f64, Option<Scene>);
+
+/// Simplify the input (of extension `kind`) into `path`.
+fn write_simplified(a: &SimplifyArgs, kind: &str, path: &Path) -> Result<Counts, IoError> {
+    let name = a.io.input.display().to_string();
+    let (r, len) = open(&a.io.input)?;
+    if kind == "swc" {
+        let rows = io::swc::read_from(r, &name, None)?.nodes;
+        let (out, d) = simplify_swc(&rows, a.io.tolerance);
+        io::write_bytes(path, io::swc::write(&out).as_bytes())?;
+        return Ok((rows.len(), out.len(), d, Scene::from_swc(&rows, &name).ok()));
+    }
+    let (mut out, out_name) = (Out::create(path, kind, &a.io.input)?, path.display().to_string());
+    let (mut before, mut after, mut worst, mut failed) = (0, 0, 0.0f64, None);
+    let mut each = |points: &[[f64; 3]], radii: Vec<f64>| {
+        let line = Polyline { points: points.to_vec(), radii };
+        let (s, d) = simplify_polyline(&line, a.io.radius, a.io.tolerance);
+        (before, after, worst) = (before + line.points.len(), after + s.points.len(), worst.max(d));
+        match out.push(&s, &out_name) {
+            Ok(()) => Flow::Continue,
+            Err(e) => {
+                failed = Some(e);
+                Flow::Stop
+            }
+        }
+    };
+    match kind {
+        "trk" => drop(trk::stream(r, &name, &mut |l| each(l.points, Vec::new()))?),
+        "tck" => {
+            let mut records = tck::Records::new(r, &name, Some(len), false)?;
+            while let Some(l) = records.next_line()? {
+                if each(l.points, Vec::new()) == Flow::Stop {
+                    break;
+                }
+            }
+        }
+        _ => drop(obj::stream(r, &name, &mut |l| each(&l.points, l.radii))?),
+    }
+    if let Some(e) = failed {
+        return Err(e);
+    }
+    out.finish(&out_name)?;
+    Ok((before, after, worst, None))
+}
+
+/// `.tck`'s end marker: an Inf triplet (little-endian, as [`tck::write`] writes it).
+const END: [u8; 12] = [0, 0, 0x80, 0x7f, 0, 0, 0x80, 0x7f, 0, 0, 0x80, 0x7f];
+
+/// Streamlines written as they come, in the layout [`trk::write`], [`tck::write`] and
+/// [`obj::write`] give the whole list: the header first, with a count of 0, then each record
+/// (cut from what the writer gives for that one streamline), and at the end the count, written
+/// over the header's fixed-width field (`.trk`: `n_count` at byte 988; `.tck`: the 10-digit
+/// `count:`), and `.tck`'s end marker.
+enum Out {
+    Trk { w: BufWriter<File>, h: trk::TrkHeader, n: i32 },
+    Tck { w: BufWriter<File>, head: Vec<u8>, n: usize },
+    Obj(obj::Writer<BufWriter<File>>),
+}
+
+impl Out {
+    /// Start `path` for `kind` (a `.trk`: with the header of `input`).
+    fn create(path: &Path, kind: &str, input: &Path) -> Result<Self, IoError> {
+        let err = |e: std::io::Error| IoError::file(&path.display().to_string(), format!("cannot write: {e}"));
+        let mut w = BufWriter::new(File::create(path).map_err(err)?);
+        Ok(match kind {
+            "trk" => {
+                let h = trk::read_info(open(input)?.0, &input.display().to_string())?.header;
+                w.write_all(&trk::write(&h, &[], false)).map_err(err)?;
+                Out::Trk { w, h, n: 0 }
+            }
+            "tck" => {
+                let mut head = tck::write(&[], false);
+                head.truncate(head.len() - END.len()); // the end marker, written at the end
+                w.write_all(&head).map_err(err)?;
+                Out::Tck { w, head, n: 0 }
+            }
+            _ => Out::Obj(obj::Writer::new(w).map_err(err)?),
+        })
+    }
+
+    /// Append one streamline.
+    fn push(&mut self, l: &Polyline, name: &str) -> Result<(), IoError> {
+        let one = std::slice::from_ref(l);
+        let done = match self {
+            Out::Trk { w, h, n } => {
+                *n += 1;
+                w.write_all(&trk::write(h, one, false)[1000..])
+            }
+            Out::Tck { w, head, n } => {
+                *n += 1;
+                let rec = tck::write(one, false);
+                w.write_all(&rec[head.len()..rec.len() - END.len()])
+            }
+            Out::Obj(w) => w.push(l),
+        };
+        done.map_err(|e| IoError::file(name, format!("cannot write: {e}")))
+    }
+
+    /// Write the counts and the end marker, and flush.
+    fn finish(self, name: &str) -> Result<(), IoError> {
+        let done = match self {
+            Out::Trk { mut w, n, .. } => (|| {
+                w.seek(SeekFrom::Start(988))?;
+                w.write_all(&n.to_le_bytes())?;
+                w.flush()
+            })(),
+            Out::Tck { mut w, head, n } => (|| {
+                w.write_all(&END)?;
+                let at = head.windows(7).position(|s| s == b"count: ").expect("tck::write writes a count") + 7;
+                w.seek(SeekFrom::Start(at as u64))?;
+                w.write_all(format!("{n:010}").as_bytes())?;
+                w.flush()
+            })(),
+            Out::Obj(w) => w.finish().map(drop),
+        };
+        done.map_err(|e| IoError::file(name, format!("cannot write: {e}")))
+    }
 }

@@ -74,6 +74,7 @@ pub(crate) fn scene_tracer(
         return Ok(Box::new(bvh));
     }
     if m == Model::Links {
+        drop(prims); // the tracer's own list replaces the caller's: not two lists at once
         return Ok(tracer(accel, WideBvh::scene_primitives(scene)));
     }
     Ok(tracer(accel, prims.map_or_else(|| scene.model_primitives(m), Ok)?))
@@ -106,7 +107,8 @@ pub fn render(a: &RenderArgs) -> Res {
     if let Some(d) = &a.depth {
         check_out(d, a.force)?;
     }
-    let plan = Plan { model: model(a.splines), accel: a.accel };
+    let image = Some((thin_on(a.thin, &a.input), a.width as u64 * a.height as u64));
+    let plan = Plan { model: model(a.splines), accel: a.accel, render: image };
     let empty = "the image shows the background only";
     let mut scene = load(&a.input, (a.radius, a.min_radius), &a.load, plan, empty, field)?;
     let mut prims = scene.model_primitives(model(a.splines))?;
@@ -190,7 +192,7 @@ fn units(input: &Path) -> &'static str {
 }
 
 pub fn info(a: &InfoArgs) -> Res {
-    let plan = Plan { model: model(a.splines), accel: Accel::Bvh };
+    let plan = Plan { model: model(a.splines), accel: Accel::Bvh, render: None };
     let scene = load(&a.input, (a.radius, a.min_radius), &a.load, plan, "counts are zero", None)?;
     let prims = if a.splines { scene.model_primitives(Model::Splines)? } else { Vec::new() };
     let st = if a.splines { scene.stats_of(&prims) } else { scene.stats() };

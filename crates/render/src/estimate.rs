@@ -1,16 +1,29 @@
 //! The memory a scene will need, known before it is loaded: counts from the file's header and
-//! size ([`probe`]), bytes per link measured on a sample built the same way ([`PerLink`]), and
-//! the memory there is ([`available`]). The command line refuses, before allocating, a scene
-//! that would not fit ([`check`]), naming the figures and the options that help.
+//! size ([`probe`]), bytes per link measured on a sample built the same way ([`PerLink`]), what
+//! the command builds besides ([`Work`]), and the memory there is ([`available`]). The command
+//! line refuses, before allocating, a scene that would not fit ([`check_with`]), naming the
+//! figures and the options that help.
 //!
 //! # The model
-//! Peak bytes ≈ `links × (scene + tracer × (1 + BUILD_OVERHEAD)) + min(links, BUILD_ITEMS) ×
-//! BUILD_BYTES_PER_ITEM + BASE_BYTES`, with `scene` and `tracer` the bytes per link of
-//! [`crate::scene::Scene::memory_bytes`] and [`crate::accel::Tracer::memory_bytes`] measured on
-//! a sample of the file (so they follow any change of the layouts), [`BUILD_OVERHEAD`] the
-//! share of the tracer's size its build holds on top of it (tables in item order, the clusters
-//! before reordering), and [`BUILD_BYTES_PER_ITEM`] the tree builder's buffers for each item it
-//! builds at once: at most [`BUILD_ITEMS`], as the compact tree is built in chunks.
+//! A command's peak is the largest of its phases, each the sum of what is alive then, plus
+//! [`BASE_BYTES`] and the image ([`PIXEL_BYTES`] per pixel, `render` only). With `scene` and
+//! `tracer` the bytes per link of [`crate::scene::Scene::memory_bytes`] and
+//! [`crate::accel::Tracer::memory_bytes`] measured on a sample of the file (so they follow any
+//! change of the layouts), and `scene'` the scene plus, when `render` clamps thin tubes
+//! ([`crate::render::clamp_thin`]), a radius and a coverage per node ([`THIN_BYTES_PER_NODE`]):
+//! - **the compact tree** (`info`, `intersect`, `render`; the CLI's `--accel bvh` over links),
+//!   built in chunks: `links × (scene' + tracer × (1 + BUILD_OVERHEAD)) + min(links,
+//!   BUILD_ITEMS) × BUILD_BYTES_PER_ITEM` ([`BUILD_OVERHEAD`]: the share of the tracer's size its
+//!   build holds on top of it, tables in item order and the clusters before reordering;
+//!   [`BUILD_BYTES_PER_ITEM`]: the tree builder's buffers per item it builds at once, at most
+//!   [`BUILD_ITEMS`]);
+//! - **a tracer built whole over a primitive list** (`--accel bvh2`, `--accel grid`, the spline
+//!   model): `links × (scene' + tracer + WHOLE_BUILD_BYTES)`: these builds are not chunked, so
+//!   the builder's share ([`WHOLE_BUILD_BYTES`]) grows with every link;
+//! - **`render`'s primitive list**: `render` computes one [`crate::scene::Prim`] per link
+//!   ([`PRIM_BYTES`]) for the scene's bounds and after the clamp, beside `scene'`, and drops it
+//!   before the compact tree is built: `links × (scene' + PRIM_BYTES)`. At 10⁸ links this is
+//!   `render`'s peak (it is not `info`'s).
 
 use crate::io::stream::{open, Selection};
 use crate::io::{self, IoError};
@@ -38,6 +51,53 @@ pub const BUILD_ITEMS: u64 = (crate::accel::CHUNK * crate::accel::CHUNKS_AT_ONCE
 
 /// Bytes a process needs whatever the scene (code, thread stacks, buffers).
 pub const BASE_BYTES: u64 = 16 << 20;
+
+/// Bytes the thin-tube clamp adds per node: the scene then stores one `f64` radius per node
+/// (instead of one shared radius) and an `f32` coverage ([`crate::render::clamp_thin`]).
+pub const THIN_BYTES_PER_NODE: f64 = 12.0;
+
+/// Bytes of one primitive in a list ([`crate::scene::Prim`], `render`'s list of the scene's
+/// primitives).
+pub const PRIM_BYTES: f64 = std::mem::size_of::<crate::scene::Prim>() as f64;
+
+/// Bytes per link a tracer built whole over its primitive list (obvhs's binary BVH, the voxel
+/// grid) holds during its build beyond its finished size (builder arrays, item boxes): fitted
+/// to the peaks of `tubecast intersect` and `render` with `--accel bvh2` and `--accel grid` at
+/// 10⁶ links (see the tests: the grid needs 267 B, the binary BVH 185 B), rounded up.
+pub const WHOLE_BUILD_BYTES: f64 = 280.0;
+
+/// Bytes per pixel of `render`'s image: linear RGB, alpha and depth (24 B, [`crate::render::
+/// Image`]) and the 8-bit RGB(A) copy written to the PNG (3–4 B), rounded up.
+pub const PIXEL_BYTES: u64 = 32;
+
+/// What a command builds and holds besides the scene ([module docs](self)).
+///
+/// ```
+/// use tubecast_render::estimate::{PerLink, Work};
+/// let per_link = PerLink { scene: 24.4, tracer: 33.0 };
+/// let render = Work { prim_list: true, thin_nodes: 85.0 / 84.0, pixels: 512 * 512, ..Work::INFO };
+/// // At 10⁸ links render's peak is its list of primitives, not the tree's build.
+/// let (info, r) = (per_link.needed_for(100_000_000, &Work::INFO), per_link.needed_for(100_000_000, &render));
+/// assert!(r > info + 100_000_000.0 * 12.0);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Work {
+    /// The tracer is the compact tree, built in chunks (`false`: a tracer built whole over a
+    /// primitive list, `--accel bvh2` or `grid`, or the spline model).
+    pub compact: bool,
+    /// The command holds a list of the scene's primitives beside the scene before building
+    /// (`render`).
+    pub prim_list: bool,
+    /// Nodes per link whose radius and coverage the thin-tube clamp stores (0: no clamp).
+    pub thin_nodes: f32,
+    /// Pixels of the image (0: no image).
+    pub pixels: u64,
+}
+
+impl Work {
+    /// `info`: the compact tree, nothing else.
+    pub const INFO: Work = Work { compact: true, prim_list: false, thin_nodes: 0.0, pixels: 0 };
+}
 
 /// What a file holds, from its header and size, without reading its body.
 ///
@@ -141,15 +201,32 @@ pub struct PerLink {
 }
 
 impl PerLink {
-    /// Peak bytes per link of loading and building, the builder's buffers aside ([module
-    /// docs](self)).
+    /// Peak bytes per link of loading and building the compact tree, the builder's buffers
+    /// aside ([module docs](self)).
     pub fn peak(&self) -> f64 {
         self.scene + self.tracer * (1.0 + BUILD_OVERHEAD)
     }
 
-    /// Peak bytes of loading and building `links` links, the base aside ([module docs](self)).
+    /// Peak bytes of loading and building `links` links for `info`, the base aside ([module
+    /// docs](self)).
     pub fn needed(&self, links: u64) -> f64 {
         links as f64 * self.peak() + links.min(BUILD_ITEMS) as f64 * BUILD_BYTES_PER_ITEM
+    }
+
+    /// Peak bytes of `work` on `links` links, the base aside: the largest of its phases
+    /// ([module docs](self)), plus its image.
+    pub fn needed_for(&self, links: u64, work: &Work) -> f64 {
+        let n = links as f64;
+        let scene = self.scene + THIN_BYTES_PER_NODE * work.thin_nodes as f64;
+        let build = match work.compact {
+            true => {
+                n * (scene + self.tracer * (1.0 + BUILD_OVERHEAD))
+                    + links.min(BUILD_ITEMS) as f64 * BUILD_BYTES_PER_ITEM
+            }
+            false => n * (scene + self.tracer + WHOLE_BUILD_BYTES),
+        };
+        let list = if work.prim_list { n * (scene + PRIM_BYTES) } else { 0.0 };
+        build.max(list) + (work.pixels * PIXEL_BYTES) as f64
     }
 }
 
@@ -164,10 +241,43 @@ pub struct TooLarge {
     pub streamlines: Option<u64>,
     /// Bytes per link (scene, tracer).
     pub per_link: PerLink,
+    /// What the command builds besides the scene.
+    pub work: Work,
     /// Estimated peak bytes.
     pub needed: u64,
     /// The bytes there are, and where that figure comes from.
     pub available: (u64, String),
+}
+
+impl TooLarge {
+    /// How the peak is made up, in words, and the options of the command that lower it.
+    fn parts(&self) -> (String, String) {
+        let (w, p) = (&self.work, &self.per_link);
+        let mut how = format!("scene {:.1} B + primitives and tree {:.1} B", p.scene, p.tracer);
+        let mut help = String::new();
+        if w.thin_nodes > 0.0 {
+            how += &format!(" + {:.0} B per node for the thin-tube clamp", THIN_BYTES_PER_NODE);
+            help += ", --thin off";
+        }
+        let n = self.links as f64;
+        let scene = n * (p.scene + THIN_BYTES_PER_NODE * w.thin_nodes as f64);
+        if w.compact {
+            how += &format!(
+                ", built with {:.0}% more and {:.0} B per link built at once",
+                100.0 * BUILD_OVERHEAD,
+                BUILD_BYTES_PER_ITEM
+            );
+        } else {
+            how += &format!(", built whole with {WHOLE_BUILD_BYTES:.0} B more per link");
+            help += ", --accel bvh (built in chunks)";
+        }
+        let build = p.needed_for(self.links, &Work { prim_list: false, pixels: 0, ..*w });
+        if w.prim_list && scene + n * PRIM_BYTES > build {
+            how +=
+                &format!("; at the peak the list of primitives, {PRIM_BYTES:.0} B per link, is held beside the scene");
+        }
+        (how, help)
+    }
 }
 
 impl fmt::Display for TooLarge {
@@ -181,20 +291,16 @@ impl fmt::Display for TooLarge {
             Some(s) => format!("N ≤ {}", (s as f64 * share) as u64),
             None => "N".to_string(),
         };
+        let per = self.needed.saturating_sub(BASE_BYTES) as f64 / self.links.max(1) as f64;
+        let (how, help) = self.parts();
         write!(
             f,
-            "{}: the scene needs about {:.2} GiB ({} links × {:.0} B: scene {:.1} B + primitives and tree \
-             {:.1} B, built with {:.0}% more and {:.0} B per link built at once), more than the {:.2} GiB available ({}); \
-             load a part of it with --subsample F (F ≤ {share}) or --max-streamlines {n}, \
+            "{}: the scene needs about {:.2} GiB ({} links × {per:.0} B: {how}), more than the {:.2} GiB available ({}); \
+             load a part of it with --subsample F (F ≤ {share}) or --max-streamlines {n}{help}, \
              or set --memory-limit BYTES",
             self.file,
             gib(self.needed),
             self.links,
-            self.per_link.peak(),
-            self.per_link.scene,
-            self.per_link.tracer,
-            100.0 * BUILD_OVERHEAD,
-            BUILD_BYTES_PER_ITEM,
             gib(self.available.0),
             self.available.1,
         )
@@ -204,16 +310,30 @@ impl fmt::Display for TooLarge {
 impl std::error::Error for TooLarge {}
 
 /// Refuse `(links, streamlines)` (the streamlines kept, when known) at `per_link` when the
-/// estimated peak exceeds `available`; the estimate in bytes otherwise.
+/// estimated peak of `info` exceeds `available`; the estimate in bytes otherwise
+/// ([`check_with`] for other commands).
 pub fn check(
     file: &str,
-    (links, streamlines): (u64, Option<u64>),
+    kept: (u64, Option<u64>),
     per_link: PerLink,
     available: (u64, String),
 ) -> Result<u64, TooLarge> {
-    let needed = per_link.needed(links) as u64 + BASE_BYTES;
+    check_with(file, kept, per_link, Work::INFO, available)
+}
+
+/// Refuse `(links, streamlines)` (the streamlines kept, when known) at `per_link` when the
+/// estimated peak of `work` ([`PerLink::needed_for`]) exceeds `available`; the estimate in
+/// bytes otherwise.
+pub fn check_with(
+    file: &str,
+    (links, streamlines): (u64, Option<u64>),
+    per_link: PerLink,
+    work: Work,
+    available: (u64, String),
+) -> Result<u64, TooLarge> {
+    let needed = per_link.needed_for(links, &work) as u64 + BASE_BYTES;
     if needed > available.0 {
-        return Err(TooLarge { file: file.to_string(), links, streamlines, per_link, needed, available });
+        return Err(TooLarge { file: file.to_string(), links, streamlines, per_link, work, needed, available });
     }
     Ok(needed)
 }
@@ -239,6 +359,15 @@ pub fn available() -> Option<(u64, String)> {
 mod tests {
     use super::*;
 
+    /// The estimate must not be under a measured peak (a refusal is better than running out of
+    /// memory), nor more than 30 % over it (a needless refusal).
+    fn assert_covers(what: &str, links: u64, per_link: PerLink, work: &Work, kb: f64) {
+        let measured = kb * 1024.0;
+        let est = per_link.needed_for(links, work) + BASE_BYTES as f64;
+        let ratio = est / measured;
+        assert!((1.0..=1.3).contains(&ratio), "{what}, {links} links: {est:e} against {measured:e} ({ratio:.3}×)");
+    }
+
     #[test]
     fn the_estimate_covers_measured_chunked_builds() {
         // `generate bundle --segments 84` scenes, `TUBECAST_PEAK_RSS=1 tubecast info --radius
@@ -246,15 +375,58 @@ mod tests {
         // per link, peak `VmHWM` in kB): 10⁶ links 341 500 kB, 10⁷ links 1 534 000 kB, 10⁸
         // links (two 5·10⁷ bundles joined) 10 520 000 kB. main's model before the chunked
         // build, scene + 4.5 × tracer, said 198 B per link at 10⁶: 42 % under the measured
-        // peak. The estimate must not be under a measured peak (a refusal is better than
-        // running out of memory), nor more than 30 % over it (a needless refusal); the
-        // builder's term is what keeps small scenes above their peak.
+        // peak. The builder's term is what keeps small scenes above their peak.
         for (links, tracer, kb) in
             [(1_000_020u64, 33.2, 341_500.0), (10_000_032, 32.8, 1_534_000.0), (99_999_984, 32.9, 10_520_000.0)]
         {
-            let measured = kb * 1024.0;
-            let est = PerLink { scene: 48.5, tracer }.needed(links) + BASE_BYTES as f64;
-            assert!(est >= measured && est <= 1.3 * measured, "{links}: {est:e} against {measured:e}");
+            assert_covers("info, 48.5 B scene", links, PerLink { scene: 48.5, tracer }, &Work::INFO, kb);
+            let est = PerLink { scene: 48.5, tracer }.needed(links);
+            assert_eq!(est, PerLink { scene: 48.5, tracer }.needed_for(links, &Work::INFO));
         }
+    }
+
+    /// Each command's phases ([module docs](self)) against its measured peak, on `generate
+    /// bundle --segments 84` scenes (24.43 B scene per link: 85 nodes of 24 B and a 12-byte
+    /// run per 84 links; 85/84 nodes per link): `TUBECAST_PEAK_RSS=1 /usr/bin/time -v
+    /// tubecast CMD --radius 0.12 FILE` (release build, `VmHWM` = `Maximum resident set size`
+    /// in kB; render `--width 512 --height 512 --ao off`, its thin-tube clamp on as `auto` is
+    /// for `.tck`; intersect: 10⁵ rays). The tracer's bytes per link are what the CLI's
+    /// sample of 200 streamlines measures: compact tree 35.3, obvhs Bvh2 over the primitives
+    /// 183.2, grid 104.1.
+    #[test]
+    fn the_estimate_covers_each_command() {
+        let thin = 85.0 / 84.0;
+        let render = Work { prim_list: true, thin_nodes: thin, pixels: 512 * 512, ..Work::INFO };
+        let whole = |w: Work| Work { compact: false, ..w };
+        let (compact, bvh2, grid) = (35.3, 183.2, 104.1);
+        let per = |tracer: f64| PerLink { scene: 24.43, tracer };
+        // 10⁶ links (1 000 020; `generate bundle --count 11905`), this session, one run each;
+        // `render --accel bvh2|grid` after it stopped holding two primitive lists at once
+        // (483 476 and 486 072 kB before).
+        let e6 = 1_000_020;
+        assert_covers("info", e6, per(compact), &Work::INFO, 318_080.0);
+        assert_covers("intersect", e6, per(compact), &Work::INFO, 324_892.0);
+        assert_covers("render opaque", e6, per(compact), &render, 330_328.0);
+        assert_covers("render --opacity 0.3", e6, per(compact), &render, 330_288.0);
+        assert_covers("render --thin off", e6, per(compact), &Work { thin_nodes: 0.0, ..render }, 318_128.0);
+        assert_covers("intersect --accel bvh2", e6, per(bvh2), &whole(Work::INFO), 399_964.0);
+        assert_covers("intersect --accel grid", e6, per(grid), &whole(Work::INFO), 402_112.0);
+        assert_covers("render --accel bvh2", e6, per(bvh2), &whole(render), 404_988.0);
+        assert_covers("render --accel grid", e6, per(grid), &whole(render), 408_208.0);
+        // 10⁷ links (10 000 032; `--count 119048`), this session, once, niced beside builds.
+        assert_covers("render opaque", 10_000_032, per(compact), &render, 1_402_832.0);
+        // 10⁸ links (99 999 984; one `generate bundle --count 1190476`), last session's runs
+        // on main at a5e9e8a (issue 15's note): info 8.18·10⁶ kB, intersect 8.12·10⁶ kB,
+        // render opaque and transparent 11.39·10⁶ kB. render's peak is its list of 80-byte
+        // primitives beside the clamped scene: (24.4 + 12.1 + 80) B × 10⁸ = 11.65·10⁹ B, the
+        // measured 11.66·10⁹ B; the estimate before this model (the compact tree's build
+        // only) said 9.7·10⁹ B, 17 % under.
+        let e8 = 99_999_984;
+        let per8 = PerLink { scene: 24.4, tracer: compact };
+        assert_covers("info", e8, per8, &Work::INFO, 8_180_000.0);
+        assert_covers("intersect", e8, per8, &Work::INFO, 8_120_000.0);
+        assert_covers("render opaque", e8, per8, &render, 11_390_000.0);
+        assert_covers("render --opacity 0.3", e8, per8, &render, 11_390_000.0);
+        assert!(per8.needed_for(e8, &Work { prim_list: false, ..render }) < 11_390_000.0 * 1024.0);
     }
 }

@@ -73,24 +73,28 @@ pub(crate) struct Run {
 
 impl Clusters {
     /// Split the scene's links into runs (see the module docs) and the primitives of the links
-    /// that join none (spheres: a link whose larger end sphere contains the other).
+    /// that join none (spheres: a link whose larger end sphere contains the other). One pass over
+    /// [`crate::scene::Links::iter`] (each link read once, whatever the streamline lengths).
     pub fn group(scene: &Scene) -> (Vec<Run>, Vec<Prim>) {
         let mut runs: Vec<Run> = Vec::new();
         let mut single = Vec::new();
-        let pos = |i: u32| V3::from(scene.nodes[i as usize].pos);
+        let node = |i: u32| (V3::from(scene.nodes[i as usize].pos), scene.radius(i as usize));
         let mut cur: Option<(Run, [f64; 3], [f64; 3], f64)> = None; // run, node box, min(ℓ + R)
-        for k in 0..scene.links.len() {
-            let l = scene.link(k);
+        let mut prev_end = None; // the end node of link k − 1
+        for (k, [na, nb]) in scene.links.iter().enumerate() {
+            let joins_chain = prev_end == Some(na);
+            prev_end = Some(nb);
+            let ((pa, ra), (pb, rb)) = (node(na), node(nb));
+            let l = RoundCone::new(pa, ra, pb, rb).expect("scene links are validated when the scene is built");
             if l.shape() == LinkShape::Sphere {
                 single.push(Prim::from_link(&l, k as u32));
                 runs.extend(cur.take().map(|c| c.0));
                 continue;
             }
-            let [na, nb] = scene.links.get(k);
             let size = (l.b - l.a).max_abs() + l.ra.max(l.rb);
-            let (pa, pb) = (pos(na).to_array(), pos(nb).to_array());
+            let (pa, pb) = (pa.to_array(), pb.to_array());
             if let Some((run, lo, hi, m)) = cur.as_mut() {
-                let joins = run.n < MAX_LINKS as u32 && scene.links.get(k - 1)[1] == na;
+                let joins = run.n < MAX_LINKS as u32 && joins_chain;
                 let (lo2, hi2) = (min3(*lo, pb), max3(*hi, pb));
                 let h = (0..3).map(|i| 0.5 * (hi2[i] - lo2[i])).fold(0.0, f64::max);
                 if joins && h <= SPREAD * m.min(size) {
@@ -353,5 +357,82 @@ mod tests {
             }
         }
         assert_eq!(re.link_count(), scene.links.len());
+    }
+
+    /// Streamlines of unequal lengths (1 to 23 links, so [`Links::get`](crate::scene::Links::get)
+    /// must bisect) interleaved with SWC trees (explicit branch pairs, soma links that are
+    /// spheres): the one-pass grouping equals a reference written here over a plain list of
+    /// pairs, straight from the module docs' rule (a link joins the run before it when it starts
+    /// where the previous link ends, the run has fewer than `MAX_LINKS` links and the joined
+    /// node box's half-extent is ≤ `SPREAD·min(ℓ + R)` over the run; spheres join nothing).
+    #[test]
+    fn grouping_matches_a_plain_list_reference_on_mixed_links() {
+        let lines = generate::furball(40, 24, 11);
+        let swc = generate::neurons(2, &[generate::base_neuron(4)], 5);
+        let tree = Scene::from_swc(&swc, "tree").unwrap();
+        let (mut nodes, mut radii, mut pairs) = (Vec::new(), Vec::new(), Vec::<[u32; 2]>::new());
+        for (j, l) in lines.iter().enumerate() {
+            let base = nodes.len() as u32;
+            let len = 2 + (j * 7) % 23; // 2..24 points
+            nodes.extend(l.points[..len].iter().map(|&pos| crate::scene::Node { pos }));
+            radii.extend((0..len).map(|i| 0.02 + 0.001 * i as f64));
+            pairs.extend((0..len as u32 - 1).map(|i| [base + i, base + i + 1]));
+            if j % 10 == 9 {
+                let base = nodes.len() as u32;
+                nodes.extend(tree.nodes.iter().copied());
+                radii.extend((0..tree.nodes.len()).map(|i| tree.radius(i)));
+                pairs.extend(tree.links.iter().map(|[a, b]| [base + a, base + b]));
+                // A soma-like link: the larger end sphere contains the other (a sphere).
+                let (b2, p) = (nodes.len() as u32, l.points[0]);
+                nodes.extend([p, [p[0] + 0.1, p[1], p[2]]].map(|pos| crate::scene::Node { pos }));
+                radii.extend([1.0, 0.2]);
+                pairs.push([b2, b2 + 1]);
+            }
+        }
+        let mut scene = Scene { nodes, links: pairs.clone().into(), ..Scene::default() };
+        radii.iter().enumerate().for_each(|(i, &r)| scene.set_radius(i, r));
+        // The reference, over `pairs` only.
+        let shape = |[a, b]: [u32; 2]| {
+            let p = |i: u32| V3::from(scene.nodes[i as usize].pos);
+            RoundCone::new(p(a), radii[a as usize], p(b), radii[b as usize]).unwrap()
+        };
+        let (mut want_runs, mut want_single) = (Vec::<(u32, u32)>::new(), Vec::new());
+        let mut open = false; // whether the last run may still grow
+        for (k, &pair) in pairs.iter().enumerate() {
+            let l = shape(pair);
+            if l.shape() == LinkShape::Sphere {
+                want_single.push(k as u32);
+                open = false;
+                continue;
+            }
+            if let (true, Some(&(first, n))) = (open, want_runs.last()) {
+                let ks = first as usize..=k;
+                let ids: Vec<u32> = ks.clone().flat_map(|i| pairs[i]).collect();
+                let h = (0..3)
+                    .map(|c| {
+                        let v = ids.iter().map(|&i| scene.nodes[i as usize].pos[c]);
+                        0.5 * (v.clone().fold(f64::NEG_INFINITY, f64::max) - v.fold(f64::INFINITY, f64::min))
+                    })
+                    .fold(0.0, f64::max);
+                let m = ks
+                    .map(|i| shape(pairs[i]))
+                    .map(|l| (l.b - l.a).max_abs() + l.ra.max(l.rb))
+                    .fold(f64::MAX, f64::min);
+                if pairs[k - 1][1] == pair[0] && (n as usize) < MAX_LINKS && h <= SPREAD * m {
+                    want_runs.last_mut().unwrap().1 += 1;
+                    continue;
+                }
+            }
+            want_runs.push((k as u32, 1));
+            open = true;
+        }
+        let (runs, single) = Clusters::group(&scene);
+        let got: Vec<(u32, u32)> = runs.iter().map(|r| (r.first, r.n)).collect();
+        assert_eq!(got, want_runs);
+        assert_eq!(single.iter().map(|p| p.link).collect::<Vec<_>>(), want_single);
+        assert!(!want_single.is_empty() && want_runs.iter().any(|r| r.1 > 1) && want_runs.iter().any(|r| r.1 == 1));
+        for p in &single {
+            assert_eq!(*p, Prim::from_link(&shape(pairs[p.link as usize]), p.link));
+        }
     }
 }

@@ -8,7 +8,7 @@ use crate::io::stream::{Flow, Line, Selection};
 use crate::io::{self, swc::SwcFile, IoError};
 use indicatif::ProgressBar;
 use std::collections::HashMap;
-use std::io::{BufRead, Read};
+use std::io::BufRead;
 use std::path::Path;
 
 /// How [`Scene::load_with`] turns a file into a scene.
@@ -108,12 +108,7 @@ impl Scene {
                 let info = io::trx::stream(file, &name, data, &mut |l| sink.push(l))?;
                 (info.scalars, info.properties)
             }
-            _ => {
-                let mut bytes = Vec::new();
-                let mut file = file;
-                file.read_to_end(&mut bytes).map_err(|e| IoError::file(&name, format!("cannot read: {e}")))?;
-                return load_obj(&bytes, &name, opts, sel, data);
-            }
+            _ => return load_obj(file, &name, opts, sel, data),
         };
         sink.finish(opts, &(scalars, properties))
     }
@@ -161,20 +156,25 @@ fn load_swc(
     Ok((scene, report, fields))
 }
 
-/// An OBJ file (read whole: its polylines index vertices anywhere in the file), the
-/// selection applied to its polylines.
+/// An OBJ file, streamed ([`io::obj::stream`]: its polylines index vertices anywhere before
+/// them, so the vertices are kept while reading), the selection applied as it is read.
 fn load_obj(
-    bytes: &[u8],
+    r: impl BufRead,
     name: &str,
     opts: &LoadOptions,
     sel: &Selection,
     data: bool,
 ) -> Result<(Scene, LoadReport, Vec<Field>), SceneError> {
-    let mut lines = io::obj::read(bytes, name)?;
-    if !sel.is_all() {
-        let keep = lines.into_iter().enumerate().filter(|(i, _)| sel.keeps(*i as u64)).map(|(_, l)| l);
-        lines = keep.take(sel.max_streamlines.unwrap_or(usize::MAX)).collect();
-    }
+    let (mut lines, mut i, max) = (Vec::new(), 0, sel.max_streamlines.unwrap_or(usize::MAX));
+    io::obj::stream(r, name, &mut |l| {
+        (sel.keeps(i) && lines.len() < max).then(|| lines.push(l));
+        i += 1;
+        if lines.len() >= max {
+            Flow::Stop
+        } else {
+            Flow::Continue
+        }
+    })?;
     let (nodes, links, kinds, mut radii) = Scene::polyline_parts(&lines, opts.default_radius)?;
     let report = opts.min_radius.map(|r| raise(&mut radii, nodes.len(), r)).unwrap_or_default();
     let scene = Scene::finish((nodes, links, kinds, radii), name)?;
