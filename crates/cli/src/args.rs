@@ -141,10 +141,10 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 1.0)]
     pub opacity: f64,
     /// Ambient occlusion: rays (through the accelerator), cone (voxel cone tracing on the
-    /// occupancy pyramid) or off; a number N means N rays.
+    /// occupancy pyramid), lod (cones on Kanzler's LoD opacities) or off; a number N means N rays.
     #[arg(long, value_parser = crate::ao_opts::parse_ao, default_value = "off")]
     pub ao: crate::ao_opts::Ao,
-    /// Rays or cones per pixel for --ao rays|cone.
+    /// Rays or cones per pixel for --ao rays|cone|lod.
     #[arg(long, default_value_t = 16, value_name = "N")]
     pub ao_samples: u32,
     /// Trace shadow rays.
