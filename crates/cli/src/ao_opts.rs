@@ -25,7 +25,7 @@ pub fn parse_ao(s: &str) -> Result<Ao, String> {
         "rays" => Ok(Ao::Rays),
         "cone" | "cones" => Ok(Ao::Cone),
         "lod" => Ok(Ao::Lod),
-        _ => s.parse::<u32>().map(Ao::RayCount).map_err(|_| format!("{s:?}: use cone, lod, rays, off or a ray count")),
+        _ => s.parse::<u32>().map(Ao::RayCount).map_err(|_| format!("{s:?}: use cone, rays, off, lod or a ray count")),
     }
 }
 
