@@ -1,4 +1,4 @@
-//! `render --ao cone|rays|off` and `--ao-samples N`: how ambient occlusion is estimated.
+//! `render --ao cone|lod|rays|off` and `--ao-samples N`: how ambient occlusion is estimated.
 //! A bare number (`--ao 8`, the older form) means that many rays.
 
 use tubecast_render::render::AoMethod;
@@ -12,6 +12,8 @@ pub enum Ao {
     Rays,
     /// Cones through the voxel occupancy pyramid (`--ao-samples` cones per pixel).
     Cone,
+    /// Cones through Kanzler's LoD opacities of the quantized lines (`--ao-samples` cones).
+    Lod,
     /// `--ao N`: N rays per pixel.
     RayCount(u32),
 }
@@ -22,7 +24,8 @@ pub fn parse_ao(s: &str) -> Result<Ao, String> {
         "off" => Ok(Ao::Off),
         "rays" => Ok(Ao::Rays),
         "cone" | "cones" => Ok(Ao::Cone),
-        _ => s.parse::<u32>().map(Ao::RayCount).map_err(|_| format!("{s:?}: use cone, rays, off or a ray count")),
+        "lod" => Ok(Ao::Lod),
+        _ => s.parse::<u32>().map(Ao::RayCount).map_err(|_| format!("{s:?}: use cone, rays, off, lod or a ray count")),
     }
 }
 
@@ -33,6 +36,7 @@ impl Ao {
             Ao::Off => (0, AoMethod::Rays),
             Ao::Rays => (samples, AoMethod::Rays),
             Ao::Cone => (samples, AoMethod::Cone),
+            Ao::Lod => (samples, AoMethod::Lod),
             Ao::RayCount(n) => (n, AoMethod::Rays),
         }
     }

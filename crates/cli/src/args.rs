@@ -141,10 +141,10 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 1.0)]
     pub opacity: f64,
     /// Ambient occlusion: rays (through the accelerator), cone (voxel cone tracing on the
-    /// occupancy pyramid) or off; a number N means N rays.
+    /// occupancy pyramid), lod (cones on Kanzler's LoD opacities) or off; a number N means N rays.
     #[arg(long, value_parser = crate::ao_opts::parse_ao, default_value = "off")]
     pub ao: crate::ao_opts::Ao,
-    /// Rays or cones per pixel for --ao rays|cone.
+    /// Rays or cones per pixel for --ao rays|cone|lod.
     #[arg(long, default_value_t = 16, value_name = "N")]
     pub ao_samples: u32,
     /// Trace shadow rays.
@@ -167,9 +167,13 @@ pub struct RenderArgs {
     /// stay links).
     #[arg(long)]
     pub splines: bool,
-    /// Surface model: the exact kernels, or a certified triangle mesh (needs --tolerance).
+    /// Surface model: the exact kernels, a certified triangle mesh (needs --tolerance), or
+    /// Kanzler's quantized lines (--quant-bins, --quant-voxels; the derived error on stderr).
     #[arg(long, value_enum, default_value_t = Surface::Exact)]
     pub model: Surface,
+    /// Quantized-lines model.
+    #[command(flatten)]
+    pub quant: crate::cmd_quantized::QuantArgs,
     /// Tolerance ε (scene units). With `--model mesh`: the mesh's two-sided Hausdorff bound;
     /// with the exact model: pick per segment the cheapest primitive within ε (merged links,
     /// spheres, cylinders, cones, fitted quadratic spline pieces).
@@ -196,6 +200,8 @@ pub enum Surface {
     Exact,
     /// A triangle mesh within `--tolerance` of the exact surface.
     Mesh,
+    /// Kanzler et al.'s quantized lines: per-voxel segments, ends snapped to Q×Q face bins.
+    Quantized,
 }
 
 /// Input, output, tolerance and default radius of `mesh` and `simplify`.
@@ -291,6 +297,12 @@ pub struct IntersectArgs {
     /// Trace the spline model (as `render --splines` does) instead of the links.
     #[arg(long)]
     pub splines: bool,
+    /// Surface model: exact, or quantized lines (link indices then count the quantized scene's links).
+    #[arg(long, value_enum, default_value_t = Surface::Exact)]
+    pub model: Surface,
+    /// Quantized-lines model.
+    #[command(flatten)]
+    pub quant: crate::cmd_quantized::QuantArgs,
     /// Tube radius for formats without radii.
     #[arg(long, default_value_t = 0.2)]
     pub radius: f64,

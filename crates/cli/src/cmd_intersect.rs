@@ -19,6 +19,10 @@ pub fn intersect(a: &IntersectArgs) -> Result<(), CliError> {
     let plan = crate::cmd_load::Plan { model: crate::commands::model(a.splines), accel: a.accel, render: None };
     let radius = (crate::render_opts::Radius::Absolute(a.radius), a.min_radius);
     let scene = crate::commands::load(&a.input, radius, &a.load, plan, "every ray misses", None)?;
+    if a.model == crate::args::Surface::Mesh {
+        return Err(crate::cmd_quantized::QuantError::MeshIntersect.into());
+    }
+    let scene = crate::cmd_quantized::model_scene(a.model, scene, &a.quant, a.load.quiet)?;
     let name = a.rays.display().to_string();
     let rays = io::npy::read(&crate::hits_io::read_input(&a.rays)?, &name, Some(6))?.rays(&name)?;
     let rows = with_threads(a.threads.map(usize::from), || {

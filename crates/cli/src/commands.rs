@@ -110,7 +110,11 @@ pub fn render(a: &RenderArgs) -> Res {
     let image = Some((thin_on(a.thin, &a.input), a.width as u64 * a.height as u64));
     let plan = Plan { model: model(a.splines), accel: a.accel, render: image };
     let empty = "the image shows the background only";
+    if let (Surface::Quantized, Some(key)) = (a.model, field) {
+        return Err(crate::cmd_quantized::QuantError::Data(key.into()).into());
+    }
     let mut scene = load(&a.input, (a.radius, a.min_radius), &a.load, plan, empty, field)?;
+    scene = crate::cmd_quantized::model_scene(a.model, scene, &a.quant, a.load.quiet)?;
     let mut prims = scene.model_primitives(model(a.splines))?;
     // Bounds of the primitives in use (a spline can bulge beyond its links' boxes); an empty
     // scene is viewed as if it were the box [-1, 1]³.
@@ -131,9 +135,11 @@ pub fn render(a: &RenderArgs) -> Res {
         drop(std::mem::take(&mut prims)); // not two lists at once
         prims = scene.model_primitives(model(a.splines))?;
     }
-    let exact = a.model == Surface::Exact && a.tolerance.is_none() && a.pixel_error.is_none();
+    let exact = a.model != Surface::Mesh && a.tolerance.is_none() && a.pixel_error.is_none();
     let (prims, tol) = match (a.model, a.tolerance) {
-        (Surface::Exact, _) => (crate::cmd_mesh::chosen(&scene, prims, a.tolerance, a.pixel_error, &cam), None),
+        (Surface::Exact | Surface::Quantized, _) => {
+            (crate::cmd_mesh::chosen(&scene, prims, a.tolerance, a.pixel_error, &cam), None)
+        }
         (Surface::Mesh, t) => (prims, Some(t.ok_or(CliError::MeshTolerance)?)),
     };
     let bvh = crate::cmd_intersect::with_threads(a.threads.map(usize::from), || match tol {

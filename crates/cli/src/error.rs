@@ -35,6 +35,8 @@ pub enum CliError {
     Tolerance(f64),
     /// The scene would not fit in memory (estimated before loading).
     Memory(tubecast_render::estimate::TooLarge),
+    /// `--model quantized` options.
+    Quantized(crate::cmd_quantized::QuantError),
 }
 
 impl fmt::Display for CliError {
@@ -51,6 +53,7 @@ impl fmt::Display for CliError {
             Self::MeshTolerance => f.write_str("--model mesh needs --tolerance EPS"),
             Self::Tolerance(t) => write!(f, "--tolerance {t} must be a finite number ≥ 0"),
             Self::Memory(e) => e.fmt(f),
+            Self::Quantized(e) => e.fmt(f),
         }
     }
 }
@@ -82,6 +85,12 @@ impl From<SceneError> for CliError {
 impl From<RenderError> for CliError {
     fn from(e: RenderError) -> Self {
         Self::Render(e)
+    }
+}
+
+impl From<crate::cmd_quantized::QuantError> for CliError {
+    fn from(e: crate::cmd_quantized::QuantError) -> Self {
+        Self::Quantized(e)
     }
 }
 

@@ -5,6 +5,7 @@ mod args;
 mod cmd_intersect;
 mod cmd_load;
 mod cmd_mesh;
+mod cmd_quantized;
 mod cmd_simplify;
 mod commands;
 mod error;

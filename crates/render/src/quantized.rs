@@ -18,6 +18,7 @@
 //! [`QuantizedLines::hausdorff`].
 
 use crate::io::Polyline;
+use crate::scene::Scene;
 use tubecast::{voxel, V3};
 
 mod lod;
@@ -238,20 +239,58 @@ impl QuantizedLines {
     /// assert_eq!((p.len(), p[0].points.len()), (1, 6)); // 5 segments, one chain
     /// ```
     pub fn polylines(&self, r: f64) -> Vec<Polyline> {
+        self.polylines_with(|_| r)
+    }
+
+    /// [`QuantizedLines::polylines`] with the radius of each source line: `radius(line)` for
+    /// every point of the pieces of source polyline `line`.
+    ///
+    /// ```
+    /// use tubecast_render::io::Polyline;
+    /// use tubecast_render::quantized::QuantizedLines;
+    /// let lines: Vec<Polyline> =
+    ///     (0..2).map(|k| Polyline { points: vec![[0.5, 0.5 + k as f64, 0.5], [2.5, 0.5 + k as f64, 0.5]], radii: vec![] }).collect();
+    /// let q = QuantizedLines::new(&lines, [0.0; 3], 1.0, [3, 2, 1], 16);
+    /// let p = q.polylines_with(|line| 0.1 * (line + 1) as f64);
+    /// assert_eq!((p[0].radii[0], p[1].radii[0]), (0.1, 0.2));
+    /// ```
+    pub fn polylines_with(&self, radius: impl Fn(u32) -> f64) -> Vec<Polyline> {
         let mut out: Vec<Polyline> = Vec::new();
         let mut last: Option<(u32, [f64; 3])> = None;
         for s in &self.segments {
             let (a, b) = (self.decode(s.ends[0], s.voxel), self.decode(s.ends[1], s.voxel));
+            let r = radius(s.line);
             match (last, out.last_mut()) {
-                (Some((line, end)), Some(p)) if line == s.line && end == a => p.points.push(b),
-                _ => out.push(Polyline { points: vec![a, b], radii: Vec::new() }),
+                (Some((line, end)), Some(p)) if line == s.line && end == a => {
+                    p.points.push(b);
+                    p.radii.push(r);
+                }
+                _ => out.push(Polyline { points: vec![a, b], radii: vec![r; 2] }),
             }
             last = Some((s.line, b));
         }
-        for p in &mut out {
-            p.radii = vec![r; p.points.len()];
-        }
         out
+    }
+
+    /// The largest derived Hausdorff bound over the segments ([`QSegment::bound`]): no point
+    /// of the quantized lines is farther than this from the exact lines, nor the other way
+    /// round; 0 without segments.
+    ///
+    /// ```
+    /// use tubecast_render::io::Polyline;
+    /// use tubecast_render::quantized::QuantizedLines;
+    /// let line = Polyline { points: vec![[0.5, 0.5, 0.5], [3.5, 0.5, 0.5]], radii: vec![] };
+    /// let q = QuantizedLines::new(&[line], [0.0; 3], 1.0, [4, 1, 1], 8);
+    /// assert!((q.max_bound() - 3f64.sqrt() / 16.0).abs() < 1e-15); // an interior end: half a Q³ bin diagonal
+    /// ```
+    pub fn max_bound(&self) -> f64 {
+        self.segments.iter().map(|s| s.bound(self.h, self.q)).fold(0.0, f64::max)
+    }
+
+    /// Bytes of one packed segment: its two ends ([`QuantizedLines::bits_per_end`]), rounded up
+    /// to whole bytes (the voxel is implied by the per-voxel list the segment sits in).
+    pub fn bytes_per_segment(&self) -> u32 {
+        (2 * self.bits_per_end()).div_ceil(8)
     }
 
     /// Bits of one end in a packed store: face (3) and the bin indices.
@@ -287,6 +326,27 @@ pub struct Hausdorff {
     pub max_bound: f64,
     /// Largest measured / bound over the segments (≤ 1 when the bound holds).
     pub worst_ratio: f64,
+}
+
+/// The lines of a scene for [`QuantizedLines::new`]: each chain of links ([`Scene::chains`]) as
+/// one polyline, and each chain's largest node radius. Isolated nodes (spheres) have no line.
+///
+/// ```
+/// use tubecast_render::io::Polyline;
+/// use tubecast_render::quantized::scene_lines;
+/// use tubecast_render::scene::Scene;
+/// let line = Polyline { points: vec![[0.0; 3], [1.0, 0.0, 0.0], [2.0, 1.0, 0.0]], radii: vec![0.1, 0.3, 0.2] };
+/// let (lines, radii) = scene_lines(&Scene::from_polylines(&[line], 1.0, "t").unwrap());
+/// assert_eq!((lines.len(), lines[0].points.len(), radii), (1, 3, vec![0.3]));
+/// ```
+pub fn scene_lines(scene: &Scene) -> (Vec<Polyline>, Vec<f64>) {
+    let chains = scene.chains();
+    let lines = chains
+        .iter()
+        .map(|c| Polyline { points: c.nodes.iter().map(|&i| scene.nodes[i as usize].pos).collect(), radii: vec![] })
+        .collect();
+    let radii = chains.iter().map(|c| c.nodes.iter().map(|&i| scene.radius(i as usize)).fold(0.0, f64::max)).collect();
+    (lines, radii)
 }
 
 /// Distance from `x` to the segment `ab`.

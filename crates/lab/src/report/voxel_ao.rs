@@ -6,6 +6,7 @@
 
 use super::chart::{self, Chart, Marker, Pt, Series, XAxis};
 use super::runs::CHART;
+use super::voxel_clock::Clock;
 use super::{ensure_dir, fmt_num, machine, progress, write_text, ReportError, ReportFiles, ReportOptions};
 use rayon::prelude::*;
 use std::fmt::Write as _;
@@ -22,6 +23,12 @@ const REF_RAYS: u32 = 1024;
 const SAMPLES: [u32; 4] = [1, 4, 16, 64];
 /// Pyramid resolutions: base voxels across the occlusion distance.
 const VOXELS: [f64; 3] = [8.0, 16.0, 32.0];
+/// LoD resolutions (quantization voxels across the occlusion distance).
+const LOD_VOXELS: [f64; 2] = [16.0, 32.0];
+/// Method names: cones on the pyramid (line and volume opacity), cones on Kanzler's LoD.
+const CONES: &str = "cones";
+const VOLUME: &str = "cones, volume model";
+const LOD: &str = "cones, LoD opacities";
 
 /// One method setting on one scene.
 #[derive(Clone, Debug)]
@@ -73,16 +80,16 @@ pub(super) fn errors(est: &[f64], reference: &[f64]) -> (f64, f64, f64) {
     (mean, max, d.iter().sum::<f64>() / n + 0.0)
 }
 
-/// Values of `f` on every point and the best time per point (ns) over repetitions within
-/// `budget_ms` (at least one), on this thread.
+/// Values of `f` on every point and the best time per point (ns of process CPU time,
+/// [`Clock`]) over repetitions within `budget_ms` of wall time (at least one), on this thread.
 pub(super) fn timed(pts: &[Point], budget_ms: u64, f: impl Fn(usize, &Point) -> f64) -> (Vec<f64>, f64) {
     let start = Instant::now();
-    let per = |t0: Instant| t0.elapsed().as_secs_f64() * 1e9 / pts.len().max(1) as f64;
-    let t0 = Instant::now();
+    let per = |t0: Clock| Clock::now().since(t0) * 1e9 / pts.len().max(1) as f64;
+    let t0 = Clock::now();
     let values: Vec<f64> = pts.iter().enumerate().map(|(k, p)| f(k, p)).collect();
     let mut best = per(t0);
     while (start.elapsed().as_millis() as u64) < budget_ms {
-        let t0 = Instant::now();
+        let t0 = Clock::now();
         std::hint::black_box(pts.iter().enumerate().map(|(k, p)| f(k, p)).sum::<f64>());
         best = best.min(per(t0));
     }
@@ -91,9 +98,9 @@ pub(super) fn timed(pts: &[Point], budget_ms: u64, f: impl Fn(usize, &Point) -> 
 
 /// Every setting on one scene.
 fn scene_rows(name: &'static str, scene: &Scene, opts: &ReportOptions, bar: &indicatif::ProgressBar) -> Vec<Row> {
-    let t0 = Instant::now();
+    let t0 = Clock::now();
     let bvh = WideBvh::build(scene.primitives());
-    let bvh_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let bvh_ms = Clock::now().since(t0) * 1e3;
     let st = scene.stats();
     let dist = 0.1 * (V3::from(st.bounds.1) - V3::from(st.bounds.0)).length();
     let pts = shaded_points(scene, &bvh, (opts.image / 4).max(8)).unwrap_or_default();
@@ -119,26 +126,16 @@ fn scene_rows(name: &'static str, scene: &Scene, opts: &ReportOptions, bar: &ind
         });
         bar.inc(1);
     }
-    let settings = VOXELS.iter().map(|&v| (v, true)).chain([(16.0, false)]);
-    for (voxels, lines) in settings {
+    let settings = VOXELS.iter().map(|&v| (v, CONES)).chain([(16.0, VOLUME)]).chain(LOD_VOXELS.map(|v| (v, LOD)));
+    for (voxels, method) in settings {
         for &samples in &SAMPLES {
-            let t0 = Instant::now();
-            let p = ConeParams { cones: samples, voxels, lines, ..ConeParams::default() };
-            let ao = ConeAo::build(scene, dist, &p);
-            let build_ms = t0.elapsed().as_secs_f64() * 1e3;
+            let t0 = Clock::now();
+            let p = ConeParams { cones: samples, voxels, lines: method != VOLUME, ..ConeParams::default() };
+            let ao = if method == LOD { ConeAo::build_lod(scene, dist, &p) } else { ConeAo::build(scene, dist, &p) };
+            let build_ms = Clock::now().since(t0) * 1e3;
             let (est, ns) = timed(&pts, opts.time_ms, |_, &(q, n)| ao.occlusion(q, n));
             let (mean, max, bias) = errors(&est, &reference);
-            rows.push(Row {
-                scene: name,
-                method: if lines { "cones" } else { "cones, volume model" },
-                samples,
-                voxels,
-                build_ms,
-                ns_per_point: ns,
-                mean,
-                max,
-                bias,
-            });
+            rows.push(Row { scene: name, method, samples, voxels, build_ms, ns_per_point: ns, mean, max, bias });
             bar.inc(1);
         }
     }
@@ -156,7 +153,7 @@ pub fn run_voxel_ao(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Rep
     let fur = Scene::from_polylines(&generate::furball(links.div_ceil(20), 20, opts.seed), 0.06, "furball");
     let err = |e: tubecast_render::scene::SceneError| ReportError::Render(e.to_string());
     let (bundle, fur) = (bundle.map_err(err)?, fur.map_err(err)?);
-    let bar = progress(opts, 2 * (SAMPLES.len() * (2 + VOXELS.len())) as u64, "voxel AO");
+    let bar = progress(opts, 2 * (SAMPLES.len() * (2 + VOXELS.len() + LOD_VOXELS.len())) as u64, "voxel AO");
     let mut rows = scene_rows("bundle", &bundle, opts, &bar);
     rows.extend(scene_rows("furball", &fur, opts, &bar));
     bar.finish_and_clear();
@@ -183,8 +180,11 @@ fn markdown(rows: &[Row], sizes: &[(&str, usize)], opts: &ReportOptions) -> Stri
          thousands of points carry up to ≈ 0.06 of reference noise). Methods: `rays` = N rays per point (other \
          seeds); `cones` = N cones through the occupancy pyramid with the given base voxels across D (apex 2.5 \
          voxels off the surface, PWAA clamp ½ voxel, line opacity model: extinction o/(2r̄)); `cones, volume \
-         model` = the same with the volume fraction as opacity. Time: one thread, best of repetitions, per shaded point; \
-         build = pyramid (cones) or wide BVH (rays), once per frame for a dynamic scene. Errors in occlusion \
+         model` = the same with the volume fraction as opacity; `cones, LoD opacities` = the same cones through \
+         Kanzler et al.'s LoD of the scene's quantized lines (Q = 16, the given quantization voxels across D; \
+         opacity min(1, Σ2r·l/h²) averaged 2³ → 1 per level, `ConeAo::build_lod`). Time: process CPU time \
+         (`/proc/self/task/*/schedstat`), one thread, best of repetitions, per shaded point; build = pyramid \
+         (cones), quantization + LoD (LoD cones) or wide BVH (rays), once per frame for a dynamic scene. Errors in occlusion \
          units [0, 1]; bias = mean signed error (negative: too open).\n\n",
         sz.join(", "),
         opts.seed,
@@ -227,8 +227,11 @@ fn ao_chart(rows: &[Row]) -> Chart {
         let of = |r: &&Row| {
             r.scene == scene && r.method == method && (r.voxels == voxels || voxels.is_nan() && r.voxels.is_nan())
         };
-        let label =
-            if voxels.is_nan() { format!("{scene}: rays") } else { format!("{scene}: cones, {voxels} voxels/D") };
+        let label = match (voxels.is_nan(), method) {
+            (true, _) => format!("{scene}: rays"),
+            (false, CONES) => format!("{scene}: cones, {voxels} voxels/D"),
+            (false, m) => format!("{scene}: {m}, {voxels} voxels/D"),
+        };
         for (max, marker) in [(false, Marker::Dot), (true, Marker::Cross)] {
             let points = rows
                 .iter()

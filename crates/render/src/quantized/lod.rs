@@ -12,8 +12,15 @@
 //!   coarser voxel averages its children's representative lines the same way, weighted by the
 //!   number of lines each represents. Its radius keeps the projected area:
 //!   `r_rep = min(H/2, r·Σlᵢ / l_rep)` (`H` the level's voxel side, `Σlᵢ` the represented length),
-//!   "one single yet thicker line to represent many thinner lines". The paper's extra step that
-//!   joins representative lines of neighbouring voxels across a shared face is not done.
+//!   "one single yet thicker line to represent many thinner lines".
+//! * **Joining across faces.** Then, as the paper "attempts to establish connectivity between
+//!   representative lines in adjacent voxels if their endpoints are in the same voxel face", at
+//!   every level: where two non-empty voxels share a face and each one's representative line
+//!   has exactly one end on it, both ends move to the centre of the face bin into which their
+//!   average falls, so the two lines meet there (the radius is recomputed for the new length).
+//!   A line with both ends on the shared face is left alone (which end would join is
+//!   ambiguous). Coarser levels average the joined lines. Counts, represented lengths and
+//!   opacities do not change.
 //!
 //! Shadow and AO rays are traced against the representative lines of a chosen level
 //! ([`Lod::polylines`] → a scene), the paper's first approach; the opacities feed cone tracing.
@@ -129,16 +136,116 @@ impl LodLevel {
         for (c, acc) in accs {
             let (a, b) = (acc.a * (1.0 / acc.w), acc.b * (1.0 / acc.w));
             let (a, b) = (snap(a, lo, self.h, c, q), snap(b, lo, self.h, c, q));
-            let l = (V3::from(b) - V3::from(a)).length();
-            let radius = if l > 0.0 { (r * acc.length / l).min(self.h / 2.0).max(r) } else { r };
+            let radius = rep_radius(r, acc.length, (V3::from(b) - V3::from(a)).length(), self.h);
             self.lines.push(RepLine { voxel: c, a, b, count: acc.count, length: acc.length, radius });
         }
+    }
+}
+
+impl LodLevel {
+    /// The face (0–5: −x, +x, −y, +y, −z, +z) of voxel `c` that the point `p` lies on, when
+    /// exactly one does (a corner or edge point lies on several: `None`).
+    fn face_of(&self, p: [f64; 3], lo: [f64; 3], c: [u32; 3]) -> Option<usize> {
+        let mut found = None;
+        for i in 0..3 {
+            let u = (p[i] - lo[i]) / self.h - c[i] as f64;
+            for (side, at) in [(0, 0.0), (1, 1.0)] {
+                if (u - at).abs() <= 1e-9 {
+                    if found.is_some() {
+                        return None;
+                    }
+                    found = Some(2 * i + side);
+                }
+            }
+        }
+        found
+    }
+
+    /// Joins representative lines across shared faces (module docs).
+    fn join(&mut self, lo: [f64; 3], q: u32, r: f64) {
+        let at: std::collections::HashMap<[u32; 3], usize> =
+            self.lines.iter().enumerate().map(|(k, l)| (l.voxel, k)).collect();
+        // The one end (0: a, 1: b) of line k on face f, if exactly one lies on it.
+        let end_on = |lev: &Self, k: usize, f: usize| {
+            let l = &lev.lines[k];
+            let on = [lev.face_of(l.a, lo, l.voxel) == Some(f), lev.face_of(l.b, lo, l.voxel) == Some(f)];
+            match on {
+                [true, false] => Some(0),
+                [false, true] => Some(1),
+                _ => None,
+            }
+        };
+        for k in 0..self.lines.len() {
+            for axis in 0..3 {
+                let mut c = self.lines[k].voxel;
+                c[axis] += 1;
+                let Some(&j) = at.get(&c) else { continue };
+                let (Some(ek), Some(ej)) = (end_on(self, k, 2 * axis + 1), end_on(self, j, 2 * axis)) else { continue };
+                let (pk, pj) = (self.lines[k].end(ek), self.lines[j].end(ej));
+                let mid: [f64; 3] = std::array::from_fn(|i| 0.5 * (pk[i] + pj[i]));
+                let p = snap(V3::from(mid), lo, self.h, self.lines[k].voxel, q);
+                self.lines[k].set_end(ek, p, self.h, r);
+                self.lines[j].set_end(ej, p, self.h, r);
+            }
+        }
+    }
+}
+
+impl RepLine {
+    fn end(&self, e: usize) -> [f64; 3] {
+        if e == 0 {
+            self.a
+        } else {
+            self.b
+        }
+    }
+
+    /// Moves end `e` to `p` and recomputes the radius that keeps the projected area.
+    fn set_end(&mut self, e: usize, p: [f64; 3], h: f64, r: f64) {
+        if e == 0 {
+            self.a = p;
+        } else {
+            self.b = p;
+        }
+        self.radius = rep_radius(r, self.length, (V3::from(self.b) - V3::from(self.a)).length(), h);
+    }
+}
+
+/// `min(H/2, r·Σl/l_rep)`, at least `r` (`r` for a zero-length line).
+fn rep_radius(r: f64, length: f64, l: f64, h: f64) -> f64 {
+    if l > 0.0 {
+        (r * length / l).min(h / 2.0).max(r)
+    } else {
+        r
     }
 }
 
 impl Lod {
     /// The LoD of `q`'s segments as tubes of radius `r` (see the module docs).
     pub fn build(q: &QuantizedLines, r: f64) -> Self {
+        Self::build_with(q, r, true)
+    }
+
+    /// [`Lod::build`], joining representative lines across shared faces only with `join`.
+    ///
+    /// ```
+    /// use tubecast_render::io::Polyline;
+    /// use tubecast_render::quantized::{Lod, QuantizedLines};
+    /// // Line A crosses the face x = 1 at y = 0.2 (bin 1 of 8); line C starts just inside voxel 1
+    /// // at y = 0.95: voxel 0's averaged line ends at y = 0.1875, voxel 1's starts at 0.5625.
+    /// let lines = vec![
+    ///     Polyline { points: vec![[0.5, 0.2, 0.5], [1.5, 0.2, 0.5]], radii: vec![] },
+    ///     Polyline { points: vec![[1.05, 0.95, 0.5], [1.9, 0.95, 0.5]], radii: vec![] },
+    /// ];
+    /// let q = QuantizedLines::new(&lines, [0.0; 3], 1.0, [2, 1, 1], 8);
+    /// let (apart, joined) = (Lod::build_with(&q, 0.01, false), Lod::build(&q, 0.01));
+    /// let (a0, a1) = (&apart.levels[0].lines[0], &apart.levels[0].lines[1]);
+    /// assert_eq!((a0.b[1], a1.a[1]), (0.1875, 0.5625));
+    /// let (l0, l1) = (&joined.levels[0].lines[0], &joined.levels[0].lines[1]);
+    /// assert_eq!(l0.b, l1.a); // joined on the face x = 1, in the bin of the mean y = 0.375
+    /// assert_eq!(l0.b, [1.0, 0.4375, 0.5625]);
+    /// ```
+    pub fn build_with(q: &QuantizedLines, r: f64, join: bool) -> Self {
         let mut lod = Self { lo: q.lo, q: q.q, levels: Vec::new() };
         let mut level = LodLevel { h: q.h, dims: q.dims, opacity: Vec::new(), lines: Vec::new() };
         level.opacity = vec![0.0; q.dims.iter().map(|&d| d as usize).product()];
@@ -152,8 +259,14 @@ impl Lod {
         }
         level.opacity.iter_mut().for_each(|o| *o = o.min(1.0));
         level.finish(accs.into_values().collect(), q.lo, q.q, r);
+        if join {
+            level.join(q.lo, q.q, r);
+        }
         while level.dims.iter().any(|&d| d > 1) {
-            let next = lod.coarser(&level, r);
+            let mut next = lod.coarser(&level, r);
+            if join {
+                next.join(q.lo, q.q, r);
+            }
             lod.levels.push(std::mem::replace(&mut level, next));
         }
         lod.levels.push(level);

@@ -2,7 +2,8 @@
 //! point `q` (normal `n`) that meet a tube within the distance `D`, estimated either by rays
 //! through the [`Tracer`] ([`ray_occlusion`], the reference) or by voxel cone tracing through
 //! the occupancy pyramid ([`ConeAo`], Crassin et al.'s voxel cone tracing on Kraaijeveld et
-//! al.'s occupancy, [`Pyramid`]).
+//! al.'s occupancy, [`Pyramid`]), or through Kanzler et al.'s LoD opacities of the quantized
+//! lines ([`ConeAo::build_lod`], the same cones).
 //!
 //! # Cone tracing
 //! `N` cones with axes `aᵢ` from a Vogel spiral on the unit disc lifted to the hemisphere
@@ -56,6 +57,8 @@ use crate::scene::generate::Rng;
 use crate::scene::Scene;
 use tubecast::{Ray, V3};
 
+mod lod;
+
 /// How [`super::render`] estimates ambient occlusion (with [`super::Options::ao`] samples).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum AoMethod {
@@ -64,6 +67,9 @@ pub enum AoMethod {
     Rays,
     /// `ao` cones per pixel through the occupancy pyramid ([`ConeAo`]).
     Cone,
+    /// `ao` cones per pixel through Kanzler's LoD opacities of the scene's quantized lines
+    /// ([`ConeAo::build_lod`]).
+    Lod,
 }
 
 /// An orthonormal pair `(b₁, b₂)` completing the unit `n` to a frame.
@@ -203,31 +209,39 @@ fn effective_radius(scene: &Scene) -> f64 {
     }
 }
 
+/// The base grid of [`ConeAo::build`] for `scene` and distance `dist`: whether there is one
+/// (links, a finite positive `dist`), its corner, voxel side (`dist/voxels`, coarsened by 1.1×
+/// steps until at most `max_cells` cells) and voxels.
+fn grid(scene: &Scene, dist: f64, p: &ConeParams) -> (bool, [f64; 3], f64, [u32; 3]) {
+    let st = scene.stats();
+    let ok = dist.is_finite() && dist > 0.0 && !scene.links.is_empty() && p.voxels > 0.0;
+    let mut h = if ok { dist / p.voxels } else { 1.0 };
+    let (mut lo, mut dims) = ([0.0; 3], [1, 1, 1]);
+    for _ in 0..200 {
+        if !ok {
+            break;
+        }
+        // Non-zero occupancy reaches r_min + ½ voxels beyond a tube: pad by that and one more.
+        let pad = (p.r_min.max(0.0) + 1.5) * h;
+        lo = st.bounds.0.map(|x| x - pad);
+        dims = std::array::from_fn(|i| ((st.bounds.1[i] + pad - lo[i]) / h).ceil().clamp(1.0, 1e9) as u32);
+        if dims.iter().map(|&d| d as f64).product::<f64>() <= p.max_cells.max(1) as f64 {
+            break;
+        }
+        h *= 1.1;
+    }
+    (ok, lo, h, dims)
+}
+
 impl ConeAo {
     /// The pyramid of `scene`'s links for occlusion distance `dist` (world units). A scene
     /// without links, or a `dist` that is not finite and positive, gives occlusion 0.
     pub fn build(scene: &Scene, dist: f64, p: &ConeParams) -> Self {
         let (axes, tan) = cone_axes(p.cones.clamp(1, 1024));
-        let st = scene.stats();
-        let ok = dist.is_finite() && dist > 0.0 && !scene.links.is_empty() && p.voxels > 0.0;
-        let mut h = if ok { dist / p.voxels } else { 1.0 };
-        let r_min = p.r_min.max(0.0);
-        let (mut lo, mut dims) = ([0.0; 3], [1, 1, 1]);
-        for _ in 0..200 {
-            if !ok {
-                break;
-            }
-            // Non-zero occupancy reaches r_min + ½ voxels beyond a tube: pad by that and one more.
-            let pad = (r_min + 1.5) * h;
-            lo = st.bounds.0.map(|x| x - pad);
-            dims = std::array::from_fn(|i| ((st.bounds.1[i] + pad - lo[i]) / h).ceil().clamp(1.0, 1e9) as u32);
-            if dims.iter().map(|&d| d as f64).product::<f64>() <= p.max_cells.max(1) as f64 {
-                break;
-            }
-            h *= 1.1;
-        }
+        let (ok, lo, h, dims) = grid(scene, dist, p);
         let two_r = if p.lines { 2.0 * effective_radius(scene) } else { f64::INFINITY };
-        let pyramid = if ok { Pyramid::build(scene, lo, h, dims, r_min * h) } else { Pyramid { levels: Vec::new() } };
+        let r_min = p.r_min.max(0.0) * h;
+        let pyramid = if ok { Pyramid::build(scene, lo, h, dims, r_min) } else { Pyramid { levels: Vec::new() } };
         Self { pyramid, lo, h, dist: if ok { dist } else { 0.0 }, start: p.start.max(0.0) * h, tan, axes, two_r }
     }
 

@@ -60,8 +60,13 @@ pub fn render(scene: &Scene, bvh: &dyn Tracer, cam: &Camera, opts: &Options) -> 
     let st = scene.stats();
     let diag = (V3::from(st.bounds.1) - V3::from(st.bounds.0)).length();
     let ao_dist = 0.1 * diag;
-    let cone = (opts.ao > 0 && opts.ao_method == AoMethod::Cone)
-        .then(|| ConeAo::build(scene, ao_dist, &ConeParams { cones: opts.ao, ..ConeParams::default() }));
+    let cp = ConeParams { cones: opts.ao, ..ConeParams::default() };
+    let cone = match opts.ao_method {
+        _ if opts.ao == 0 => None,
+        AoMethod::Rays => None,
+        AoMethod::Cone => Some(ConeAo::build(scene, ao_dist, &cp)),
+        AoMethod::Lod => Some(ConeAo::build_lod(scene, ao_dist, &cp)),
+    };
     let ctx = Ctx { scene, bvh, cam, opts, pal: Palette::new(scene), light, ao_dist, cone };
     let bar = if opts.progress { indicatif::ProgressBar::new(h as u64) } else { indicatif::ProgressBar::hidden() };
     let n = (w * h) as usize;
