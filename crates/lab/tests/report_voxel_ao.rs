@@ -18,8 +18,9 @@ fn ao_report_writes_errors_against_cost() {
     let md = std::fs::read_to_string(&files.markdown).unwrap();
     assert!(out.join("voxel_ao.tables.json").exists());
     let rows = table_rows(&md, "scene");
-    // 2 scenes × (4 ray counts + 3 pyramid resolutions × 4 cone counts + 4 volume-model rows).
-    assert_eq!(rows.len(), 2 * (4 + 12 + 4), "{rows:?}");
+    // 2 scenes × (4 ray counts + 3 pyramid resolutions × 4 cone counts + 4 volume-model rows
+    // + 2 LoD resolutions × 4 cone counts).
+    assert_eq!(rows.len(), 2 * (4 + 12 + 4 + 8), "{rows:?}");
     for r in &rows {
         let num = |k: usize| parse_num(&r[k]).unwrap();
         assert!(num(4).is_finite() && num(4) > 0.0 && num(5).is_finite() && num(5) > 0.0, "{r:?}");

@@ -3,11 +3,10 @@
 //! frame time), and ambient occlusion traced against the quantized lines and against the
 //! representative lines of each LoD level, against the exact-tube reference.
 
-use super::voxel_ao::{errors, shaded_points, timed};
+use super::voxel_ao::{cpu_each, errors, shaded_points, timed};
 use super::{ensure_dir, fmt_num, machine, write_text, ReportError, ReportFiles, ReportOptions};
 use std::fmt::Write as _;
 use std::path::Path;
-use std::time::Instant;
 use tubecast::V3;
 use tubecast_render::accel::{Tracer, WideBvh};
 use tubecast_render::io::Polyline;
@@ -27,13 +26,12 @@ fn scene_of(lines: &[Polyline], name: &str) -> Result<Scene, ReportError> {
     Scene::from_polylines(lines, R, name).map_err(|e| ReportError::Render(e.to_string()))
 }
 
-/// Build (WideBvh) and one render of `scene` with `cam`: the image and the seconds of each.
+/// Build (WideBvh) and one render of `scene` with `cam`: the image and the seconds of each, in
+/// process CPU time summed over the threads ([`Clock`]).
 fn frame(scene: &Scene, cam: &Camera) -> Result<(Image, f64, f64), ReportError> {
-    let t0 = Instant::now();
-    let bvh = WideBvh::build(scene.primitives());
-    let t1 = Instant::now();
-    let img = render(scene, &bvh, cam, &Options::default()).map_err(|e| ReportError::Render(e.to_string()))?;
-    Ok((img, (t1 - t0).as_secs_f64(), t1.elapsed().as_secs_f64()))
+    let (bvh, build) = cpu_each(|| WideBvh::build(scene.primitives()));
+    let (img, draw) = cpu_each(|| render(scene, &bvh, cam, &Options::default()));
+    Ok((img.map_err(|e| ReportError::Render(e.to_string()))?, build, draw))
 }
 
 /// Mean and max per-channel |difference| and the share of pixels whose coverage differs.
@@ -78,7 +76,9 @@ pub fn run_voxel_quantized(out: &Path, opts: &ReportOptions) -> Result<ReportFil
          ends snap to the centre of their bin on a Q×Q face grid (`tubecast_render::quantized`). Rendering FROM \
          the quantized lines: the segments chained back into polylines (`QuantizedLines::polylines`) as tubes of \
          the same radius, wide BVH, one {}×{} lit frame, {} thread(s) of rayon's global pool; the exact frame is \
-         the original links the same way. Memory: a packed segment is its two ends (3 face bits + 2·log₂Q bin \
+         the original links the same way. Build and render times are process CPU time summed over the threads \
+         (`/proc/self/task/*/schedstat`), not wall time, so they do not count time other processes held the \
+         cores; the clock advances in 4 ms ticks, so each is a batch of ≥ 40 ms divided by its runs. Memory: a packed segment is its two ends (3 face bits + 2·log₂Q bin \
          bits each) — the voxel is implied by the per-voxel list it sits in (4 B offset per non-empty voxel, \
          counted) — against 24 B for an exact `f32` segment (two points, radius shared).\n\n",
         machine(),
@@ -151,9 +151,8 @@ fn lod_ao(exact: &Scene, lines: &[Polyline], ql: &QuantizedLines, opts: &ReportO
         .enumerate()
         .map(|(k, &(q, n))| ray_occlusion(&bvh, q, n, dist, REF_RAYS, 1 << 40 | k as u64))
         .collect();
-    let t0 = Instant::now();
-    let lod = Lod::build(ql, R);
-    let lod_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let (lod, lod_s) = cpu_each(|| Lod::build(ql, R));
+    let lod_ms = lod_s * 1e3;
     let mut md = format!(
         "\n## LoD: representative lines for AO\n\nKanzler's LoD over the Q = 16 quantized lines \
          (`tubecast_render::quantized::Lod`, built in {} ms): per voxel and level an opacity (projected tube area \
@@ -162,7 +161,8 @@ fn lod_ao(exact: &Scene, lines: &[Polyline], ql: &QuantizedLines, opts: &ReportO
          half a voxel). AO as the paper's first approach: {AO_RAYS} cosine-weighted rays per shaded point (D = 0.1 × \
          diagonal) against the exact tubes, the quantized lines, or the representative lines of level L (voxel \
          side 2ᴸ·h), each through its own wide BVH; reference {REF_RAYS} rays on the exact tubes; {} shaded points \
-         (primary hits of a {s}×{s} camera). Time: one thread, per point.\n\n\
+         (primary hits of a {s}×{s} camera). Time: process CPU time, one thread, best batch of ≥ 40 ms, per point. \
+         The LoD here was built with its representative lines joined across shared faces.\n\n\
          Rays start at the shaded point moved along its normal by *offset*: the model's own error (the \
          quantized lines' Hausdorff bound; a LoD level's voxel diagonal), so a point is not buried in its \
          approximate tube.\n\n\
@@ -181,9 +181,8 @@ fn lod_ao(exact: &Scene, lines: &[Polyline], ql: &QuantizedLines, opts: &ReportO
         cases.push((format!("LoD level {l} representative lines"), lod.polylines(l), 3f64.sqrt() * level.h));
     }
     let mut row = |name: &str, scene: &Scene, off: f64| -> Result<(), ReportError> {
-        let t0 = Instant::now();
-        let tr = WideBvh::build(scene.primitives());
-        let build = t0.elapsed().as_secs_f64() * 1e3;
+        let (tr, build_s) = cpu_each(|| WideBvh::build(scene.primitives()));
+        let build = build_s * 1e3;
         let (est, ns) =
             timed(&pts, opts.time_ms, |k, &(q, n)| ray_occlusion(&tr, q + n * off, n, dist, AO_RAYS, k as u64));
         let (mean, max, bias) = errors(&est, &reference);
