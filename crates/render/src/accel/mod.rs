@@ -436,8 +436,10 @@ impl Bvh {
                         }
                     };
                     if let Some((t, n, u, entering)) = got {
-                        if best.map_or(true, |h| t < h.t) {
-                            let link = self.prims[id].link;
+                        let link = self.prims[id].link;
+                        // Ties in t go to the lower link id, as in every tracer (same answer
+                        // whatever the traversal order).
+                        if best.map_or(true, |h| t < h.t || (t == h.t && link < h.link)) {
                             best = Some(Hit { t, n, u, prim: id as u32, link, entering });
                         }
                     }

@@ -248,8 +248,10 @@ impl Tracer for WideBvh {
             if item & WHOLE != 0 {
                 let id = (item & !WHOLE) as usize;
                 if let Some((t, n, u, entering)) = self.prims[id].first_hit_unit(ray, dn, len) {
-                    if best.map_or(true, |h| t < h.t) {
-                        best = Some(Hit { t, n, u, prim: id as u32, link: self.prims[id].link, entering });
+                    let link = self.prims[id].link;
+                    // Ties in t go to the lower link id, as in every tracer.
+                    if best.map_or(true, |h| t < h.t || (t == h.t && link < h.link)) {
+                        best = Some(Hit { t, n, u, prim: id as u32, link, entering });
                     }
                 }
             } else {
@@ -257,8 +259,9 @@ impl Tracer for WideBvh {
                 let k = pc.0;
                 self.clusters.hits(pc, ray, dn, len, |i, iv| {
                     if let Some((t, n, u)) = iv.first_hit(ray.t_min, ray.t_max) {
-                        if best.map_or(true, |h| t < h.t) {
-                            let (prim, link) = (self.cluster_id(k, i), self.clusters.link(k, i));
+                        let link = self.clusters.link(k, i);
+                        if best.map_or(true, |h| t < h.t || (t == h.t && link < h.link)) {
+                            let prim = self.cluster_id(k, i);
                             best = Some(Hit { t, n, u, prim, link, entering: t == iv.t_in });
                         }
                     }

@@ -73,7 +73,8 @@ impl Grid {
         go
     }
 
-    /// The closest surface crossing in `[t_min, t_max]`; ties in `t` go to the lower index.
+    /// The closest surface crossing in `[t_min, t_max]`; ties in `t` go to the lower link id
+    /// (then the lower index), as in every tracer.
     pub(super) fn closest(&self, ray: &Ray<f64>) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let mut seen = Mailbox::new();
@@ -84,7 +85,8 @@ impl Grid {
                 }
                 let p = &self.prims[id as usize];
                 if let Some((t, n, u, entering)) = p.first_hit(ray) {
-                    if best.map_or(true, |b| t < b.t || (t == b.t && id < b.prim)) {
+                    let tie = |b: &Hit| t == b.t && (p.link, id) < (b.link, b.prim);
+                    if best.map_or(true, |b| t < b.t || tie(&b)) {
                         best = Some(Hit { t, n, u, prim: id, link: p.link, entering });
                     }
                 }
