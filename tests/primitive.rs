@@ -136,27 +136,25 @@ fn bit_identical_to_the_replaced_functions() {
     // spline slot (index 3: `QuadTube::intersect` plus its boxes) re-recorded for issue 10's
     // reformulation of the spline kernel (g from the ray-space vectors: different rounding,
     // answers within the derived band E, tests/spline_conditioning.rs; the old kernel's were
-    // off by ε(L/r)² and had phantom hits), and again for the Bernstein-form isolation of P
-    // (other candidates, other roundings: same hits, answers in the band E,
-    // src/kernel/spline/isolation_tests.rs). Slot 1 (the stable link's interval) re-recorded for
+    // off by ε(L/r)² and had phantom hits). Slot 1 (the stable link's interval) re-recorded for
     // issue 15's fix of its local frame (formed relative to the end `a`, not in world
     // coordinates: different rounding, answers within E, tests/link_far_from_world.rs). Slots 0
     // and 2 (sphere, Han) are unchanged.
     assert_eq!(
         fingerprint::<f64>(&cs),
-        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0x3514586223bc562c]
+        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0x34b384359240ba67]
     );
     assert_eq!(
         fingerprint::<f32>(&cs),
-        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0xa3b7a38d5e340875]
+        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x82332a6c20b17d8e]
     );
     assert_eq!(
         fingerprint::<WideF32x8>(&cs),
-        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x05fe1ecd4e6a6425]
+        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x4552212e63a04b4e]
     );
     assert_eq!(
         fingerprint::<WideF64x4>(&cs),
-        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0xdd4d2f98cab371f4]
+        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0x5c853955360f7e33]
     );
     assert_eq!(
         fingerprint_scalar::<f64>(&cs),

@@ -29,14 +29,10 @@
 //!   these solvers report a point inside the tube instead of the entry.
 //! * [`Solver::Polynomial`]: the critical points of `f` **and** `e` are exactly the roots of
 //!   `P = 4h'²g − g'² = (2h'√g − g')(2h'√g + g')` where `g > 0`; all roots of `P` in `[0, 1]`
-//!   by **Bernstein-form isolation** (`isolate.rs`: `P`'s Bernstein coefficients on
-//!   `[0, t_v]` and `[t_v, 1]`, `t_v` the vertex of the centre line, where a slow curve makes `P`
-//!   tiny, by exact product formulas; halving while the sign-variation count is `≥ 2`, a
-//!   safeguarded Newton step sequence on each interval with one variation; the argument that it
-//!   finds every root the former power-basis derivative cascades found, within the same `δ`,
-//!   is written there, and those cascades are kept as its test oracle, `cascade.rs`), then
-//!   `f` and `e` at every root with `g ≥ 0` (to rounding; `g(1)` formed from the
-//!   end itself, exactly 0 for a zero-radius end on the line) and at `t = 0, t_v, 1`.
+//!   by the derivative cascade (the union of the roots of `P` formed in powers of `t` and in
+//!   powers of `t − t_v`, `t_v` the vertex of the centre line, where a slow curve makes `P`
+//!   tiny), then `f` and `e` at every root with `g ≥ 0` (to rounding; `g(1)` formed from the
+//!   end itself, exactly 0 for a zero-radius end on the line) and at `t = 0, 1`.
 //!   Needs no real intervals and no claim.
 //!
 //! # Conditioning (issue 10)
@@ -86,9 +82,8 @@
 //! farther than the largest control radius from the control triangle (`ray_space::hull_misses`,
 //! exact: its proof is there), and the Polynomial solver forms `P` only when one of `g`'s
 //! breakpoints is real (they hold `g`'s maxima, so otherwise the line misses the tube deflated
-//! by `E`: a miss is right). `P`'s isolation costs a few degree-6 de Casteljau halvings and
-//! Newton steps per root on ordinary rays (it replaced two power-basis cascades, about 60 %
-//! of the solver's instructions). Before all this a chord-capsule filter (`capsule.rs`, exact, proof
+//! by `E`: a miss is right). At `t_v = 0` the two expansions of `P` coincide bit for bit and
+//! one cascade serves both. Before all this a chord-capsule filter (`capsule.rs`, exact, proof
 //! there) rejects lines farther than `max rᵢ + ½|b₁ − (b₀+b₂)/2|` (plus a margin over `E`)
 //! from the chord `[b₀, b₂]` with a dozen dot products. Lanes take an exit only when every lane does, and mask the same
 //! lanes otherwise, so a lane still equals the scalar call.
@@ -99,12 +94,7 @@
 //! `t`-interval meets the line in one interval), which is what CSG needs.
 
 mod capsule;
-#[cfg(test)]
-mod cascade;
 mod direct;
-mod isolate;
-#[cfg(test)]
-mod isolation_tests;
 mod ray_space;
 mod sdf;
 
@@ -272,7 +262,24 @@ impl<T: Real> QuadTube<T> {
             return Interval::miss();
         };
         match solver {
-            Solver::Polynomial => polynomial_line(&rs, ray, |rs| rs.p_candidates()),
+            Solver::Polynomial => {
+                // g's breakpoints hold its maxima: a candidate in every real interval, whatever
+                // the rounding of P's coefficients does to P's roots. None of them real (gap
+                // ≥ −τ): the line misses the tube deflated by the band (see "Conditioning"), a
+                // miss is a right answer and P's cascade is skipped.
+                let z = rs.dg.g_breakpoints(Bracket::Newton);
+                let mut real = T::Mask::splat(false);
+                for &t in &z {
+                    real = real | rs.dg.gap_g(t).0.ge(-rs.dg.tau);
+                }
+                if (real & rs.near).none() {
+                    return Interval::miss();
+                }
+                let (bp, n) = rs.p_breakpoints();
+                let (x, any) = rs.polished_candidates(&bp[..n], &z, T::zero(), T::one(), false);
+                // `& real`: a lane decides as the scalar call does (which returned above).
+                rs.interval(ray, x, any & real, false)
+            }
             _ => {
                 // Hull of the line pieces (a piece behind the origin still belongs to the line
                 // interval).
@@ -319,7 +326,7 @@ impl<T: Real> QuadTube<T> {
             let rj = real[j - 1] & real[j];
             cut[j] = !rj | rs.dg.g(z[j]).le(T::zero());
         }
-        let ppoly = if solver == Solver::Polynomial { Some(rs.p_candidates()) } else { None };
+        let ppoly = if solver == Solver::Polynomial { Some(rs.p_breakpoints()) } else { None };
         let mut out = [Interval::miss(); 5];
         for k in 0..5 {
             // Process piece k only where it starts a merged real interval.
@@ -342,30 +349,4 @@ impl<T: Real> QuadTube<T> {
         }
         out
     }
-}
-
-/// The Polynomial solver's line interval from `P`'s candidates (`cands`: the production
-/// isolation, or the old cascades in the test oracle).
-#[inline(always)]
-fn polynomial_line<T: Real, const N: usize>(
-    rs: &RaySpace<T>,
-    ray: &Ray<T>,
-    cands: impl FnOnce(&RaySpace<T>) -> ([T; N], usize),
-) -> Interval<T> {
-    // g's breakpoints hold its maxima: a candidate in every real interval, whatever the
-    // rounding of P's coefficients does to P's roots. None of them real (gap ≥ −τ): the line
-    // misses the tube deflated by the band (see "Conditioning"), a miss is a right answer and
-    // P's isolation is skipped.
-    let z = rs.dg.g_breakpoints(Bracket::Newton);
-    let mut real = T::Mask::splat(false);
-    for &t in &z {
-        real = real | rs.dg.gap_g(t).0.ge(-rs.dg.tau);
-    }
-    if (real & rs.near).none() {
-        return Interval::miss();
-    }
-    let (c, n) = cands(rs);
-    let (x, any) = rs.polished_candidates(&c[..n], &z, T::zero(), T::one(), false);
-    // `& real`: a lane decides as the scalar call does (which returned above).
-    rs.interval(ray, x, any & real, false)
 }

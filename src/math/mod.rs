@@ -1,13 +1,11 @@
 //! The kernels' shared maths, each written once (crate-private): quadric roots and slab
 //! clipping ([`quadric`]), polynomial root finders and the derivative cascade ([`roots`]),
-//! Bernstein-form products and root isolation ([`bernstein`]),
 //! quadratic Bézier evaluation and extrema ([`bezier`]), orthonormal frames ([`frame`]) and a
 //! golden-section minimiser ([`minimise`]).
 //!
 //! Items that `crate::kernel` re-exports under their historical public paths are `pub` here;
 //! the module itself is private.
 
-pub(crate) mod bernstein;
 pub(crate) mod bezier;
 pub(crate) mod frame;
 pub(crate) mod minimise;

@@ -2,9 +2,9 @@
 //! the candidates for the entry and exit, and their polish (see the parent module's docs).
 
 use super::direct::Direct;
-use super::isolate::{p_candidates, p_pieces, CAP};
 use super::QuadTube;
-use crate::math::roots::{cascade_level, default_tol, horner, itp, opposite, Bracket};
+use crate::math::bezier::bernstein2;
+use crate::math::roots::{cascade_level, default_tol, horner, itp, opposite, poly_breakpoints, poly_mul, Bracket};
 use crate::ray::{in_range, Interval, Ray};
 use crate::real::{Mask, Real, Scalar};
 use crate::vec::V3;
@@ -38,27 +38,43 @@ struct Candidates<T: Real> {
 /// Working data of one ray–segment query in ray space.
 pub(super) struct RaySpace<T: Real> {
     /// `h` coefficients, ascending powers of `t`.
-    pub(super) h: [T; 3],
+    h: [T; 3],
+    /// `g` coefficients.
+    pub(super) g: [T; 5],
     /// Power-basis position relative to the re-centred origin, in units of the bounding
     /// radius: `q = qa t² + qb t + qc`.
     qa: V3<T>,
     qb: V3<T>,
     qc: V3<T>,
-    /// The control points and radii in the same units (for `P`'s Bernstein form).
-    pub(super) c: [V3<T>; 3],
-    pub(super) rr: [T; 3],
-    pub(super) dhat: V3<T>,
+    dhat: V3<T>,
     /// Ray parameter of the re-centred origin.
     tc: T,
     /// Bounding radius / |d|: converts a ray-space distance to a ray parameter step.
     inv_dlen: T,
     /// Lanes whose line comes within the bounding sphere.
     pub(super) near: T::Mask,
-    /// The vertex of the centre line (least `|p'|`), in `[0, 1]`: `P`'s pieces meet there.
-    pub(super) tv: T,
+    /// `h` and `g` re-expanded about `tv` (coefficients of powers of `t − tv`), for `P`.
+    hv: [T; 3],
+    gv: [T; 5],
+    /// Expansion point of `hv`, `gv`: the vertex of the centre line (least `|p'|`), in `[0, 1]`.
+    tv: T,
     /// `g` and its derivatives from the vectors (the decisions and the values; `g` above
     /// only feeds `P`'s coefficients).
     pub(super) dg: Direct<T>,
+}
+
+/// `h` and `g` (ascending powers of the parameter) from the power-basis position
+/// `q = qa x² + qb x + qc` and radius `ra x² + rb x + rc` (`q = [qa, qb, qc]`, `r = [ra, rb, rc]`).
+#[inline(always)]
+fn ray_polys<T: Real>(q: [V3<T>; 3], r: [T; 3], dhat: V3<T>) -> ([T; 3], [T; 5]) {
+    let ([qa, qb, qc], [ra, rb, rc]) = (q, r);
+    let two = T::cst(2.0);
+    let h = [qc.dot(dhat), qb.dot(dhat), qa.dot(dhat)];
+    let (wa, wb, wc) = (qa.cross(dhat), qb.cross(dhat), qc.cross(dhat));
+    let w2 = [wc.dot(wc), two * wc.dot(wb), wb.dot(wb) + two * wc.dot(wa), two * wb.dot(wa), wa.dot(wa)];
+    let r2 = [rc * rc, two * rc * rb, rb * rb + two * rc * ra, two * rb * ra, ra * ra];
+    let g = [r2[0] - w2[0], r2[1] - w2[1], r2[2] - w2[2], r2[3] - w2[3], r2[4] - w2[4]];
+    (h, g)
 }
 
 /// Lanes whose line surely misses the sweep (an exact early rejection, issue 10's cost): the
@@ -98,6 +114,22 @@ fn hull_misses<T: Real>(c: [V3<T>; 3], rho: T, dhat: V3<T>) -> T::Mask {
         neg = neg & o.le(k);
     }
     far & !(pos | neg) & lim.gt(zero)
+}
+
+/// `P = 4h'²g − g'²` from `h`, `g` in powers of one variable.
+#[inline(always)]
+fn p_of<T: Real>(h: &[T; 3], g: &[T; 5]) -> [T; 7] {
+    let two = T::cst(2.0);
+    let h1 = [h[1], two * h[2]];
+    let g1 = [g[1], two * g[2], T::cst(3.0) * g[3], T::cst(4.0) * g[4]];
+    let h1s: [T; 3] = poly_mul(&h1, &h1);
+    let a: [T; 7] = poly_mul(&h1s, g);
+    let b: [T; 7] = poly_mul(&g1, &g1);
+    let mut p = [T::zero(); 7];
+    for i in 0..7 {
+        p[i] = T::cst(4.0) * a[i] - b[i];
+    }
+    p
 }
 
 impl<T: Real> RaySpace<T> {
@@ -156,22 +188,30 @@ impl<T: Real> RaySpace<T> {
             return None;
         }
         let (ra, rb, rc) = (r0 - r1 * two + r2, (r1 - r0) * two, r0);
-        let h = [qc.dot(dhat), qb.dot(dhat), qa.dot(dhat)];
-        // The vertex tv of the centre line (|p'|² = |qb + 2qa·t|² least), where the curve is
-        // slow (p' ≈ 0, e.g. b₁ = b₂): the ray meets the tube over a wide range of t around
-        // tv, and h' ≈ 0 there, so P = 4h'²g − g'² is tiny there (fuzz finding
-        // regression-pinched-slow-end: a 46-long tube with p'(1) = 0). P's pieces meet there
-        // (isolate.rs), their nets formed from the local values.
+        let (h, g) = ray_polys([qa, qb, qc], [ra, rb, rc], dhat);
+        // The same about the vertex tv of the centre line (|p'|² = |qb + 2qa·t|² least), from
+        // the control points (de Casteljau: each coefficient to ε of the local sizes). Where
+        // the curve is slow (p' ≈ 0, e.g. b₁ = b₂) the ray meets the tube over a wide range
+        // of t around tv, and h' ≈ 0 there: P = 4h'²g − g'² is tiny there, far below the
+        // rounding of its t-power coefficients (fuzz finding regression-pinched-slow-end:
+        // a 46-long tube with p'(1) = 0; P's roots near t = 1 were noise). About tv the
+        // coefficients of q, and so of h, g and P, carry no such cancellation.
         let qq = qa.dot(qa);
         let tv0 = -qb.dot(qa) / (two * T::select(qq.gt(T::zero()), qq, T::one()));
         let tv = T::select(qq.gt(T::zero()) & tv0.is_finite(), tv0, T::zero()).clamp(T::zero(), T::one());
+        let sv = T::one() - tv;
+        let [wv0, wv1, wv2] = bernstein2(tv);
+        let qcv = c0 * wv0 + c1 * wv1 + c2 * wv2;
+        let qbv = ((c1 - c0) * sv + (c2 - c1) * tv) * two;
+        let rcv = r0 * wv0 + r1 * wv1 + r2 * wv2;
+        let rbv = ((r1 - r0) * sv + (r2 - r1) * tv) * two;
+        let (hv, gv) = ray_polys([qa, qbv, qcv], [ra, rbv, rcv], dhat);
         // g at t = 1 from the end itself (fuzz finding regression-tip-on-ray: r(1) = 0 with
         // p(1) on the ray, g = c(1 − t)⁴; Σ gᵢ came out −2.2e-16 and the tip — the true
         // entry — was dropped). At t = 0 Horner gives wc, rc exactly.
         let dg = Direct::new([qa, qb, qc], [ra, rb, rc], dhat, (c2, r2));
         // Ray-space distances are in units of `big`: t = tc + s·big/|d|.
-        let (c, rr) = ([c0, c1, c2], [r0, r1, r2]);
-        Some(Self { h, qa, qb, qc, c, rr, dhat, tc, inv_dlen: inv_dlen * big_s, near, tv, dg })
+        Some(Self { h, g, qa, qb, qc, dhat, tc, inv_dlen: inv_dlen * big_s, near, hv, gv, tv, dg })
     }
 
     #[inline(always)]
@@ -265,12 +305,56 @@ impl<T: Real> RaySpace<T> {
         (T::select(better, vx, v), T::select(better, x, t))
     }
 
-    /// Candidates for `P`'s roots in `[0, 1]` (with `0`, `tv`, `1`) by Bernstein-form
-    /// isolation on `[0, tv]` and `[tv, 1]` (`isolate.rs`, where the argument is).
+    /// All roots of `P` in `[0, 1]` as sorted breakpoints (`buf[0] = 0`, `buf[n−1] = 1`):
+    /// the union of those found in powers of `t` and in powers of `t − tv` (shifted back),
+    /// merged by a fixed compare-exchange network (`select` on `<`: every lane bit-equal to
+    /// the scalar). Each expansion can be the noisy one: about `tv` for a slow end
+    /// (regression-pinched-slow-end), in powers of `t` elsewhere; a spare candidate costs
+    /// nothing (every candidate is a point of the sweep), a lost one can lose the entry.
     #[inline(always)]
-    pub(super) fn p_candidates(&self) -> ([T; CAP], usize) {
-        let (left, right) = p_pieces(self.c, self.rr, self.tv, self.dhat);
-        p_candidates(&left, &right, self.tv)
+    pub(super) fn p_breakpoints(&self) -> ([T; 16], usize) {
+        let (lo, hi) = (-self.tv, T::one() - self.tv);
+        let (bt, nt) = poly_breakpoints(&self.p_poly_t(), T::zero(), T::one(), Bracket::Newton);
+        // At tv = 0 both expansions are the same numbers (hv = h, gv = g bit for bit: the
+        // Bernstein weights at 0 are exactly 1, 0, 0), so their roots are too: reuse them.
+        let (bv, nv) = if self.tv.eq(T::zero()).all() {
+            (bt, nt)
+        } else {
+            poly_breakpoints(&self.p_poly(), lo, hi, Bracket::Newton)
+        };
+        debug_assert!(nv == 8 && nt == 8);
+        let mut out = [T::one(); 16];
+        // out = bt ascending, then the shifted bv descending: a bitonic sequence.
+        out[..8].copy_from_slice(&bt);
+        for i in 0..8 {
+            let t = (self.tv + bv[i]).clamp(T::zero(), T::one());
+            out[15 - i] = T::select(bv[i].le(lo), T::zero(), T::select(bv[i].ge(hi), T::one(), t));
+        }
+        let mut stride = 8;
+        while stride > 0 {
+            for i in 0..16 {
+                if i & stride == 0 {
+                    let (a, b) = (out[i], out[i + stride]);
+                    let sw = b.lt(a);
+                    out[i] = T::select(sw, b, a);
+                    out[i + stride] = T::select(sw, a, b);
+                }
+            }
+            stride /= 2;
+        }
+        (out, 16)
+    }
+
+    /// `P = 4h'²g − g'²` (degree 6) in powers of `t`.
+    #[inline(always)]
+    fn p_poly_t(&self) -> [T; 7] {
+        p_of(&self.h, &self.g)
+    }
+
+    /// `P = 4h'²g − g'²` (degree 6) in powers of `t − tv`.
+    #[inline(always)]
+    fn p_poly(&self) -> [T; 7] {
+        p_of(&self.hv, &self.gv)
     }
 
     /// Entry and exit from candidate parameters ([`Self::best_of_candidates`]), each polished
