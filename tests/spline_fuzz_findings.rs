@@ -31,7 +31,7 @@ mod check {
     include!("../fuzz/checks/spline.rs");
 }
 
-use tubecast::{QuadTube, Ray, Solver};
+use tubecast::{Primitive, QuadTube, Ray, Solver};
 
 /// Finding 1 (issue 15), as kept in the corpus.
 const PINCHED: &[u8] = include_bytes!("../fuzz/corpus/spline/regression-subnormal-t-pinched");
@@ -187,4 +187,53 @@ fn tiny_extent_tube_with_huge_direction() {
     // against |d|·q/2 = 1e-174), so the check passes on the corpus entry.
     assert!(best_f64_miss(t.b[2].z / Q / dz, ray.d.length()) < relative_bound(&t, &ray, t_in));
     check::check(TINY_EXTENT);
+}
+
+/// Found by this afternoon's spline campaign (on 09f0319; still failing on d631a59), kept as
+/// fuzz/corpus/spline/regression-underflowed-bound. A **check** defect: the check's far term
+/// 8ε(|o − b₀| + |t·d|) took its lengths with `length`, whose squares underflow below ~1e-162,
+/// so with |o − b₀| = |t·d| = 2.6e-265 it was 0 and the bound collapsed to √(64ε)·S ≈ 9.5e-284.
+///
+/// The tube: b₀ = (5.5e-304, 4.8e-299, 0), b₁ = (1.7e-314, 2.8e-309, 8e-320), b₂ = 0,
+/// r = [r₀, 4.1e-317, 0], r₀ = 8.814425663402488e-280. r(u) is a Bernstein combination, so
+/// r(u) ≤ max rᵢ = r₀ (attained at u = 0), and every centre p(u) is within |b₀| ≤ 4.8e-299 =
+/// 5.4e-20·r₀ of the origin: the sweep contains the ball (b₀, r₀) and lies in the ball (0, r₀ +
+/// 4.8e-299). The ray o = (oₓ, 0, 0), oₓ = 2.6e-265, d = (−|dₓ|, 4e-320, 5e-312): over the
+/// |t| ≈ 5.5e-305 here the y, z components move it by < 1e-322, nothing. So the line meets
+/// the sweep in x ∈ [−r₀, r₀] to within 4.8e-299 (relative 5.4e-20 < ε/2), and
+/// t_in = (oₓ − r₀)/|dₓ|, t_out = (oₓ + r₀)/|dₓ| (normal numbers, ≈ 5.5e-305).
+///
+/// The resolution of t there is ulp(t) = 2⁻¹⁰⁶² ≈ 2.5e-320, i.e. |d|·ulp(t) ≈ 1.2e-280 along
+/// the ray (13% of r₀): the best f64 t can be 5.9e-281 off the surface, far above the
+/// underflowed bound 9.5e-284 and within the intended 8ε(|o − b₀| + |t·d|) ≈ 9.4e-280.
+#[test]
+fn far_term_of_the_bound_must_not_underflow() {
+    const BYTES: &[u8] = include_bytes!("../fuzz/corpus/spline/regression-underflowed-bound");
+    let (t, ray, solver) = check::input(BYTES).expect("valid input");
+    assert_eq!(solver, Solver::Polynomial);
+    let (r0, ox, dx) = (t.r[0], ray.o.x, ray.d.x.abs());
+    assert!(t.r[1] < 1e-30 * r0 && t.r[2] == 0.0 && t.b[0].max_abs() < 1e-18 * r0);
+    // The derived f64 values: two roundings (sum, quotient) of ≤ ε/2 relative each, ≤ 1 ulp.
+    let (t_in, t_out) = ((ox - r0) / dx, (ox + r0) / dx);
+    let ulp = |x: f64| f64::from_bits(x.to_bits() + 1) - x;
+    // The kernel's t (the polynomial solver's ray-space error √(64ε)·S ≈ 1e-285 is 1e-5 of a
+    // step): it may be a rounding step off the best, plus the derived value's 1 ulp.
+    let iv = t.intersect_with(&ray, solver);
+    assert!(iv.hit, "{iv:?}");
+    assert!((iv.t_in - t_in).abs() <= 2.0 * ulp(t_in), "t_in {:e} vs {t_in:e}", iv.t_in);
+    assert!((iv.t_out - t_out).abs() <= 2.0 * ulp(t_out), "t_out {:e} vs {t_out:e}", iv.t_out);
+    // No f64 t could meet the underflowed bound: `length` of o − b₀ is 0 ...
+    assert_eq!((ray.o - t.b[0]).length(), 0.0, "the squares underflow");
+    // ... and the exit's nearest f64 ray parameters miss the surface (x = −r₀) by more than it.
+    // (oₓ − t·|dₓ| ≈ −r₀ with one rounding, fma, of ≤ ulp(r₀)/2 = 7e-296; + r₀ is then exact.)
+    let step = |tt: f64| (tt.mul_add(-dx, ox) + r0).abs();
+    let lo = f64::from_bits(t_out.to_bits() - 1);
+    let best = [lo, t_out, f64::from_bits(t_out.to_bits() + 1)].map(step).into_iter().fold(f64::INFINITY, f64::min);
+    let underflowed = (64.0 * f64::EPSILON).sqrt() * check::scale(&t) + 8.0 * f64::EPSILON * check::scale(&t);
+    assert!(best > underflowed, "best f64 exit off by {best:e} <= {underflowed:e}");
+    // The fixed bound has the far term: 8ε·2·oₓ (|t·d| ≈ oₓ), and covers the kernel's answer.
+    let bound = check::surface_bound(&t, &ray, iv.t_out, true);
+    assert!(bound >= 16.0 * f64::EPSILON * ox * 0.99, "{bound:e}");
+    assert!(t.sdf(ray.at(iv.t_out)).abs() <= bound);
+    check::check(BYTES);
 }

@@ -62,9 +62,20 @@ pub fn scale(t: &QuadTube<f64>) -> f64 {
 /// hit by rays with |d| ~ 1e149; that test calls it without the term to show it is needed).
 pub fn surface_bound(t: &QuadTube<f64>, ray: &Ray<f64>, tt: f64, subnormal: bool) -> f64 {
     let s = scale(t);
-    let far = 8.0 * f64::EPSILON * ((ray.o - t.b[0]).length() + (ray.d * tt).length());
-    let far = if subnormal { far + 4.0 * ray.d.length() * f64::from_bits(1) } else { far };
+    let far = 8.0 * f64::EPSILON * (norm(ray.o - t.b[0]) + norm(ray.d * tt));
+    let far = if subnormal { far + 4.0 * norm(ray.d) * f64::from_bits(1) } else { far };
     (64.0 * f64::EPSILON).sqrt() * s + 8.0 * f64::EPSILON * s + far
+}
+
+/// |v| without the underflow (or overflow) of its squares: `length` squares the components, so
+/// a vector shorter than ~1e-162 has length 0 (fuzz finding regression-underflowed-bound: a
+/// far term 8ε·|o − b₀| with |o − b₀| = 2.6e-265 was taken as 0).
+pub fn norm(v: V3<f64>) -> f64 {
+    let m = v.max_abs();
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    V3::new(v.x / m, v.y / m, v.z / m).length() * m
 }
 
 pub fn check(data: &[u8]) {

@@ -1,0 +1,65 @@
+//! Findings of the `link` fuzz target (fuzz/checks/link.rs), decoded exactly as the check
+//! decodes them, with their answers derived by hand below.
+
+use tubecast::{Primitive, Ray, RoundCone, V3};
+
+/// This afternoon's link campaign (2.7e7 runs on d6a0b89), kept as
+/// fuzz/corpus/link/regression-generator-tangent: 14 f64s at byte 8i (the last two absent: 0).
+const BYTES: &[u8] = include_bytes!("../fuzz/corpus/link/regression-generator-tangent");
+
+fn f(i: usize) -> f64 {
+    BYTES.get(8 * i..8 * i + 8).map_or(0.0, |b| f64::from_le_bytes(b.try_into().unwrap()))
+}
+
+/// The link a = (1.9e-186, y₀ + δ, 3.97e-319), ra = 0 (a tip), b = (bₓ, y₀, rb), rb =
+/// 3.310369715525099e-28 = y₀, δ = 4.617e-36 (≈ 1.4e-8·L); the ray o = (y₀, y₀, z₀),
+/// z₀ = 6.1e-183, d = (−1.06e45, 0, 0): the line y = y₀, z = z₀ runs beside the cone's generator
+/// through the tip (a to the bottom point B = (bₓ, y₀, 0) of sphere b), offset δ·λ-wise from it.
+///
+/// Where the line meets the hull: a hull point is P = λa + (1 − λ)p, λ ∈ [0, 1], p in ball b
+/// (ra = 0). Ball b lies in z ≥ 0 and a.z ≥ 0, so P.z = z₀ needs p.z ≤ h = z₀/(1 − λ), and
+/// then p is within √(2·rb·h) of B in x and y. P.y = y₀ needs (1 − λ)(p.y − y₀) = −λδ, so
+/// λ²δ² ≤ (1 − λ)²·2·rb·h ≤ 2·rb·z₀: λ ≤ λ* = √(2·rb·z₀)/δ ≈ 4.4e-70, and
+/// |P.x − bₓ| ≤ λ*·|bₓ − a.x| + √(2·rb·z₀/(1 − λ*)) ≈ 1.5e-97 =: W. So the exact answer is a
+/// chord of length ≤ 2W about x = bₓ (the line grazes sphere b, z₀ deep).
+///
+/// Any point of the line at x is off sphere b by ≥ (x − bₓ)²/(2·rb)·(1 − …) − z₀ and off the hull
+/// by at least that far from the chord, so a hit point within 2E (the check's bound, E ≈ 1.2e-41
+/// here) of the surface has |x − bₓ| ≤ √(2·rb·(2E + z₀)) + W ≈ 1.3e-34 (with a factor 2 of slack
+/// below for the (1 − …)). A miss is also right within E: the line is only z₀ ≪ E inside.
+///
+/// Before the fix the stable kernel's exit was at x = 6.5e-36 (near the tip, 1.35e-36 off the
+/// surface, 5.6e4·E): the stump's quadratic has noise coefficients there and claimed the whole
+/// slab; the cap end at the tip (g = 3.3e-36 > 0) was polished by one Newton step to a point
+/// still 1.35e-36 outside, and accepted by the √ε-sized a-posteriori test (6.7e-35).
+#[test]
+fn line_beside_a_generator_through_a_tip() {
+    let v = |i| V3::new(f(i), f(i + 1), f(i + 2));
+    let link = RoundCone::new(v(0), f(3), v(4), f(7)).expect("valid link");
+    let ray = Ray::new(v(8), v(11));
+    assert!(ray.validate().is_ok());
+    let (a, b, rb, o) = (link.a, link.b, link.rb, ray.o);
+    assert_eq!((link.ra, b.y, b.z, o.y, ray.d.y, ray.d.z), (0.0, o.y, rb, rb, 0.0, 0.0));
+    assert!(a.z >= 0.0 && o.z > 0.0, "the hull lies in z ≥ 0, the line at z₀ > 0");
+    let (delta, z0) = (a.y - o.y, o.z);
+    assert!(delta > 4.6e-36 && delta < 4.7e-36);
+    let lam = (2.0 * rb * z0).sqrt() / delta;
+    let w = lam * (b.x - a.x).abs() + (2.0 * rb * z0 / (1.0 - lam)).sqrt();
+    assert!(w < 1e-96, "{w:e}");
+    // E of tests/link_props.rs (the check's), from the oracle crate.
+    let ov = |v: V3<f64>| tubecast_oracle::Vec3::new(v.x, v.y, v.z);
+    let ol = tubecast_oracle::Link { a: ov(a), ra: 0.0, b: ov(b), rb };
+    let size = (b - a).length().max(rb);
+    let e = tubecast_oracle::link_error_bound(&ol, ov(o), size, f64::EPSILON);
+    assert!(e < 1e-40, "{e:e}");
+    let reach = 2.0 * (2.0 * rb * (2.0 * e + z0)).sqrt() + w;
+    let iv = link.intersect(&ray);
+    if iv.hit {
+        for t in [iv.t_in, iv.t_out] {
+            let x = o.x + t * ray.d.x;
+            assert!((x - b.x).abs() <= reach, "hit at x = {x:e}, {:e} from the chord > {reach:e}", (x - b.x).abs());
+        }
+    }
+    // The tip is 4.6e-36 from the line: far outside the reach (the former exit was near it).
+    assert!(b.x - reach > 1e3 * delta);
+}
