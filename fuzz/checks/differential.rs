@@ -152,15 +152,30 @@ fn f32_agrees_with_f64(link: &RoundCone<f64>, ray: &Ray<f64>) -> Result<(), Stri
     let b = to64(l32.intersect(&Ray::new(ray.o.cast::<f32>(), ray.d.cast::<f32>())));
     let (e32, gap) = bound_and_gap(link, ray, f32::EPSILON as f64);
     let e = e32 + bound_and_gap(link, ray, f64::EPSILON).0;
+    within_band(&a, &b, gap, e, link, ray, "f32 vs f64")
+}
+
+/// Two answers `a`, `b` for `link` and `ray`, each within `e` of the sweep (`gap`: the oracle's
+/// signed line gap): hit and miss may differ only inside the band `|gap| ≤ e` (or for a
+/// crossing at the ray's start, which may round either way, as in tests/link_props.rs), and
+/// both hits' entry and exit lie in the E-band of the line (`same_t`).
+fn within_band(
+    a: &Interval<f64>,
+    b: &Interval<f64>,
+    gap: f64,
+    e: f64,
+    link: &RoundCone<f64>,
+    ray: &Ray<f64>,
+    what: &str,
+) -> Result<(), String> {
     if a.hit != b.hit {
-        // (As in tests/link_props.rs: a crossing at the ray's start may round either way.)
         let t_out = if a.hit { a.t_out } else { b.t_out };
         let edge = (t_out - ray.t_min).abs() <= e / ray.d.length() * 1e6;
         if !(gap.abs() <= e || edge) {
-            return Err(format!("f32/f64 disagree on hit outside the band: gap {gap:e}, E {e:e}"));
+            return Err(format!("{what}: disagree on hit outside the band: gap {gap:e}, E {e:e}"));
         }
     } else if a.hit && gap < -e {
-        same_t(&a, &b, link, ray, e).map_err(|m| format!("f32 vs f64: {m}"))?;
+        same_t(a, b, link, ray, e).map_err(|m| format!("{what}: {m}"))?;
     }
     Ok(())
 }
@@ -217,21 +232,13 @@ fn spline_agrees_with_stable(link: &RoundCone<f64>, ray: &Ray<f64>) -> Result<()
     let l32: RoundCone<f32> = link.cast();
     let r32 = Ray::new(ray.o.cast::<f32>(), ray.d.cast::<f32>());
     let runs = [
-        ("f64", f64::EPSILON, tubecast::QuadTube::from_link(link).map(|q| q.intersect(ray))),
-        ("f32", f32::EPSILON as f64, tubecast::QuadTube::from_link(&l32).map(|q| to64(q.intersect(&r32)))),
+        ("spline (f64) vs stable link", f64::EPSILON, tubecast::QuadTube::from_link(link).map(|q| q.intersect(ray))),
+        ("spline (f32) vs stable link", f32::EPSILON as f64, tubecast::QuadTube::from_link(&l32).map(|q| to64(q.intersect(&r32)))),
     ];
     for (what, eps, b) in runs {
         let Ok(b) = b else { continue };
         let e = e64 + 1024.0 * eps * big_r + 8.0 * eps * om + eps * (3f64.sqrt() * m.length() + link.ra.max(link.rb));
-        if a.hit != b.hit {
-            let t_out = if a.hit { a.t_out } else { b.t_out };
-            let edge = (t_out - ray.t_min).abs() <= e / ray.d.length() * 1e6;
-            if !(gap.abs() <= e || edge) {
-                return Err(format!("spline ({what}) and stable link disagree on hit outside the band: gap {gap:e}, E {e:e}"));
-            }
-        } else if a.hit && gap < -e {
-            same_t(&a, &b, link, ray, e).map_err(|msg| format!("spline ({what}) vs stable link: {msg}"))?;
-        }
+        within_band(&a, &b, gap, e, link, ray, what)?;
     }
     Ok(())
 }
