@@ -63,3 +63,48 @@ fn line_beside_a_generator_through_a_tip() {
     // The tip is 4.6e-36 from the line: far outside the reach (the former exit was near it).
     assert!(b.x - reach > 1e3 * delta);
 }
+
+/// The next link campaign (8.0e6 runs on 9568536) found a mutant of the input above, kept as
+/// fuzz/corpus/link/regression-generator-offset: the same tip a (ra = 0) at y₀ + δ, the same
+/// line y = y₀, z = z₀ along x, but sphere b's centre moved to (bₓ, y₀ + η, rb), η = 7.35e-38.
+///
+/// The exact answer is a miss. A hull point on the line is P = λa + (1 − λ)p with p in ball b.
+/// P.y = y₀ needs p.y − y₀ = −λδ/(1 − λ) ≤ 0, so p.y is ≥ η below the centre and p.z ≥ rb −
+/// √(rb² − η²) ≥ η²/(2rb); P.z = z₀ (a.z ≥ 0) needs p.z ≤ z₀/(1 − λ). Together: 1 − λ ≤
+/// 2·rb·z₀/η² ≈ 7.5e-136. But p in the ball needs λδ/(1 − λ) ≤ |p.y − y₀| ≤ rb + η, i.e. 1 − λ
+/// ≥ δ/(δ + rb + η) ≈ 1.4e-8: no such λ.
+///
+/// So a hit is right only as a point within the kernel's error of the surface: the check's 2E.
+/// Before the fix the stable kernel's exit was near the tip, where the line is 4.8e-41 = 4E off
+/// the cone's side (it passes δ beside the generator, and the cross-section there is only
+/// 2.2e-31 across): a root of F's noise accepted by the √ε-sized window.
+#[test]
+fn line_beside_a_generator_offset_at_both_ends() {
+    const OFFSET: &[u8] = include_bytes!("../fuzz/corpus/link/regression-generator-offset");
+    let f = |i: usize| OFFSET.get(8 * i..8 * i + 8).map_or(0.0, |b| f64::from_le_bytes(b.try_into().unwrap()));
+    let v = |i| V3::new(f(i), f(i + 1), f(i + 2));
+    let link = RoundCone::new(v(0), f(3), v(4), f(7)).expect("valid link");
+    let ray = Ray::new(v(8), v(11));
+    assert!(ray.validate().is_ok());
+    let (a, b, rb, o) = (link.a, link.b, link.rb, ray.o);
+    assert_eq!((link.ra, b.z, o.y, ray.d.y, ray.d.z), (0.0, rb, rb, 0.0, 0.0));
+    assert!(a.z >= 0.0 && o.z > 0.0, "the hull lies in z ≥ 0, the line at z₀ > 0");
+    let (delta, eta, z0) = (a.y - o.y, b.y - o.y, o.z);
+    assert!(eta > 7.3e-38 && eta < 7.4e-38 && delta > 4.6e-36 && delta < 4.7e-36);
+    // The two conditions on 1 − λ above cannot both hold: the exact answer is a miss.
+    assert!(2.0 * rb * z0 / (eta * eta) < delta / (delta + rb + eta));
+    let ov = |v: V3<f64>| tubecast_oracle::Vec3::new(v.x, v.y, v.z);
+    let ol = tubecast_oracle::Link { a: ov(a), ra: 0.0, b: ov(b), rb };
+    let size = (b - a).length().max(rb);
+    let e = tubecast_oracle::link_error_bound(&ol, ov(o), size, f64::EPSILON);
+    assert!(e < 1.3e-41, "{e:e}");
+    let iv = link.intersect(&ray);
+    if iv.hit {
+        for t in [iv.t_in, iv.t_out] {
+            // The oracle's distance to the sweep, min over u of |x − p(u)| − r(u): at this
+            // scale (radii ≥ 1e-31 where it matters) f64 resolves it to ≈ 1e-47.
+            let (d, _) = tubecast_oracle::sweep_dist(&ol, ov(ray.at(t)));
+            assert!(d.abs() <= 2.0 * e, "hit point {d:e} off the surface > 2E = {:e}", 2.0 * e);
+        }
+    }
+}

@@ -261,10 +261,48 @@ impl<T: Real> StumpSide<T> {
         // error (fuzz finding regression-generator-tangent: a line 4.6e-36 = 1.4e-8·L beside a
         // generator through a zero-radius tip; the step from the cap at the tip left g at
         // 1.35e-36, accepted by the √ε-sized `lim` of 6.7e-35, far above E = 1.2e-41).
-        let gp = cc * (p + q * kp).length() - (self.e - self.szd * kp);
         let tight = T::epsilon() * T::cst(64.0) * scale;
-        let real = !(root | cap_out) | (root & g.abs().le(lim)) | (cap_out & gp.abs().le(tight));
+        let (kp, gp) = self.settle(kp, root | cap_out, tight);
+        // A root is a crossing only if it lies on the side to the kernel's own ε-sized error as
+        // well: the √ε window alone let a root of F's noise stand 4.8e-41 off the side where
+        // E = 1.2e-41 (fuzz finding regression-generator-offset: the same line beside a
+        // generator through a tip, but offset 7.3e-38 at the far end too, so it passes
+        // 8e-48 outside sphere b and never enters).
+        let real = !(root | cap_out) | ((root & g.abs().le(lim) | cap_out) & gp.abs().le(tight));
         (kp, real, root | (good & cap_out))
+    }
+
+    /// `g` at `k`, and then Newton steps on `g` for the lanes in `todo` whose `|g|` is still
+    /// above `tight`, at most three, each clamped into the slab. Returns the settled `k` and
+    /// its `g`.
+    ///
+    /// g is convex along the line, so from a point outside the cone (g > 0) Newton steps
+    /// move monotonically toward the nearer crossing without passing it, and from a point
+    /// inside (g < 0) the first step lands outside and the next ones converge from there: a
+    /// real crossing left slightly off by F's rounding settles within `tight`. A line that
+    /// never enters the cone has no crossing to settle on and keeps g > `tight`. The steps
+    /// run only while some lane still needs them (none, when the first polish settled every
+    /// lane: the common case, which then costs one evaluation of g as before).
+    #[inline(always)]
+    fn settle(&self, mut k: T, todo: T::Mask, tight: T) -> (T, T) {
+        let (zero, one) = (T::zero(), T::one());
+        let (p, q, cc, szd) = (self.p, self.q, self.cc, self.szd);
+        let g_at = |k: T| cc * (p + q * k).length() - (self.e - szd * k);
+        let mut g = g_at(k);
+        for _ in 0..3 {
+            let open = todo & g.abs().gt(tight);
+            if open.none() {
+                break;
+            }
+            let pq = p + q * k;
+            let rho = pq.length();
+            let dg = cc * pq.dot(q) / T::select(rho.gt(zero), rho, one) + szd;
+            let open = open & dg.abs().gt(T::epsilon().sqrt());
+            let next = (k - g / T::select(open, dg, one)).clamp(self.lo, self.hi);
+            k = T::select(open, next, k);
+            g = T::select(open, g_at(k), g);
+        }
+        (k, g)
     }
 }
 
