@@ -5,6 +5,7 @@
 use tubecast::{Primitive, Ray, RoundCone, Sphere, V3};
 
 /// A link and a ray that hits it, in f64 (exactly representable in f32).
+#[cfg(any(feature = "glam", feature = "nalgebra", feature = "mint"))]
 fn link_and_ray() -> (RoundCone<f64>, Ray<f64>) {
     let link = RoundCone::new(V3::new(0.5, -1.0, 2.0), 1.0, V3::new(4.5, 0.25, 2.0), 0.5).unwrap();
     (link, Ray::new(V3::new(2.0, -10.0, 2.25), V3::new(0.125, 1.0, 0.0)))
