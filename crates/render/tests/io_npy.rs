@@ -98,3 +98,22 @@ fn float32_in_both_orders() {
     let d = build(1, "{'descr': '<f4', 'fortran_order': False, 'shape': (1, 1), }", &0.1f32.to_le_bytes());
     assert_eq!(read(&d, "x.npy", None).unwrap().data, vec![0.1f32 as f64]);
 }
+
+/// The npy campaign's slow input (seed 2001, kept as fuzz/corpus/npy/regression-nested-brackets):
+/// a 118-byte header with 40 unbalanced `[`, on which npyz's PEG parser backtracked for
+/// minutes. A plain float32/float64 header nests exactly two deep (the dict and the shape
+/// tuple), so deeper nesting is refused before parsing; a structured dtype (a list of tuples,
+/// three deep) is refused by the same rule, and the plain header keeps parsing.
+#[test]
+fn nesting_deeper_than_a_plain_header_is_refused_before_parsing() {
+    let slow = include_bytes!("../../../fuzz/corpus/npy/regression-nested-brackets");
+    let e = read(slow, "slow.npy", None).unwrap_err().to_string();
+    assert!(e.contains("nests deeper"), "{e}");
+    let structured =
+        build(1, "{'descr': [('x', '<f8'), ('y', '<f8')], 'fortran_order': False, 'shape': (1, 2), }", &[0; 32]);
+    let e = read(&structured, "s.npy", None).unwrap_err().to_string();
+    assert!(e.contains("nests deeper") && e.contains("structured"), "{e}");
+    let body: Vec<u8> = [1.0f64, 2.0].iter().flat_map(|v| v.to_le_bytes()).collect();
+    let plain = build(1, "{'descr': '<f8', 'fortran_order': False, 'shape': (1, 2), }", &body);
+    assert_eq!(read(&plain, "p.npy", Some(2)).unwrap().data, vec![1.0, 2.0]);
+}
