@@ -91,3 +91,29 @@ fn the_grid_covers_its_box_and_the_sums_are_the_links() {
     assert!(s.length >= 72.0 && s.length <= 72.0 * 1.127, "{s:?}");
     assert!((s.radius - 7.2).abs() < 72.0 * 1e-8, "{s:?}");
 }
+
+#[test]
+fn scenes_1e_minus_30_and_1e30_across_keep_the_grid_dims() {
+    // Beyond the scene loader's limits, so the links are scaled directly (by 2^±100, exact in
+    // f64 and in the f32 offsets and radii): the resolution is computed in units of the box
+    // diagonal, so neither the box volume (10⁻⁹⁰ or 10⁹⁰) nor the sums under- or overflow it.
+    use tubecast::{RoundCone, V3};
+    use tubecast_render::scene::Prim;
+    let base = fibres(1.0).primitives();
+    let scaled = |s: f64| -> Vec<Prim> {
+        base.iter()
+            .map(|p| {
+                let c = p.round_cone().unwrap();
+                let o = V3::from(p.origin);
+                let (a, b) = ((o + c.a.cast::<f64>()) * s, (o + c.b.cast::<f64>()) * s);
+                Prim::from_link(&RoundCone::new(a, c.ra as f64 * s, b, c.rb as f64 * s).unwrap(), p.link)
+            })
+            .collect()
+    };
+    let g = Grid::build(base.clone());
+    for s in [2f64.powi(-100), 2f64.powi(100)] {
+        let h = Grid::build(scaled(s));
+        assert_eq!(h.dims(), g.dims(), "scale {s}");
+        assert!((h.voxel_size() / (s * g.voxel_size()) - 1.0).abs() < 1e-12, "scale {s}");
+    }
+}

@@ -18,8 +18,17 @@
 //! The kernels run in `f32` relative to each primitive's origin, so a reported hit point may
 //! lie slightly off the exact solid of the stored primitive; the voxel walk's boundaries carry
 //! `f64` roundings. As for the BVH's boxes (see `accel` docs), every primitive is voxelized
-//! with its radii grown by `pad = D·2⁻¹⁶` (`D` the scene diagonal), far above both errors, so a
-//! hit point within `pad` of a voxel boundary is listed on both sides of it.
+//! with its radii grown by `pad = max(D·2⁻¹⁶, 64·ε·|x|max)` (`D` the scene diagonal, `|x|max`
+//! the largest coordinate of the scene box, `ε = 2⁻⁵³`), far above both errors, so a hit point
+//! within `pad` of a voxel boundary is listed on both sides of it. The second term covers the
+//! `f64` rounding of world positions themselves (`≤ ε·|x|` per coordinate, in the primitives'
+//! world ends and in the walk's grid coordinates): in a scene far smaller than its distance
+//! from the origin it is the larger one. Without it a scene of one point of radius 2.4·10⁻³⁹ at
+//! `|x| ≈ 1` had `D = 0` (the `f64` box of `origin ± r` is the origin), a zero-volume box, and a
+//! fallback voxel of side 1 with the point on its corner, which rays through the point from the
+//! other seven octants never entered (`tests/accel_long_link.rs`). The box always has positive
+//! extent now, and the resolution is computed in units of the padded box's diagonal (no
+//! under- or overflow of the volume at any scale).
 //!
 //! # Empty-space skipping
 //! Coarse occupancy levels: level 1 marks which blocks of [`BLOCK`]³ voxels hold any

@@ -39,8 +39,12 @@ impl SceneSums {
         let mut s = Self { count: prims.len(), ..Self::default() };
         for p in prims {
             let (l, r) = match (p.round_cone(), p.shape) {
-                (Some(c), _) => ((c.b - c.a).length() as f64, 0.5 * (c.ra as f64 + c.rb as f64)),
-                (None, Shape::Spline { quad, .. }) => ((quad.b[2] - quad.b[0]).length() as f64, p.max_radius() as f64),
+                // Lengths in f64: an f32 square underflows for links under ~10⁻¹⁹ (and
+                // overflows over ~10¹⁹), and the resolution is asked of such scenes too.
+                (Some(c), _) => ((c.b.cast::<f64>() - c.a.cast()).length(), 0.5 * (c.ra as f64 + c.rb as f64)),
+                (None, Shape::Spline { quad, .. }) => {
+                    ((quad.b[2].cast::<f64>() - quad.b[0].cast()).length(), p.max_radius() as f64)
+                }
                 (None, _) => (0.0, p.max_radius() as f64),
             };
             s.length += l;
@@ -84,25 +88,34 @@ pub fn voxel_size_for(s: &SceneSums, volume: f64, rho: f64) -> Option<f64> {
 
 /// Voxel side and counts over the box `ext` (extents) for `prims` (module docs,
 /// "Resolution"): from [`GridParams::cells_per_prim`] when set, else [`voxel_size_for`]; at
-/// most [`GridParams::max_cells`] cells.
+/// most [`GridParams::max_cells`] cells. Computed in units of the box diagonal `D` (exact for a
+/// power-of-two `D`, and free of under- and overflow for scenes 10⁻³⁰ or 10³⁰ across); a box
+/// without extent (no primitives) gets one voxel of side 1.
 pub(super) fn resolution(ext: [f64; 3], prims: &[Prim], p: &GridParams) -> (f64, [u32; 3]) {
-    let diag = (ext[0] * ext[0] + ext[1] * ext[1] + ext[2] * ext[2]).sqrt().max(f64::MIN_POSITIVE);
-    let e = ext.map(|x| x.max(diag * 1e-3));
+    let diag = (ext[0] * ext[0] + ext[1] * ext[1] + ext[2] * ext[2]).sqrt();
+    if prims.is_empty() || !diag.is_normal() {
+        return (1.0, [1, 1, 1]);
+    }
+    let e = ext.map(|x| (x / diag).max(1e-3));
     let volume = e[0] * e[1] * e[2];
     let max_cells = p.max_cells.max(1) as f64;
-    let fixed = |lambda: f64| (volume / (lambda * prims.len().max(1) as f64).clamp(1.0, max_cells)).cbrt();
-    let auto = || voxel_size_for(&SceneSums::of(prims), volume, STEP_COST);
+    let fixed = |lambda: f64| (volume / (lambda * prims.len() as f64).clamp(1.0, max_cells)).cbrt();
+    let auto = || {
+        let s = SceneSums::of(prims);
+        let unit = SceneSums { length: s.length / diag, radius: s.radius / diag, ..s };
+        voxel_size_for(&unit, volume, STEP_COST)
+    };
     let mut h = match p.cells_per_prim {
         Some(lambda) => fixed(lambda),
         None => auto().map_or(f64::NAN, |h| h.max((volume / max_cells).cbrt())),
     };
     if !h.is_normal() {
-        return (1.0, [1, 1, 1]); // no primitives (or a subnormal scene): one voxel
+        h = e.iter().fold(0.0, |m: f64, &x| m.max(x)); // one voxel over the box
     }
     loop {
         let dims = e.map(|x| ((x / h).ceil().max(1.0)).min(u32::MAX as f64 / 4.0) as u32);
         if dims.iter().map(|&d| d as f64).product::<f64>() <= max_cells {
-            return (h, dims);
+            return (h * diag, dims);
         }
         h *= 1.05; // rounding up each axis can overshoot the cap by a little
     }
