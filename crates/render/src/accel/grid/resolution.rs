@@ -2,6 +2,7 @@
 //! side that minimises a per-ray cost model of the scene (module docs of `accel::grid`,
 //! "Resolution").
 
+use super::frame::{frame_voxel_size_for, BUILD_COST};
 use super::GridParams;
 use crate::scene::{Prim, Shape};
 
@@ -21,7 +22,7 @@ pub const STEP_COST: f64 = 0.25;
 /// use tubecast_render::scene::Scene;
 /// let line = Polyline { points: vec![[0.0; 3], [3.0, 4.0, 0.0]], radii: vec![] };
 /// let s = SceneSums::of(&Scene::from_polylines(&[line], 0.5, "tube").unwrap().primitives());
-/// assert_eq!((s.count, s.length, s.radius), (1, 5.0, 0.5));
+/// assert_eq!((s.count, s.length, s.radius, s.cross), (1, 5.0, 0.5, 0.5 * (0.5 + 2.5)));
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SceneSums {
@@ -31,6 +32,10 @@ pub struct SceneSums {
     pub length: f64,
     /// `R = Σ rᵢ`: total mean radius (a link's `(r_a + r_b)/2`).
     pub radius: f64,
+    /// `X = Σ rᵢ·(rᵢ + lᵢ/2)` (the build's reference count, [`super::expected_references`]).
+    pub cross: f64,
+    /// `W = Σ (π·rᵢ²·lᵢ + 4π·rᵢ³/3)`: total solid volume of the capsules.
+    pub solid: f64,
 }
 
 impl SceneSums {
@@ -49,6 +54,8 @@ impl SceneSums {
             };
             s.length += l;
             s.radius += r;
+            s.cross += r * (r + 0.5 * l);
+            s.solid += std::f64::consts::PI * r * r * (l + 4.0 / 3.0 * r);
         }
         s
     }
@@ -62,7 +69,7 @@ impl SceneSums {
 /// ```
 /// use tubecast_render::accel::grid::{voxel_size_for, SceneSums};
 /// // One point-like primitive in a box of volume 8π/3 at ρ = 1: h³ = 8, h = 2.
-/// let s = SceneSums { count: 1, length: 0.0, radius: 0.0 };
+/// let s = SceneSums { count: 1, ..SceneSums::default() };
 /// let h = voxel_size_for(&s, 8.0 * std::f64::consts::PI / 3.0, 1.0).unwrap();
 /// assert!((h - 2.0).abs() < 1e-12);
 /// ```
@@ -87,7 +94,8 @@ pub fn voxel_size_for(s: &SceneSums, volume: f64, rho: f64) -> Option<f64> {
 }
 
 /// Voxel side and counts over the box `ext` (extents) for `prims` (module docs,
-/// "Resolution"): from [`GridParams::cells_per_prim`] when set, else [`voxel_size_for`]; at
+/// "Resolution"): from [`GridParams::cells_per_prim`] when set, else [`voxel_size_for`] or,
+/// with [`GridParams::rays_per_build`], [`frame_voxel_size_for`]; at
 /// most [`GridParams::max_cells`] cells. Computed in units of the box diagonal `D` (exact for a
 /// power-of-two `D`, and free of under- and overflow for scenes 10⁻³⁰ or 10³⁰ across); a box
 /// without extent (no primitives) gets one voxel of side 1.
@@ -100,10 +108,15 @@ pub(super) fn resolution(ext: [f64; 3], prims: &[Prim], p: &GridParams) -> (f64,
     let volume = e[0] * e[1] * e[2];
     let max_cells = p.max_cells.max(1) as f64;
     let fixed = |lambda: f64| (volume / (lambda * prims.len() as f64).clamp(1.0, max_cells)).cbrt();
+    let area = 2.0 * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]);
     let auto = || {
         let s = SceneSums::of(prims);
-        let unit = SceneSums { length: s.length / diag, radius: s.radius / diag, ..s };
-        voxel_size_for(&unit, volume, STEP_COST)
+        let (l, r, x, w) = (s.length / diag, s.radius / diag, s.cross / diag / diag, s.solid / diag / diag / diag);
+        let unit = SceneSums { length: l, radius: r, cross: x, solid: w, ..s };
+        match p.rays_per_build {
+            Some(n) if n.is_finite() => frame_voxel_size_for(&unit, volume, area, STEP_COST, &BUILD_COST, n),
+            _ => voxel_size_for(&unit, volume, STEP_COST),
+        }
     };
     let mut h = match p.cells_per_prim {
         Some(lambda) => fixed(lambda),
