@@ -1,9 +1,13 @@
 //! The grid's automatic resolution (module docs of `accel::grid`, "Resolution"): the root of
 //! `N·h³ + (2R + Λ/2)·h² = (3/π)·ρ·V` on hand-solved cubics, and grid dims that do not change
-//! when the scene is scaled.
+//! when the scene is scaled; and the frame-cost resolution ("Resolution with a build"):
+//! hand-solved roots, the static side as the rays per build grow without bound, a coarser grid
+//! for fewer rays, dims unchanged by scaling.
 
 use std::f64::consts::PI;
-use tubecast_render::accel::grid::{voxel_size_for, Grid, SceneSums};
+use tubecast_render::accel::grid::{
+    frame_voxel_size_for, voxel_size_for, BuildCost, Grid, GridParams, SceneSums, BUILD_COST, STEP_COST,
+};
 use tubecast_render::io::Polyline;
 use tubecast_render::scene::Scene;
 
@@ -13,7 +17,7 @@ fn volume_for(k: f64) -> f64 {
 }
 
 fn sums(count: usize, length: f64, radius: f64) -> SceneSums {
-    SceneSums { count, length, radius }
+    SceneSums { count, length, radius, ..SceneSums::default() }
 }
 
 /// Relative tolerance: Newton stops when its step is below 1e-15·h; the residual's own
@@ -90,4 +94,113 @@ fn the_grid_covers_its_box_and_the_sums_are_the_links() {
     // stored in f32 (relative error ≤ 6e-8).
     assert!(s.length >= 72.0 && s.length <= 72.0 * 1.127, "{s:?}");
     assert!((s.radius - 7.2).abs() < 72.0 * 1e-8, "{s:?}");
+}
+
+#[test]
+fn scenes_1e_minus_30_and_1e30_across_keep_the_grid_dims() {
+    // Beyond the scene loader's limits, so the links are scaled directly (by 2^±100, exact in
+    // f64 and in the f32 offsets and radii): the resolution is computed in units of the box
+    // diagonal, so neither the box volume (10⁻⁹⁰ or 10⁹⁰) nor the sums under- or overflow it.
+    use tubecast::{RoundCone, V3};
+    use tubecast_render::scene::Prim;
+    let base = fibres(1.0).primitives();
+    let scaled = |s: f64| -> Vec<Prim> {
+        base.iter()
+            .map(|p| {
+                let c = p.round_cone().unwrap();
+                let o = V3::from(p.origin);
+                let (a, b) = ((o + c.a.cast::<f64>()) * s, (o + c.b.cast::<f64>()) * s);
+                Prim::from_link(&RoundCone::new(a, c.ra as f64 * s, b, c.rb as f64 * s).unwrap(), p.link)
+            })
+            .collect()
+    };
+    let g = Grid::build(base.clone());
+    for s in [2f64.powi(-100), 2f64.powi(100)] {
+        let h = Grid::build(scaled(s));
+        assert_eq!(h.dims(), g.dims(), "scale {s}");
+        assert!((h.voxel_size() / (s * g.voxel_size()) - 1.0).abs() < 1e-12, "scale {s}");
+    }
+}
+
+/// Relative tolerance of the frame-cost bisection: it stops at adjacent floats of `[lo, hi]`
+/// (relative width 2⁻⁵²), far below 1e-12.
+fn close_frame(h: Option<f64>, want: f64) -> bool {
+    h.is_some_and(|h| (h - want).abs() <= 1e-12 * want)
+}
+
+#[test]
+fn the_root_solves_hand_computed_frames() {
+    // Unit cube: V = 1, S = 6, mean chord c̄ = 4V/S = 2/3.
+    // A point (N = 1), no step cost, cell cost 1: F′ = −3/h⁴ + n·(2/3)·(π/1)·(h/2) = 0,
+    // h⁵ = 9/(nπ); n = 9/(32π) gives h = 2.
+    let point = SceneSums { count: 1, ..SceneSums::default() };
+    let cells = BuildCost { per_cell: 1.0, per_reference: 0.0 };
+    assert!(close_frame(frame_voxel_size_for(&point, 1.0, 6.0, 0.0, &cells, 9.0 / (32.0 * PI)), 2.0));
+    // 32 times the rays: h⁵ = 1, h = 1.
+    assert!(close_frame(frame_voxel_size_for(&point, 1.0, 6.0, 0.0, &cells, 9.0 / PI), 1.0));
+    // A segment of length 4 (Λ = 4, R = 0), reference cost 1 only: E′ = −1.5·4/h², and the
+    // ray part (π/V)·(Λ/4 + h/2)·c̄·n: −6/h² + n·(2/3)·π·(1 + h/2) = 0. At h = 2: −1.5 +
+    // n·(4π/3) = 0, n = 9/(8π).
+    let segment = SceneSums { count: 1, length: 4.0, ..SceneSums::default() };
+    let refs = BuildCost { per_cell: 0.0, per_reference: 1.0 };
+    assert!(close_frame(frame_voxel_size_for(&segment, 1.0, 6.0, 0.0, &refs, 9.0 / (8.0 * PI)), 2.0));
+    // No primitives, no volume or area, no rays: no answer.
+    assert_eq!(frame_voxel_size_for(&SceneSums::default(), 1.0, 6.0, 0.25, &BUILD_COST, 1e4), None);
+    assert_eq!(frame_voxel_size_for(&point, 0.0, 6.0, 0.25, &BUILD_COST, 1e4), None);
+    assert_eq!(frame_voxel_size_for(&point, 1.0, 0.0, 0.25, &BUILD_COST, 1e4), None);
+    assert_eq!(frame_voxel_size_for(&point, 1.0, 6.0, 0.25, &BUILD_COST, 0.0), None);
+    assert_eq!(frame_voxel_size_for(&point, 1.0, 6.0, 0.25, &BUILD_COST, f64::NAN), None);
+}
+
+fn with_rays(n: Option<f64>) -> GridParams {
+    GridParams { rays_per_build: n, ..GridParams::default() }
+}
+
+#[test]
+fn many_rays_per_build_give_the_static_side() {
+    // F′/n = (per-ray slope) + B′/n: at n = 10¹⁵ the build moves the root by
+    // −B′/(n·r″) ≈ 10⁻¹⁵ relative to terms of order one; 10⁻⁹ leaves room for the bisection.
+    let s = SceneSums::of(&fibres(1.0).primitives());
+    let (v, area) = (12.0 * 3.0 * 2.0, 2.0 * (12.0 * 3.0 + 3.0 * 2.0 + 2.0 * 12.0));
+    let h_static = voxel_size_for(&s, v, STEP_COST).unwrap();
+    let h = frame_voxel_size_for(&s, v, area, STEP_COST, &BUILD_COST, 1e15).unwrap();
+    assert!((h / h_static - 1.0).abs() < 1e-9, "{h} vs static {h_static}");
+    // Through the grid: the same voxel side as the default (static) grid.
+    let (g, g0) =
+        (Grid::build_with(fibres(1.0).primitives(), &with_rays(Some(1e15))), Grid::build(fibres(1.0).primitives()));
+    assert!((g.voxel_size() / g0.voxel_size() - 1.0).abs() < 1e-9);
+    assert_eq!(g.dims(), g0.dims());
+}
+
+#[test]
+fn fewer_rays_per_build_give_a_coarser_grid() {
+    // B′ < 0 everywhere, so the root lies above the static side and rises as n falls.
+    let s = SceneSums::of(&fibres(1.0).primitives());
+    let (v, area) = (72.0, 168.0);
+    let h_static = voxel_size_for(&s, v, STEP_COST).unwrap();
+    let mut last = h_static;
+    for n in [1e9, 1e6, 1e4, 1e2] {
+        let h = frame_voxel_size_for(&s, v, area, STEP_COST, &BUILD_COST, n).unwrap();
+        assert!(h > last, "{n} rays: {h} not above {last}");
+        last = h;
+    }
+    let cells = |g: &Grid| g.dims().iter().map(|&d| d as u64).product::<u64>();
+    let mut last = cells(&Grid::build(fibres(1.0).primitives()));
+    for n in [1e6, 1e3, 10.0] {
+        let g = Grid::build_with(fibres(1.0).primitives(), &with_rays(Some(n)));
+        assert!(cells(&g) <= last, "{n} rays: {:?}", g.dims());
+        last = cells(&g);
+    }
+    assert!(last < cells(&Grid::build(fibres(1.0).primitives())), "10 rays per build still at the static grid");
+}
+
+#[test]
+fn scaling_the_scene_keeps_the_frame_grid_dims() {
+    // In units of the box diagonal (exact for powers of two), as the static rule.
+    let base = Grid::build_with(fibres(1.0).primitives(), &with_rays(Some(65536.0)));
+    for s in [2f64.powi(-20), 1.0 / 64.0, 1024.0, 2f64.powi(30)] {
+        let g = Grid::build_with(fibres(s).primitives(), &with_rays(Some(65536.0)));
+        assert_eq!(g.dims(), base.dims(), "scale {s}");
+        assert!((g.voxel_size() / (s * base.voxel_size()) - 1.0).abs() < 1e-12, "scale {s}");
+    }
 }

@@ -10,7 +10,7 @@ use super::voxel_clock::Clock;
 use super::{ensure_dir, fmt_num, machine, progress, write_text, ReportError, ReportFiles, ReportOptions};
 use std::fmt::Write as _;
 use std::path::Path;
-use tubecast_render::accel::grid::Grid;
+use tubecast_render::accel::grid::{Grid, GridParams};
 use tubecast_render::accel::{Bvh, Tracer};
 use tubecast_render::io::Polyline;
 use tubecast_render::render::{render, Camera, Image, Options};
@@ -38,10 +38,13 @@ type Build<'a> = Box<dyn Fn(Vec<Prim>) -> Result<Box<dyn Tracer + Send>, ReportE
 
 /// The accelerators of the report: grid, BVH and (feature `embree`) Embree 3 on as many threads
 /// as ours.
-fn accels<'a>(threads: usize) -> Result<Vec<(&'static str, Build<'a>)>, ReportError> {
+/// The grid is told the frame's ray count (`rays`, one primary ray per pixel), so its
+/// resolution minimises build + render (`GridParams::rays_per_build`).
+fn accels<'a>(threads: usize, rays: f64) -> Result<Vec<(&'static str, Build<'a>)>, ReportError> {
+    let grid = GridParams { rays_per_build: Some(rays), ..GridParams::default() };
     #[cfg_attr(not(feature = "embree"), allow(unused_mut))]
     let mut v: Vec<(&'static str, Build<'a>)> = vec![
-        ("grid", Box::new(|p| Ok(Box::new(Grid::build(p)) as Box<dyn Tracer + Send>))),
+        ("grid", Box::new(move |p| Ok(Box::new(Grid::build_with(p, &grid)) as Box<dyn Tracer + Send>))),
         ("bvh", Box::new(|p| Ok(Box::new(Bvh::build(p)) as Box<dyn Tracer + Send>))),
     ];
     #[cfg(feature = "embree")]
@@ -116,7 +119,7 @@ pub fn run_voxel(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
         .num_threads(opts.threads)
         .build()
         .map_err(|e| ReportError::Render(format!("thread pool: {e}")))?;
-    let accels = accels(opts.threads)?;
+    let accels = accels(opts.threads, (opts.image as f64).powi(2))?;
     let bar = progress(opts, sizes.len() as u64 * 2 * accels.len() as u64, "voxel");
     let mut rows = Vec::new();
     for &links in &sizes {
@@ -174,8 +177,8 @@ fn markdown(rows: &[Row], opts: &ReportOptions) -> String {
     let _ = write!(
         md,
         "Russig's *Bundle* (84 links per fibre, radius 0.12, seed {}) swayed every frame, so every frame rebuilds \
-         its structure from scratch: grid (conservative voxelization, cubic cells of the side the cost model picks (section *Grid \
-         resolution*), each link voxelized once into (voxel, link) pairs, counted, prefix-summed and scattered into per-voxel lists; the walk skips \
+         its structure from scratch: grid (conservative voxelization, cubic cells of the side the frame-cost model picks for the frame's \
+         {}² primary rays, build + render (section *Grid resolution*), each link voxelized once into (voxel, link) pairs, counted, prefix-summed and scattered into per-voxel lists; the walk skips \
          empty 4³ blocks), BVH (obvhs PLOC), or Embree 3 (`ROUND_LINEAR_CURVE`, one isolated segment per link, \
          build quality high, robust flag, device limited to as many threads as ours; its answers are its own `f32` \
          ones). Per frame: build and one {}×{} render (primary rays, lit) through the same renderer, opaque and \
@@ -191,7 +194,7 @@ fn markdown(rows: &[Row], opts: &ReportOptions) -> String {
          linear colour from the grid's, in [0, 1]). Ratios: frame (build + render) over frame in the same run (below \
          1: the first wins). *Coverage ≠ BVH*: the share of pixels of the last frame that one tracer sees as hit \
          and the BVH as miss or back (the grid's must be 0: same kernels).\n\n",
-        opts.seed, opts.image, opts.image, opts.threads
+        opts.seed, opts.image, opts.image, opts.image, opts.threads
     );
     md.push_str(
         "| links | mode | grid build (ms) | grid render (ms) | BVH build (ms) | BVH render (ms) | grid frame / BVH \

@@ -9,7 +9,8 @@ use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 use tubecast::voxel;
 use tubecast::{RoundCone, V3};
 
-/// The padded bounding box of `prims` and the padding `pad = D·2⁻¹⁶`.
+/// The padded bounding box of `prims` and the padding `pad = max(D·2⁻¹⁶, 64·ε·|x|max)`
+/// (module docs, "Margin").
 fn scene_box(prims: &[Prim]) -> ([f64; 3], [f64; 3], f64) {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for p in prims {
@@ -21,7 +22,8 @@ fn scene_box(prims: &[Prim]) -> ([f64; 3], [f64; 3], f64) {
         return ([0.0; 3], [0.0; 3], 0.0);
     }
     let diag = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
-    let pad = diag.max(f64::MIN_POSITIVE) * 2f64.powi(-16);
+    let far = (0..3).fold(0.0f64, |m, i| m.max(lo[i].abs()).max(hi[i].abs()));
+    let pad = (diag.max(f64::MIN_POSITIVE) * 2f64.powi(-16)).max(64.0 * f64::EPSILON * far);
     (lo.map(|x| x - 2.0 * pad), hi.map(|x| x + 2.0 * pad), pad)
 }
 

@@ -18,8 +18,17 @@
 //! The kernels run in `f32` relative to each primitive's origin, so a reported hit point may
 //! lie slightly off the exact solid of the stored primitive; the voxel walk's boundaries carry
 //! `f64` roundings. As for the BVH's boxes (see `accel` docs), every primitive is voxelized
-//! with its radii grown by `pad = D·2⁻¹⁶` (`D` the scene diagonal), far above both errors, so a
-//! hit point within `pad` of a voxel boundary is listed on both sides of it.
+//! with its radii grown by `pad = max(D·2⁻¹⁶, 64·ε·|x|max)` (`D` the scene diagonal, `|x|max`
+//! the largest coordinate of the scene box, `ε = 2⁻⁵³`), far above both errors, so a hit point
+//! within `pad` of a voxel boundary is listed on both sides of it. The second term covers the
+//! `f64` rounding of world positions themselves (`≤ ε·|x|` per coordinate, in the primitives'
+//! world ends and in the walk's grid coordinates): in a scene far smaller than its distance
+//! from the origin it is the larger one. Without it a scene of one point of radius 2.4·10⁻³⁹ at
+//! `|x| ≈ 1` had `D = 0` (the `f64` box of `origin ± r` is the origin), a zero-volume box, and a
+//! fallback voxel of side 1 with the point on its corner, which rays through the point from the
+//! other seven octants never entered (`tests/accel_long_link.rs`). The box always has positive
+//! extent now, and the resolution is computed in units of the padded box's diagonal (no
+//! under- or overflow of the volume at any scale).
 //!
 //! # Empty-space skipping
 //! Coarse occupancy levels: level 1 marks which blocks of [`BLOCK`]³ voxels hold any
@@ -56,18 +65,56 @@
 //! against `h` give `V/h³ = π·N/(3ρ)` cells, the classic "cells ≈ λ·N" rule with
 //! `λ = π/(3ρ)`; long links give `h = √(3ρV/(π·(2R + Λ/2)))`, a finer grid the longer
 //! they are. Scaling the scene scales `h` with it (same dims); doubling `N` at fixed `V`
-//! divides `h` by between `∛2` and `√2`. The model counts neither the build (references grow as
-//! `h` shrinks) nor empty-space skipping, so it is checked against a sweep of fixed `λ` in
+//! divides `h` by between `∛2` and `√2`. This per-ray model counts no build (next section)
+//! and no empty-space skipping; both models are checked against a sweep of fixed `λ` in
 //! `tubecast-lab voxel` ("Grid resolution").
+//!
+//! # Resolution with a build
+//! A scene rebuilt every frame pays the build once per `n` rays
+//! ([`GridParams::rays_per_build`]: `Some(n)`), so `h` minimises the frame cost
+//! `F(h) = B(h) + n·c̄·cost(h)/c`, with the per-ray cost above at the mean chord of random lines
+//! through the box, `c̄ = 4V/S` (Cauchy; `S` the box's surface area: the chord no longer
+//! cancels). Rays that stop early (opaque frames) cross less than `c̄`, so this leans fine.
+//!
+//! The build (`build.rs`, one pass) is: voxelize each primitive into (voxel, primitive) pairs,
+//! count the pairs per voxel, prefix-sum the counts, scatter the pairs, then mark the occupied
+//! blocks. Counting operations, with `M = V/h³` cells and `E(h)` references, everything in
+//! units of one primitive test `C_I` (about a dozen operations with a square root, ~4 steps):
+//! - per primitive: the voxelizer's set-up, `β_P·N`, independent of `h` (dropped);
+//! - per cell `β_C`: zero a counter, one prefix-sum step (load, add, store), a cursor store and
+//!   the block occupancy test (two offset loads, a compare): about a dozen streaming
+//!   operations, `β_C ≈ 0.1`;
+//! - per reference `β_E`: the voxelizer's inner step and an 8-byte push, a random atomic
+//!   increment (count), a random atomic fetch-add and a random 4-byte store (scatter), and a
+//!   copy: two locked read-modify-writes of ~20 cycles each dominate, `β_E ≈ 0.5`
+//!   ([`BUILD_COST`]; cache misses on grids far beyond the caches make both larger).
+//!
+//! The expected references: a conservative voxelization lists the voxels that meet the
+//! primitive, and a cube of side `h` at a random offset meets a convex body `K` with
+//! probability `vol(K ⊕ cube)/h³`. For a capsule (length `l`, radius `r`) and a randomly turned
+//! cube, Steiner's formula (cube: volume `h³`, surface `6h²`, mean width `3h/2`, mean
+//! projected area `1.5h²` and perimeter `1.5πh`) gives `vol = h³ + (6r + 1.5l)·h² +
+//! 3π·r·(r + l/2)·h + πr²l + 4πr³/3`, so over the scene ([`expected_references`])
+//!
+//! `E(h) = N + (6R + 1.5Λ)/h + 3π·X/h² + W/h³`, `X = Σ rᵢ(rᵢ + lᵢ/2)`, `W = Σ (πrᵢ²lᵢ + 4πrᵢ³/3)`,
+//!
+//! and `B(h) = β_C·V/h³ + β_E·E(h)`. Every term of `F` is convex in `h > 0` (and `F″ > 0`), so
+//! `F′(h) = 0` has one root, found by bisection ([`frame_voxel_size_for`]). `B′ < 0`
+//! everywhere and the per-ray part's slope is 0 at the static `h`, so the frame optimum is
+//! coarser than the static one and grows as `n` falls; as `n → ∞` it tends to the static `h`.
+//! Like the static rule it is computed in units of the box diagonal, so scaling the scene
+//! leaves the dims unchanged.
 //!
 //! With `cells_per_prim: Some(λ)`: `h = ∛(V/(λ·N))`, the Cleary–Wyvill/Wald rule "cells ≈ λ·N"
 //! (λ = 2 was the default before the cost model).
 
 mod build;
+mod frame;
 mod pyramid;
 mod resolution;
 mod walk;
 
+pub use frame::{expected_references, frame_voxel_size_for, BuildCost, BUILD_COST};
 pub use pyramid::{Level, Pyramid};
 pub use resolution::{voxel_size_for, SceneSums, STEP_COST};
 
@@ -105,6 +152,11 @@ pub struct GridParams {
     /// Fixed target cells per primitive `λ`; `None` (the default): the voxel side minimising
     /// the cost model (both rules in the module docs, "Resolution").
     pub cells_per_prim: Option<f64>,
+    /// Rays expected per build (the frame's rays, for a scene rebuilt every frame), for the
+    /// default resolution (`cells_per_prim: None`): `None` (the default), a static scene, the
+    /// per-ray model alone; `Some(n)`: minimise build + `n` rays (module docs, "Resolution with
+    /// a build"), a coarser grid the fewer the rays.
+    pub rays_per_build: Option<f64>,
     /// Upper bound on the number of cells.
     pub max_cells: usize,
     /// Voxel assignment.
@@ -126,6 +178,7 @@ impl Default for GridParams {
     fn default() -> Self {
         Self {
             cells_per_prim: None,
+            rays_per_build: None,
             max_cells: 1 << 24,
             voxelizer: Voxelizer::Conservative,
             skip_levels: 1,

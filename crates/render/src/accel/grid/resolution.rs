@@ -2,6 +2,7 @@
 //! side that minimises a per-ray cost model of the scene (module docs of `accel::grid`,
 //! "Resolution").
 
+use super::frame::{frame_voxel_size_for, BUILD_COST};
 use super::GridParams;
 use crate::scene::{Prim, Shape};
 
@@ -21,7 +22,7 @@ pub const STEP_COST: f64 = 0.25;
 /// use tubecast_render::scene::Scene;
 /// let line = Polyline { points: vec![[0.0; 3], [3.0, 4.0, 0.0]], radii: vec![] };
 /// let s = SceneSums::of(&Scene::from_polylines(&[line], 0.5, "tube").unwrap().primitives());
-/// assert_eq!((s.count, s.length, s.radius), (1, 5.0, 0.5));
+/// assert_eq!((s.count, s.length, s.radius, s.cross), (1, 5.0, 0.5, 0.5 * (0.5 + 2.5)));
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SceneSums {
@@ -31,6 +32,10 @@ pub struct SceneSums {
     pub length: f64,
     /// `R = Σ rᵢ`: total mean radius (a link's `(r_a + r_b)/2`).
     pub radius: f64,
+    /// `X = Σ rᵢ·(rᵢ + lᵢ/2)` (the build's reference count, [`super::expected_references`]).
+    pub cross: f64,
+    /// `W = Σ (π·rᵢ²·lᵢ + 4π·rᵢ³/3)`: total solid volume of the capsules.
+    pub solid: f64,
 }
 
 impl SceneSums {
@@ -39,12 +44,18 @@ impl SceneSums {
         let mut s = Self { count: prims.len(), ..Self::default() };
         for p in prims {
             let (l, r) = match (p.round_cone(), p.shape) {
-                (Some(c), _) => ((c.b - c.a).length() as f64, 0.5 * (c.ra as f64 + c.rb as f64)),
-                (None, Shape::Spline { quad, .. }) => ((quad.b[2] - quad.b[0]).length() as f64, p.max_radius() as f64),
+                // Lengths in f64: an f32 square underflows for links under ~10⁻¹⁹ (and
+                // overflows over ~10¹⁹), and the resolution is asked of such scenes too.
+                (Some(c), _) => ((c.b.cast::<f64>() - c.a.cast()).length(), 0.5 * (c.ra as f64 + c.rb as f64)),
+                (None, Shape::Spline { quad, .. }) => {
+                    ((quad.b[2].cast::<f64>() - quad.b[0].cast()).length(), p.max_radius() as f64)
+                }
                 (None, _) => (0.0, p.max_radius() as f64),
             };
             s.length += l;
             s.radius += r;
+            s.cross += r * (r + 0.5 * l);
+            s.solid += std::f64::consts::PI * r * r * (l + 4.0 / 3.0 * r);
         }
         s
     }
@@ -58,7 +69,7 @@ impl SceneSums {
 /// ```
 /// use tubecast_render::accel::grid::{voxel_size_for, SceneSums};
 /// // One point-like primitive in a box of volume 8π/3 at ρ = 1: h³ = 8, h = 2.
-/// let s = SceneSums { count: 1, length: 0.0, radius: 0.0 };
+/// let s = SceneSums { count: 1, ..SceneSums::default() };
 /// let h = voxel_size_for(&s, 8.0 * std::f64::consts::PI / 3.0, 1.0).unwrap();
 /// assert!((h - 2.0).abs() < 1e-12);
 /// ```
@@ -83,26 +94,41 @@ pub fn voxel_size_for(s: &SceneSums, volume: f64, rho: f64) -> Option<f64> {
 }
 
 /// Voxel side and counts over the box `ext` (extents) for `prims` (module docs,
-/// "Resolution"): from [`GridParams::cells_per_prim`] when set, else [`voxel_size_for`]; at
-/// most [`GridParams::max_cells`] cells.
+/// "Resolution"): from [`GridParams::cells_per_prim`] when set, else [`voxel_size_for`] or,
+/// with [`GridParams::rays_per_build`], [`frame_voxel_size_for`]; at
+/// most [`GridParams::max_cells`] cells. Computed in units of the box diagonal `D` (exact for a
+/// power-of-two `D`, and free of under- and overflow for scenes 10⁻³⁰ or 10³⁰ across); a box
+/// without extent (no primitives) gets one voxel of side 1.
 pub(super) fn resolution(ext: [f64; 3], prims: &[Prim], p: &GridParams) -> (f64, [u32; 3]) {
-    let diag = (ext[0] * ext[0] + ext[1] * ext[1] + ext[2] * ext[2]).sqrt().max(f64::MIN_POSITIVE);
-    let e = ext.map(|x| x.max(diag * 1e-3));
+    let diag = (ext[0] * ext[0] + ext[1] * ext[1] + ext[2] * ext[2]).sqrt();
+    if prims.is_empty() || !diag.is_normal() {
+        return (1.0, [1, 1, 1]);
+    }
+    let e = ext.map(|x| (x / diag).max(1e-3));
     let volume = e[0] * e[1] * e[2];
     let max_cells = p.max_cells.max(1) as f64;
-    let fixed = |lambda: f64| (volume / (lambda * prims.len().max(1) as f64).clamp(1.0, max_cells)).cbrt();
-    let auto = || voxel_size_for(&SceneSums::of(prims), volume, STEP_COST);
+    let fixed = |lambda: f64| (volume / (lambda * prims.len() as f64).clamp(1.0, max_cells)).cbrt();
+    let area = 2.0 * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]);
+    let auto = || {
+        let s = SceneSums::of(prims);
+        let (l, r, x, w) = (s.length / diag, s.radius / diag, s.cross / diag / diag, s.solid / diag / diag / diag);
+        let unit = SceneSums { length: l, radius: r, cross: x, solid: w, ..s };
+        match p.rays_per_build {
+            Some(n) if n.is_finite() => frame_voxel_size_for(&unit, volume, area, STEP_COST, &BUILD_COST, n),
+            _ => voxel_size_for(&unit, volume, STEP_COST),
+        }
+    };
     let mut h = match p.cells_per_prim {
         Some(lambda) => fixed(lambda),
         None => auto().map_or(f64::NAN, |h| h.max((volume / max_cells).cbrt())),
     };
     if !h.is_normal() {
-        return (1.0, [1, 1, 1]); // no primitives (or a subnormal scene): one voxel
+        h = e.iter().fold(0.0, |m: f64, &x| m.max(x)); // one voxel over the box
     }
     loop {
         let dims = e.map(|x| ((x / h).ceil().max(1.0)).min(u32::MAX as f64 / 4.0) as u32);
         if dims.iter().map(|&d| d as f64).product::<f64>() <= max_cells {
-            return (h, dims);
+            return (h * diag, dims);
         }
         h *= 1.05; // rounding up each axis can overshoot the cap by a little
     }
