@@ -439,6 +439,7 @@ mod tests {
         let e8 = 99_999_984;
         let per8 = PerLink { scene: 24.43, tracer: compact };
         assert_covers("info", e8, per8, &Work::INFO, E8_INFO_KB);
+        assert_covers("intersect", e8, per8, &Work::INFO, 6_353_876.0);
         assert_covers("render opaque", e8, per8, &render, E8_RENDER_KB);
         // The list would not fit the 8 GB target beside the clamped scene.
         assert!(per8.needed_for(e8, &listed) > 8e9);
