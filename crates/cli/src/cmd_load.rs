@@ -77,8 +77,20 @@ pub struct Plan {
     pub model: Model,
     /// The accelerator the command builds.
     pub accel: Accel,
-    /// `render`'s image: whether thin tubes may be clamped, and its pixels (`None`: no image).
-    pub render: Option<(bool, u64)>,
+    /// What `render` holds besides (`None`: no image).
+    pub render: Option<RenderPlan>,
+}
+
+/// What `render` holds besides the scene and its tracer.
+#[derive(Clone, Copy)]
+pub struct RenderPlan {
+    /// Whether thin tubes may be clamped.
+    pub thin: bool,
+    /// Pixels of the image.
+    pub pixels: u64,
+    /// Whether a list of the scene's primitives is held beside it (every path but the compact
+    /// tree's exact one, which builds from the scene alone).
+    pub list: bool,
 }
 
 impl Plan {
@@ -87,9 +99,9 @@ impl Plan {
     /// thinner than `--min-pixels` (an over-estimate of 12 B per node otherwise).
     fn work(&self, nodes_per_link: f64) -> Work {
         let compact = matches!(self.accel, Accel::Bvh) && self.model == Model::Links;
-        let (thin, pixels) = self.render.unwrap_or((false, 0));
-        let thin_nodes = if thin { nodes_per_link as f32 } else { 0.0 };
-        Work { compact, prim_list: self.render.is_some(), thin_nodes, pixels }
+        let r = self.render.unwrap_or(RenderPlan { thin: false, pixels: 0, list: false });
+        let thin_nodes = if r.thin { nodes_per_link as f32 } else { 0.0 };
+        Work { compact, prim_list: r.list, thin_nodes, pixels: r.pixels }
     }
 }
 

@@ -1,7 +1,7 @@
 //! Each command: arguments into library calls, results to files or stdout.
 
 use crate::args::{Accel, Color, GenerateArgs, InfoArgs, Kind, RenderArgs, Surface, Thin};
-use crate::cmd_load::{LoadArgs, Plan};
+use crate::cmd_load::{LoadArgs, Plan, RenderPlan};
 use crate::error::CliError;
 use crate::render_opts::{check_out, Background, Radius};
 use std::path::Path;
@@ -107,45 +107,41 @@ pub fn render(a: &RenderArgs) -> Res {
     if let Some(d) = &a.depth {
         check_out(d, a.force)?;
     }
-    let image = Some((thin_on(a.thin, &a.input), a.width as u64 * a.height as u64));
-    let plan = Plan { model: model(a.splines), accel: a.accel, render: image };
+    let m = model(a.splines);
+    let exact = a.model != Surface::Mesh && a.tolerance.is_none() && a.pixel_error.is_none();
+    // The compact tree over links builds from the scene alone: no list of primitives (80 B per
+    // link) is held for the bounds or beside the clamped scene (issue 15: 10⁸ links).
+    let compact = exact && matches!(a.accel, Accel::Bvh) && m == Model::Links;
+    let image =
+        RenderPlan { thin: thin_on(a.thin, &a.input), pixels: a.width as u64 * a.height as u64, list: !compact };
+    let plan = Plan { model: m, accel: a.accel, render: Some(image) };
     let empty = "the image shows the background only";
     if let (Surface::Quantized, Some(key)) = (a.model, field) {
         return Err(crate::cmd_quantized::QuantError::Data(key.into()).into());
     }
     let mut scene = load(&a.input, (a.radius, a.min_radius), &a.load, plan, empty, field)?;
     scene = crate::cmd_quantized::model_scene(a.model, scene, &a.quant, a.load.quiet)?;
-    let mut prims = scene.model_primitives(model(a.splines))?;
+    let list = |scene: &Scene| if compact { Ok(None) } else { scene.model_primitives(m).map(Some) };
+    let mut prims = list(&scene)?;
     // Bounds of the primitives in use (a spline can bulge beyond its links' boxes); an empty
     // scene is viewed as if it were the box [-1, 1]³.
-    let st = scene.stats_of(&prims);
-    let bounds = if st.is_empty() { ([-1.0; 3], [1.0; 3]) } else { st.bounds };
-    let view = View { eye: a.eye, look_at: a.look_at, up: a.up, fov_deg: a.fov, width: a.width, height: a.height };
-    let mut cam = match a.view {
-        Some(p) if a.eye.is_none() && a.look_at.is_none() => {
-            Camera::fit_preset(bounds.0, bounds.1, p, a.fov, a.width, a.height)?
-        }
-        _ => view.camera(bounds)?,
-    };
-    if a.ortho {
-        let centre = std::array::from_fn(|k| 0.5 * (bounds.0[k] + bounds.1[k]));
-        cam = cam.orthographic(a.look_at.unwrap_or(centre));
-    }
+    let st = prims.as_deref().map_or_else(|| scene.primitive_stats(), |p| scene.stats_of(p));
+    let cam = camera(a, if st.is_empty() { ([-1.0; 3], [1.0; 3]) } else { st.bounds })?;
     if thin_on(a.thin, &a.input) && render::clamp_thin(&mut scene, &cam, a.min_pixels) > 0 {
-        drop(std::mem::take(&mut prims)); // not two lists at once
-        prims = scene.model_primitives(model(a.splines))?;
+        drop(prims.take()); // not two lists at once
+        prims = list(&scene)?;
     }
-    let exact = a.model != Surface::Mesh && a.tolerance.is_none() && a.pixel_error.is_none();
     let (prims, tol) = match (a.model, a.tolerance) {
         (Surface::Exact | Surface::Quantized, _) => {
-            (crate::cmd_mesh::chosen(&scene, prims, a.tolerance, a.pixel_error, &cam), None)
+            (prims.map(|p| crate::cmd_mesh::chosen(&scene, p, a.tolerance, a.pixel_error, &cam)), None)
         }
         (Surface::Mesh, t) => (prims, Some(t.ok_or(CliError::MeshTolerance)?)),
     };
+    let owned = |p: Option<Vec<Prim>>| p.map_or_else(|| scene.model_primitives(m), Ok);
     let bvh = crate::cmd_intersect::with_threads(a.threads.map(usize::from), || match tol {
-        None if exact => scene_tracer(a.accel, &scene, model(a.splines), Some(prims)),
-        None => Ok(tracer(a.accel, prims)),
-        Some(_) => crate::cmd_mesh::tracer(&scene, model(a.splines), prims, tol),
+        None if exact => scene_tracer(a.accel, &scene, m, prims),
+        None => Ok(tracer(a.accel, owned(prims)?)),
+        Some(_) => crate::cmd_mesh::tracer(&scene, m, owned(prims)?, tol),
     })??;
     let background = match a.background {
         Background::Color(c) => c,
@@ -186,6 +182,23 @@ pub fn render(a: &RenderArgs) -> Res {
         Background::Color(_) => img.write_png(&a.out)?,
     }
     Ok(())
+}
+
+/// `render`'s camera for the scene bounds `bounds`: a preset view fitted to them, or the
+/// given eye, target and up; orthographic with `--ortho`.
+fn camera(a: &RenderArgs, bounds: ([f64; 3], [f64; 3])) -> Result<Camera, CliError> {
+    let view = View { eye: a.eye, look_at: a.look_at, up: a.up, fov_deg: a.fov, width: a.width, height: a.height };
+    let mut cam = match a.view {
+        Some(p) if a.eye.is_none() && a.look_at.is_none() => {
+            Camera::fit_preset(bounds.0, bounds.1, p, a.fov, a.width, a.height)?
+        }
+        _ => view.camera(bounds)?,
+    };
+    if a.ortho {
+        let centre = std::array::from_fn(|k| 0.5 * (bounds.0[k] + bounds.1[k]));
+        cam = cam.orthographic(a.look_at.unwrap_or(centre));
+    }
+    Ok(cam)
 }
 
 /// The coordinate units a format defines (by extension).

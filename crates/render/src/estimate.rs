@@ -14,16 +14,16 @@
 //! - **the compact tree** (`info`, `intersect`, `render`; the CLI's `--accel bvh` over links),
 //!   built in chunks: `links × (scene' + tracer × (1 + BUILD_OVERHEAD)) + min(links,
 //!   BUILD_ITEMS) × BUILD_BYTES_PER_ITEM` ([`BUILD_OVERHEAD`]: the share of the tracer's size its
-//!   build holds on top of it, tables in item order and the clusters before reordering;
+//!   build holds on top of it, the runs' heads and the tables in item order;
 //!   [`BUILD_BYTES_PER_ITEM`]: the tree builder's buffers per item it builds at once, at most
 //!   [`BUILD_ITEMS`]);
 //! - **a tracer built whole over a primitive list** (`--accel bvh2`, `--accel grid`, the spline
 //!   model): `links × (scene' + tracer + WHOLE_BUILD_BYTES)`: these builds are not chunked, so
 //!   the builder's share ([`WHOLE_BUILD_BYTES`]) grows with every link;
-//! - **`render`'s primitive list**: `render` computes one [`crate::scene::Prim`] per link
-//!   ([`PRIM_BYTES`]) for the scene's bounds and after the clamp, beside `scene'`, and drops it
-//!   before the compact tree is built: `links × (scene' + PRIM_BYTES)`. At 10⁸ links this is
-//!   `render`'s peak (it is not `info`'s).
+//! - **`render`'s primitive list** (every path but the compact tree's exact one, which takes
+//!   the bounds from the scene one primitive at a time and builds from the scene alone):
+//!   `render` computes one [`crate::scene::Prim`] per link ([`PRIM_BYTES`]) for the scene's
+//!   bounds and after the clamp, beside `scene'`: `links × (scene' + PRIM_BYTES)`.
 
 use crate::io::stream::{open, Selection};
 use crate::io::{self, IoError};
@@ -31,17 +31,22 @@ use std::fmt;
 use std::io::BufRead;
 use std::path::Path;
 
-/// Extra bytes a tracer's build holds at its peak, as a share of the finished tracer's
-/// [`crate::accel::Tracer::memory_bytes`] (its item table, Morton keys and leaf order, the
-/// clusters before they are reordered), besides the builder's buffers
-/// ([`BUILD_BYTES_PER_ITEM`]). Fitted with it to the peaks of `TUBECAST_PEAK_RSS=1 tubecast
-/// info FILE --radius 0.12` on `generate bundle --segments 84` scenes (plain release build,
-/// `VmHWM`; 48.5 B scene and 33 B tree per link): 341.5 MB at 10⁶ links and 1534 MB at 10⁷
-/// give 0.75 and 218 B; both rounded up (the model is 26 % and 16 % above those peaks).
-pub const BUILD_OVERHEAD: f64 = 1.0;
+/// Extra bytes the compact tree's build holds at its peak, as a share of the finished tracer's
+/// [`crate::accel::Tracer::memory_bytes`], besides the builder's buffers
+/// ([`BUILD_BYTES_PER_ITEM`]): while the chunks are built, the runs' heads (32 B per run of up
+/// to eight links), the pieces' table and Morton keys (8 B per link each) and the chunks'
+/// trees; while the clusters' nodes are stored in leaf order, the heads and the leaf order's
+/// tables (about 5 B per link). The clusters' nodes are stored once, after the tree is built
+/// (`accel::cluster`'s `Pending`); until then they were stored in run order and copied into
+/// leaf order, two copies at once, and this share was 1.0. Fitted with the builder's buffers to
+/// the peaks of `TUBECAST_PEAK_RSS=1 tubecast info FILE --radius 0.12` on `generate bundle
+/// --segments 84` scenes (plain release build, `VmHWM`; 24.4 B scene and 32.8 B tree per
+/// link): 1150 MB at 10⁷ links is 50 B per link over the scene and 215 B per item of the
+/// builder (2²¹ items); rounded up to a quarter of the tracer (see the tests for every row).
+pub const BUILD_OVERHEAD: f64 = 0.25;
 
 /// Bytes the tree builder holds per item it builds at once (obvhs's PLOC arrays, its binary
-/// tree, the 8-wide conversion's cost table, the items' boxes): fitted as 218 B (see
+/// tree, the 8-wide conversion's cost table, the items' boxes): fitted as 215–218 B (see
 /// [`BUILD_OVERHEAD`]), rounded up.
 pub const BUILD_BYTES_PER_ITEM: f64 = 300.0;
 
@@ -75,10 +80,13 @@ pub const PIXEL_BYTES: u64 = 32;
 /// ```
 /// use tubecast_render::estimate::{PerLink, Work};
 /// let per_link = PerLink { scene: 24.4, tracer: 33.0 };
-/// let render = Work { prim_list: true, thin_nodes: 85.0 / 84.0, pixels: 512 * 512, ..Work::INFO };
-/// // At 10⁸ links render's peak is its list of primitives, not the tree's build.
+/// let render = Work { thin_nodes: 85.0 / 84.0, pixels: 512 * 512, ..Work::INFO };
+/// // render's clamp of thin tubes stores 12 B more per node beside the scene.
 /// let (info, r) = (per_link.needed_for(100_000_000, &Work::INFO), per_link.needed_for(100_000_000, &render));
 /// assert!(r > info + 100_000_000.0 * 12.0);
+/// // With --accel bvh2 render holds a list of 80-byte primitives besides.
+/// let bvh2 = Work { compact: false, prim_list: true, ..render };
+/// assert!(per_link.needed_for(100_000_000, &bvh2) > r + 100_000_000.0 * 80.0);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Work {
@@ -86,7 +94,7 @@ pub struct Work {
     /// primitive list, `--accel bvh2` or `grid`, or the spline model).
     pub compact: bool,
     /// The command holds a list of the scene's primitives beside the scene before building
-    /// (`render`).
+    /// (`render`, except with the compact tree over links and exact surfaces).
     pub prim_list: bool,
     /// Nodes per link whose radius and coverage the thin-tube clamp stores (0: no clamp).
     pub thin_nodes: f32,
@@ -359,6 +367,10 @@ pub fn available() -> Option<(u64, String)> {
 mod tests {
     use super::*;
 
+    /// Peaks at 10⁸ links (`VmHWM`, kB) of `info` and of `render` opaque (see the tests).
+    const E8_INFO_KB: f64 = 6_546_832.0;
+    const E8_RENDER_KB: f64 = 7_537_328.0;
+
     /// The estimate must not be under a measured peak (a refusal is better than running out of
     /// memory), nor more than 30 % over it (a needless refusal).
     fn assert_covers(what: &str, links: u64, per_link: PerLink, work: &Work, kb: f64) {
@@ -371,17 +383,19 @@ mod tests {
     #[test]
     fn the_estimate_covers_measured_chunked_builds() {
         // `generate bundle --segments 84` scenes, `TUBECAST_PEAK_RSS=1 tubecast info --radius
-        // 0.12` (release build, chunked compact tree, 48.5 B scene + 33.2/32.8/32.9 B tracer
-        // per link, peak `VmHWM` in kB): 10⁶ links 341 500 kB, 10⁷ links 1 534 000 kB, 10⁸
-        // links (two 5·10⁷ bundles joined) 10 520 000 kB. main's model before the chunked
-        // build, scene + 4.5 × tracer, said 198 B per link at 10⁶: 42 % under the measured
-        // peak. The builder's term is what keeps small scenes above their peak.
+        // 0.12` (release build, chunked compact tree with the clusters stored once, 24.43 B
+        // scene + 33.2/32.8/32.9 B tracer per link, peak `VmHWM` in kB), one run each: 10⁶
+        // links 300 656 kB, 10⁷ links 1 123 208 kB, 10⁸ links 6 546 832 kB. With the clusters
+        // stored twice (the copy into leaf order) the same scenes peaked at 318 080, about
+        // 1.4·10⁶ (render) and 8 180 000 kB; main's model before the chunked build, scene +
+        // 4.5 × tracer, said 198 B per link at 10⁶: 42 % under the peak of its time. The
+        // builder's term is what keeps small scenes above their peak.
         for (links, tracer, kb) in
-            [(1_000_020u64, 33.2, 341_500.0), (10_000_032, 32.8, 1_534_000.0), (99_999_984, 32.9, 10_520_000.0)]
+            [(1_000_020u64, 33.2, 300_656.0), (10_000_032, 32.8, 1_123_208.0), (99_999_984, 32.9, E8_INFO_KB)]
         {
-            assert_covers("info, 48.5 B scene", links, PerLink { scene: 48.5, tracer }, &Work::INFO, kb);
-            let est = PerLink { scene: 48.5, tracer }.needed(links);
-            assert_eq!(est, PerLink { scene: 48.5, tracer }.needed_for(links, &Work::INFO));
+            assert_covers("info, 24.43 B scene", links, PerLink { scene: 24.43, tracer }, &Work::INFO, kb);
+            let est = PerLink { scene: 24.43, tracer }.needed(links);
+            assert_eq!(est, PerLink { scene: 24.43, tracer }.needed_for(links, &Work::INFO));
         }
     }
 
@@ -396,37 +410,38 @@ mod tests {
     #[test]
     fn the_estimate_covers_each_command() {
         let thin = 85.0 / 84.0;
-        let render = Work { prim_list: true, thin_nodes: thin, pixels: 512 * 512, ..Work::INFO };
+        let render = Work { thin_nodes: thin, pixels: 512 * 512, ..Work::INFO };
+        let listed = Work { prim_list: true, ..render };
         let whole = |w: Work| Work { compact: false, ..w };
         let (compact, bvh2, grid) = (35.3, 183.2, 104.1);
         let per = |tracer: f64| PerLink { scene: 24.43, tracer };
-        // 10⁶ links (1 000 020; `generate bundle --count 11905`), this session, one run each;
-        // `render --accel bvh2|grid` after it stopped holding two primitive lists at once
-        // (483 476 and 486 072 kB before).
+        // 10⁶ links (1 000 020; `generate bundle --count 11905`), one run each: the compact
+        // rows with the clusters stored once (before: info 318 080, intersect 324 892, render
+        // 330 328 / 330 288 / 318 128 kB); `render --accel bvh2|grid` after it stopped holding
+        // two primitive lists at once (483 476 and 486 072 kB before).
         let e6 = 1_000_020;
-        assert_covers("info", e6, per(compact), &Work::INFO, 318_080.0);
-        assert_covers("intersect", e6, per(compact), &Work::INFO, 324_892.0);
-        assert_covers("render opaque", e6, per(compact), &render, 330_328.0);
-        assert_covers("render --opacity 0.3", e6, per(compact), &render, 330_288.0);
-        assert_covers("render --thin off", e6, per(compact), &Work { thin_nodes: 0.0, ..render }, 318_128.0);
+        assert_covers("info", e6, per(compact), &Work::INFO, 300_656.0);
+        assert_covers("intersect", e6, per(compact), &Work::INFO, 307_268.0);
+        assert_covers("render opaque", e6, per(compact), &render, 313_080.0);
+        assert_covers("render --opacity 0.3", e6, per(compact), &render, 312_968.0);
+        assert_covers("render --thin off", e6, per(compact), &Work { thin_nodes: 0.0, ..render }, 300_612.0);
         assert_covers("intersect --accel bvh2", e6, per(bvh2), &whole(Work::INFO), 399_964.0);
         assert_covers("intersect --accel grid", e6, per(grid), &whole(Work::INFO), 402_112.0);
-        assert_covers("render --accel bvh2", e6, per(bvh2), &whole(render), 404_988.0);
-        assert_covers("render --accel grid", e6, per(grid), &whole(render), 408_208.0);
-        // 10⁷ links (10 000 032; `--count 119048`), this session, once, niced beside builds.
-        assert_covers("render opaque", 10_000_032, per(compact), &render, 1_402_832.0);
-        // 10⁸ links (99 999 984; one `generate bundle --count 1190476`), last session's runs
-        // on main at a5e9e8a (issue 15's note): info 8.18·10⁶ kB, intersect 8.12·10⁶ kB,
-        // render opaque and transparent 11.39·10⁶ kB. render's peak is its list of 80-byte
-        // primitives beside the clamped scene: (24.4 + 12.1 + 80) B × 10⁸ = 11.65·10⁹ B, the
-        // measured 11.66·10⁹ B; the estimate before this model (the compact tree's build
-        // only) said 9.7·10⁹ B, 17 % under.
+        assert_covers("render --accel bvh2", e6, per(bvh2), &whole(listed), 404_988.0);
+        assert_covers("render --accel grid", e6, per(grid), &whole(listed), 408_208.0);
+        // 10⁷ links (10 000 032; `--count 119048`), once, niced beside builds (1 402 832 kB
+        // with the primitive list and the clusters stored twice).
+        assert_covers("render opaque", 10_000_032, per(compact), &render, 1_239_460.0);
+        // 10⁸ links (99 999 984; one `generate bundle --count 1190476`), once each, niced. With
+        // the primitive list and the clusters stored twice they were: info 8.18·10⁶ kB,
+        // intersect 8.12·10⁶ kB, render opaque and transparent 11.39·10⁶ kB (the list of
+        // 80-byte primitives beside the clamped scene: (24.4 + 12.1 + 80) B × 10⁸).
         let e8 = 99_999_984;
-        let per8 = PerLink { scene: 24.4, tracer: compact };
-        assert_covers("info", e8, per8, &Work::INFO, 8_180_000.0);
-        assert_covers("intersect", e8, per8, &Work::INFO, 8_120_000.0);
-        assert_covers("render opaque", e8, per8, &render, 11_390_000.0);
-        assert_covers("render --opacity 0.3", e8, per8, &render, 11_390_000.0);
-        assert!(per8.needed_for(e8, &Work { prim_list: false, ..render }) < 11_390_000.0 * 1024.0);
+        let per8 = PerLink { scene: 24.43, tracer: compact };
+        assert_covers("info", e8, per8, &Work::INFO, E8_INFO_KB);
+        assert_covers("intersect", e8, per8, &Work::INFO, 6_353_876.0);
+        assert_covers("render opaque", e8, per8, &render, E8_RENDER_KB);
+        // The list would not fit the 8 GB target beside the clamped scene.
+        assert!(per8.needed_for(e8, &listed) > 8e9);
     }
 }

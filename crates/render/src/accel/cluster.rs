@@ -40,6 +40,9 @@
 use crate::scene::{link_interval, local_origin, Prim, Scene, Shape};
 use tubecast::{Interval, LinkShape, Ray, RoundCone, V3};
 
+mod pending;
+pub(crate) use pending::Pending;
+
 /// Most links per cluster (one lane group of eight).
 pub(crate) const MAX_LINKS: usize = 8;
 /// A cluster's half-extent may be at most this many times each of its links' `ℓ + R`.
@@ -109,34 +112,16 @@ impl Clusters {
         (runs, single)
     }
 
-    /// The clusters of `runs`, in that order.
+    /// The clusters of `runs`, in that order (the scene's links walked once when `runs` are in
+    /// link order, as [`Self::group`] gives them).
     pub fn from_runs(scene: &Scene, runs: &[Run]) -> Self {
-        let total: usize = runs.iter().map(|r| r.n as usize + 1).sum();
-        let mut heads = Vec::with_capacity(runs.len() + 1);
-        let mut nodes = Vec::with_capacity(total);
-        for r in runs {
-            let ids = (0..=r.n).map(|i| {
-                let k = (r.first + i.min(r.n - 1)) as usize;
-                scene.links.get(k)[usize::from(i == r.n)]
-            });
-            let ids: Vec<u32> = ids.collect();
-            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-            for &i in &ids {
-                (lo, hi) = (min3(lo, scene.nodes[i as usize].pos), max3(hi, scene.nodes[i as usize].pos));
-            }
-            let origin: [f64; 3] = std::array::from_fn(|i| 0.5 * (lo[i] + hi[i]));
-            heads.push(Head { origin, node: nodes.len() as u32, link: r.first });
-            for &i in &ids {
-                let n = &scene.nodes[i as usize];
-                let p = (V3::from(n.pos) - V3::from(origin)).cast::<f32>();
-                nodes.push([p.x, p.y, p.z, scene.radius(i as usize) as f32]);
-            }
-        }
-        heads.push(Head { origin: [0.0; 3], node: nodes.len() as u32, link: 0 });
-        Self { heads, nodes }
+        let pending = Pending::new(scene, runs);
+        let n = pending.len();
+        pending.into_clusters(0..n)
     }
 
     /// The same clusters in the order `order` (each cluster once).
+    #[cfg(test)]
     pub fn reordered(&self, order: impl Iterator<Item = usize>) -> Self {
         let mut heads = Vec::with_capacity(self.heads.len());
         let mut nodes = Vec::with_capacity(self.nodes.len());
@@ -176,8 +161,7 @@ impl Clusters {
     #[inline(always)]
     fn cone(&self, c: usize, i: usize) -> RoundCone<f32> {
         let n = self.heads[c].node as usize + i;
-        let ([ax, ay, az, ra], [bx, by, bz, rb]) = (self.nodes[n], self.nodes[n + 1]);
-        RoundCone { a: V3::new(ax, ay, az), ra, b: V3::new(bx, by, bz), rb }
+        cone(self.nodes[n], self.nodes[n + 1])
     }
 
     /// Scene link index of link `i` of cluster `c`.
@@ -189,9 +173,7 @@ impl Clusters {
     /// Link `i` of cluster `c` as the primitive it is (see the module docs). Its kind is a
     /// cylinder where the stored radii are equal.
     pub fn prim(&self, c: usize, i: usize) -> Prim {
-        let cone = self.cone(c, i);
-        let shape = if cone.ra == cone.rb { Shape::Cylinder(cone) } else { Shape::Cone(cone) };
-        Prim { origin: self.heads[c].origin, link: self.link(c, i), shape }
+        prim(self.heads[c].origin, self.link(c, i), self.cone(c, i))
     }
 
     /// The cluster and position in it of the link numbered `k` (see [`Self::first`]; `k` below
@@ -210,7 +192,8 @@ impl Clusters {
     }
 
     /// World box of links `i0..i1` of cluster `c`: the union of their stored boxes
-    /// ([`Prim::aabb`]).
+    /// ([`Prim::aabb`]; the tree's build takes them from [`Pending::aabb`]).
+    #[cfg(test)]
     pub fn aabb(&self, c: usize, i0: usize, i1: usize) -> ([f64; 3], [f64; 3]) {
         let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
         for i in i0..i1 {
@@ -247,6 +230,28 @@ impl Clusters {
     pub fn bytes(&self) -> usize {
         self.heads.capacity() * std::mem::size_of::<Head>() + self.nodes.capacity() * std::mem::size_of::<[f32; 4]>()
     }
+}
+
+/// The link between stored nodes `a` and `b`.
+#[inline(always)]
+fn cone([ax, ay, az, ra]: [f32; 4], [bx, by, bz, rb]: [f32; 4]) -> RoundCone<f32> {
+    RoundCone { a: V3::new(ax, ay, az), ra, b: V3::new(bx, by, bz), rb }
+}
+
+/// Scene link `link`, stored as `cone` relative to `origin`, as the primitive it is (a cylinder
+/// where the stored radii are equal).
+#[inline(always)]
+fn prim(origin: [f64; 3], link: u32, cone: RoundCone<f32>) -> Prim {
+    let shape = if cone.ra == cone.rb { Shape::Cylinder(cone) } else { Shape::Cone(cone) };
+    Prim { origin, link, shape }
+}
+
+/// Scene node `i` as a cluster with origin `origin` stores it: `(x, y, z, r)` in `f32`, the
+/// position relative to the origin.
+#[inline(always)]
+fn stored(scene: &Scene, origin: [f64; 3], i: u32) -> [f32; 4] {
+    let p = (V3::from(scene.nodes[i as usize].pos) - V3::from(origin)).cast::<f32>();
+    [p.x, p.y, p.z, scene.radius(i as usize) as f32]
 }
 
 fn min3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
@@ -359,14 +364,10 @@ mod tests {
         assert_eq!(re.link_count(), scene.links.len());
     }
 
-    /// Streamlines of unequal lengths (1 to 23 links, so [`Links::get`](crate::scene::Links::get)
-    /// must bisect) interleaved with SWC trees (explicit branch pairs, soma links that are
-    /// spheres): the one-pass grouping equals a reference written here over a plain list of
-    /// pairs, straight from the module docs' rule (a link joins the run before it when it starts
-    /// where the previous link ends, the run has fewer than `MAX_LINKS` links and the joined
-    /// node box's half-extent is ≤ `SPREAD·min(ℓ + R)` over the run; spheres join nothing).
-    #[test]
-    fn grouping_matches_a_plain_list_reference_on_mixed_links() {
+    /// Streamlines of unequal lengths (2 to 24 points) with, after every tenth, generated SWC
+    /// neurons (explicit branch pairs) and a soma-like sphere link: the scene, its links as a plain
+    /// list of pairs, and its radii.
+    pub(super) fn mixed_links() -> (Scene, Vec<[u32; 2]>, Vec<f64>) {
         let lines = generate::furball(40, 24, 11);
         let swc = generate::neurons(2, &[generate::base_neuron(4)], 5);
         let tree = Scene::from_swc(&swc, "tree").unwrap();
@@ -391,6 +392,18 @@ mod tests {
         }
         let mut scene = Scene { nodes, links: pairs.clone().into(), ..Scene::default() };
         radii.iter().enumerate().for_each(|(i, &r)| scene.set_radius(i, r));
+        (scene, pairs, radii)
+    }
+
+    /// Streamlines of unequal lengths (1 to 23 links, so [`Links::get`](crate::scene::Links::get)
+    /// must bisect) interleaved with SWC trees (explicit branch pairs, soma links that are
+    /// spheres): the one-pass grouping equals a reference written here over a plain list of
+    /// pairs, straight from the module docs' rule (a link joins the run before it when it starts
+    /// where the previous link ends, the run has fewer than `MAX_LINKS` links and the joined
+    /// node box's half-extent is ≤ `SPREAD·min(ℓ + R)` over the run; spheres join nothing).
+    #[test]
+    fn grouping_matches_a_plain_list_reference_on_mixed_links() {
+        let (scene, pairs, radii) = mixed_links();
         // The reference, over `pairs` only.
         let shape = |[a, b]: [u32; 2]| {
             let p = |i: u32| V3::from(scene.nodes[i as usize].pos);

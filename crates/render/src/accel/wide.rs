@@ -11,7 +11,7 @@
 //! only visited in another order.
 
 use super::chunked::CHUNK;
-use super::cluster::Clusters;
+use super::cluster::{Clusters, Pending};
 use super::{Bvh, Frame, Hit, Tracer};
 use crate::scene::{Model, Prim, Scene, SceneError};
 #[allow(unused_imports)] // named by obvhs::traverse!
@@ -65,7 +65,7 @@ impl WideBvh {
     /// Build over `prims`, each stored whole (obvhs PLOC, medium quality, then collapsed to 8
     /// wide). An empty list gives a tree that every ray misses.
     pub fn build(prims: Vec<Prim>) -> Self {
-        Self::assemble(prims, Clusters::default(), CHUNK)
+        Self::assemble(prims, Pending::default(), CHUNK)
     }
 
     /// Build over the primitives of `model` for `scene`, the compact way: with
@@ -103,9 +103,9 @@ impl WideBvh {
                     // An item addresses a cluster in 28 bits (`WHOLE`).
                     return Err(SceneError::TooManyNodes { file: "scene (2²⁸ or more runs of links)".into() });
                 }
-                Ok(Self::assemble(single, Clusters::from_runs(scene, &runs), chunk))
+                Ok(Self::assemble(single, Pending::new(scene, &runs), chunk))
             }
-            Model::Splines => Ok(Self::assemble(scene.spline_primitives()?, Clusters::default(), chunk)),
+            Model::Splines => Ok(Self::assemble(scene.spline_primitives()?, Pending::default(), chunk)),
         }
     }
 
@@ -123,8 +123,9 @@ impl WideBvh {
     /// The tree over whole primitives and pieces of clusters (runs of up to `piece` links of a
     /// cluster: the tree's items), all put in leaf order (a cluster where its first piece is),
     /// built in chunks of `chunk` items (`chunked` module). The items' boxes are computed where
-    /// they are needed, never all stored in `f64`.
-    fn assemble(prims: Vec<Prim>, clusters: Clusters, chunk: usize) -> Self {
+    /// they are needed, never all stored in `f64`; the clusters' nodes are stored once the
+    /// leaf order is known ([`Pending`]), never twice.
+    fn assemble(prims: Vec<Prim>, clusters: Pending, chunk: usize) -> Self {
         let piece = PIECE;
         let np = prims.len();
         let pieces: Vec<(u32, u32)> = (0..clusters.len())
@@ -141,6 +142,7 @@ impl WideBvh {
         let n = np + pieces.len();
         let frame = Frame::bounding((0..n).map(world));
         if n == 0 {
+            let clusters = Clusters::default();
             return Self { bvh: CwBvh::default(), items: Vec::new(), prims, clusters, frame, piece };
         }
         // obvhs PLOC, medium quality, with a depth guard for degenerate scenes (cwbuild.rs), in
@@ -170,7 +172,7 @@ impl WideBvh {
             })
             .collect();
         drop((order, pieces, new_c));
-        let clusters = clusters.reordered(old_c.into_iter());
+        let clusters = clusters.into_clusters(old_c.into_iter());
         Self { bvh, items, prims: whole, clusters, frame, piece }
     }
 

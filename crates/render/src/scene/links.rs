@@ -55,13 +55,7 @@ impl Links {
     #[inline]
     pub fn get(&self, k: usize) -> [u32; 2] {
         assert!(k < self.len, "link {k} of {}", self.len);
-        // First guess: stretches of equal length (streamlines of equal length: O(1)); else
-        // bisection.
-        let g = ((k as u128 * self.segs.len() as u128) / self.len as u128) as usize;
-        let holds =
-            |i: usize| self.segs[i].start as usize <= k && self.segs.get(i + 1).map_or(true, |s| s.start as usize > k);
-        let i = if holds(g) { g } else { self.segs.partition_point(|s| s.start as usize <= k) - 1 };
-        let s = self.segs[i];
+        let s = self.segs[self.seg_of(k)];
         Self::of(s, &self.pairs, (k - s.start as usize) as u32)
     }
 
@@ -77,6 +71,36 @@ impl Links {
     /// The links in order.
     pub fn iter(&self) -> Iter<'_> {
         Iter { links: self, seg: 0, k: 0 }
+    }
+
+    /// The links from link `k` on, in order: [`Self::iter`] without its first `k` links, found
+    /// as [`Self::get`] finds link `k` (one bisection at most, not one per link).
+    ///
+    /// ```
+    /// use tubecast_render::scene::Links;
+    /// let l: Links = vec![[0, 1], [1, 2], [7, 3], [3, 4], [4, 5]].into();
+    /// assert_eq!(l.iter_from(2).collect::<Vec<_>>(), vec![[7, 3], [3, 4], [4, 5]]);
+    /// assert_eq!(l.iter_from(5).next(), None);
+    /// ```
+    pub fn iter_from(&self, k: usize) -> Iter<'_> {
+        if k >= self.len {
+            return Iter { links: self, seg: 0, k: self.len };
+        }
+        Iter { links: self, seg: self.seg_of(k), k }
+    }
+
+    /// The stretch holding link `k < len()`. First guess: stretches of equal length
+    /// (streamlines of equal length: O(1)); else bisection.
+    #[inline]
+    fn seg_of(&self, k: usize) -> usize {
+        let g = ((k as u128 * self.segs.len() as u128) / self.len as u128) as usize;
+        let holds =
+            |i: usize| self.segs[i].start as usize <= k && self.segs.get(i + 1).map_or(true, |s| s.start as usize > k);
+        if holds(g) {
+            g
+        } else {
+            self.segs.partition_point(|s| s.start as usize <= k) - 1
+        }
     }
 
     /// True when `link` is one of the links.

@@ -46,6 +46,26 @@ impl Scene {
     /// [`Self::spline_primitives`]): link primitives by kind, spline segments (pairs of
     /// sub-segments), and the union of the primitives' boxes.
     pub fn stats_of(&self, prims: &[Prim]) -> Stats {
+        self.stats_over(prims.iter().copied())
+    }
+
+    /// [`Self::stats_of`] the link model's primitives ([`Self::primitives`]), each computed in
+    /// turn and not kept: the same counts and bit for bit the same bounds, without the list's
+    /// [`std::mem::size_of::<Prim>()`] bytes per link (`render`'s bounds at 10⁸ links).
+    ///
+    /// ```
+    /// use tubecast_render::io::Polyline;
+    /// use tubecast_render::scene::Scene;
+    /// let line = Polyline { points: vec![[0.0; 3], [4.0, 0.0, 0.0], [8.0, 1.0, 0.0]], radii: vec![] };
+    /// let scene = Scene::from_polylines(&[line], 0.5, "tube").unwrap();
+    /// assert_eq!(scene.primitive_stats(), scene.stats_of(&scene.primitives()));
+    /// ```
+    pub fn primitive_stats(&self) -> Stats {
+        self.stats_over((0..self.links.len()).map(|k| Prim::from_link(&self.link(k), k as u32)))
+    }
+
+    /// Counts and bounds of `prims` (see [`Self::stats_of`]).
+    fn stats_over(&self, prims: impl Iterator<Item = Prim>) -> Stats {
         let mut s = Stats { nodes: self.nodes.len(), links: self.links.len(), ..Default::default() };
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
