@@ -48,7 +48,8 @@ pub enum Accel {
     Bvh,
     /// Binary bounding volume hierarchy (obvhs Bvh2).
     Bvh2,
-    /// Uniform voxel grid, conservatively voxelized (cells ≈ 2 per primitive).
+    /// Uniform voxel grid, conservatively voxelized; its resolution weighs the build against the
+    /// command's rays (`accel::grid` docs, "Resolution with a build").
     Grid,
 }
 

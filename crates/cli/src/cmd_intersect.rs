@@ -26,7 +26,8 @@ pub fn intersect(a: &IntersectArgs) -> Result<(), CliError> {
     let name = a.rays.display().to_string();
     let rays = io::npy::read(&crate::hits_io::read_input(&a.rays)?, &name, Some(6))?.rays(&name)?;
     let rows = with_threads(a.threads.map(usize::from), || {
-        let bvh = crate::commands::scene_tracer(a.accel, &scene, crate::commands::model(a.splines), None)?;
+        let m = crate::commands::model(a.splines);
+        let bvh = crate::commands::scene_tracer(a.accel, &scene, m, None, Some(rays.len() as f64))?;
         Ok::<_, CliError>(match a.query {
             Query::Hit => closest_table(bvh.as_ref(), &rays),
             Query::Piece => hit_table(bvh.as_ref(), &rays),

@@ -174,7 +174,9 @@ fn sample(input: &Path, opts: &LoadOptions, sel: &Selection, plan: Plan) -> Opti
     if links == 0 {
         return None;
     }
-    let tracer = crate::commands::scene_tracer(plan.accel, &scene, plan.model, None).ok()?;
+    // A sample's tracer, for bytes per link: the grid at its finest (static) resolution, the most
+    // memory the command's own build can take.
+    let tracer = crate::commands::scene_tracer(plan.accel, &scene, plan.model, None, None).ok()?;
     let per = |b: usize| b as f64 / links as f64;
     let per_link = PerLink { scene: per(scene.memory_bytes()), tracer: per(tracer.memory_bytes()) };
     let lines = scene.nodes.len().saturating_sub(links);

@@ -5,7 +5,10 @@ use crate::cmd_load::{LoadArgs, Plan, RenderPlan};
 use crate::error::CliError;
 use crate::render_opts::{check_out, Background, Radius};
 use std::path::Path;
-use tubecast_render::accel::{grid::Grid, Bvh, Tracer, WideBvh};
+use tubecast_render::accel::{
+    grid::{Grid, GridParams},
+    Bvh, Tracer, WideBvh,
+};
 use tubecast_render::io::{self, npy::Array2};
 use tubecast_render::render::{self, Camera, ColorBy, Options, Shading, View};
 use tubecast_render::scene::Prim;
@@ -49,12 +52,17 @@ pub(crate) fn load(
     Ok(scene)
 }
 
-/// The chosen acceleration structure over `prims` (under a progress spinner).
-pub(crate) fn tracer(accel: Accel, prims: Vec<Prim>) -> Box<dyn Tracer> {
+/// The chosen acceleration structure over `prims` (under a progress spinner). `rays`: how many
+/// rays the command will trace through it (`None`: unknown), which the grid's resolution
+/// weighs against its build (`GridParams::rays_per_build`; a command builds once).
+pub(crate) fn tracer(accel: Accel, prims: Vec<Prim>, rays: Option<f64>) -> Box<dyn Tracer> {
     crate::progress::step(&format!("building the accelerator over {} primitives", prims.len()), || match accel {
         Accel::Bvh => Box::new(WideBvh::build(prims)) as Box<dyn Tracer>,
         Accel::Bvh2 => Box::new(Bvh::build(prims)),
-        Accel::Grid => Box::new(Grid::build(prims)),
+        Accel::Grid => {
+            let params = GridParams { rays_per_build: rays, ..GridParams::default() };
+            Box::new(Grid::build_with(prims, &params))
+        }
     })
 }
 
@@ -67,6 +75,7 @@ pub(crate) fn scene_tracer(
     scene: &Scene,
     m: Model,
     prims: Option<Vec<Prim>>,
+    rays: Option<f64>,
 ) -> Result<Box<dyn Tracer>, CliError> {
     if matches!(accel, Accel::Bvh) && m == Model::Links {
         drop(prims);
@@ -75,9 +84,9 @@ pub(crate) fn scene_tracer(
     }
     if m == Model::Links {
         drop(prims); // the tracer's own list replaces the caller's: not two lists at once
-        return Ok(tracer(accel, WideBvh::scene_primitives(scene)));
+        return Ok(tracer(accel, WideBvh::scene_primitives(scene), rays));
     }
-    Ok(tracer(accel, prims.map_or_else(|| scene.model_primitives(m), Ok)?))
+    Ok(tracer(accel, prims.map_or_else(|| scene.model_primitives(m), Ok)?, rays))
 }
 
 /// Whether the minimum pixel footprint applies: `auto` turns it on for wireframe-like data
@@ -138,9 +147,15 @@ pub fn render(a: &RenderArgs) -> Res {
         (Surface::Mesh, t) => (prims, Some(t.ok_or(CliError::MeshTolerance)?)),
     };
     let owned = |p: Option<Vec<Prim>>| p.map_or_else(|| scene.model_primitives(m), Ok);
+    // Camera rays, plus the AO rays when AO traces rays (cones trace none).
+    let ao_rays = match a.ao.resolve(a.ao_samples) {
+        (n, render::AoMethod::Rays) => n as f64,
+        _ => 0.0,
+    };
+    let rays = Some(a.width as f64 * a.height as f64 * (1.0 + ao_rays));
     let bvh = crate::cmd_intersect::with_threads(a.threads.map(usize::from), || match tol {
-        None if exact => scene_tracer(a.accel, &scene, m, prims),
-        None => Ok(tracer(a.accel, owned(prims)?)),
+        None if exact => scene_tracer(a.accel, &scene, m, prims, rays),
+        None => Ok(tracer(a.accel, owned(prims)?, rays)),
         Some(_) => crate::cmd_mesh::tracer(&scene, m, owned(prims)?, tol),
     })??;
     let background = match a.background {
