@@ -86,22 +86,14 @@ pub fn read(data: &[u8], name: &str, cols: Option<usize>) -> Result<Array2, IoEr
     if !matches!(count, Some(n) if n <= usize::MAX as u64 / 8) {
         return Err(bad("shape overflows".into()));
     }
-    // A header for a plain float32/float64 array nests two deep: the dict and its shape tuple.
-    // Deeper nesting only comes with structured dtypes, which are refused below anyway, and
-    // npyz's parser (py_literal's PEG grammar) backtracks exponentially on unbalanced nesting:
-    // 40 open brackets in a 118-byte header ran for minutes (npy fuzz campaign, seed 2001).
-    let mut depth = 0usize;
-    for c in text.chars() {
-        match c {
-            '(' | '[' | '{' => depth += 1,
-            ')' | ']' | '}' => depth = depth.saturating_sub(1),
-            _ => {}
-        }
-        if depth > 2 {
-            return Err(
-                bad("nests deeper than a plain dtype's dict and shape (structured dtypes are not read)".into()),
-            );
-        }
+    // npyz's header parser (py_literal's PEG grammar) backtracks exponentially on malformed
+    // nesting and quoting: 118- and 392-byte headers ran for minutes (npy fuzz campaigns, seeds
+    // 2001 and 2003). A plain float32/float64 array's header is a flat dict of strings, booleans
+    // and one tuple of integers, so anything else is refused first, in one linear pass.
+    if !plain_header(text.as_bytes()) {
+        return Err(bad(
+            "is not a plain dict of strings, True/False and an integer tuple (structured dtypes are not read)".into(),
+        ));
     }
     let npy = npyz::NpyFile::new(data).map_err(|e| {
         let e = e.to_string();
@@ -147,6 +139,67 @@ pub fn read(data: &[u8], name: &str, cols: Option<usize>) -> Result<Array2, IoEr
         }
     }
     Ok(Array2 { rows, cols: ncols, data: out })
+}
+
+/// Whether `h` is a flat Python dict literal `{'key': value, ...}` whose values are quoted
+/// strings (no escapes), bare words (`True`, `False`, numbers) or a tuple of bare words, with
+/// optional trailing commas: the form numpy writes for a plain array. One pass, no
+/// backtracking; npyz then judges the words themselves (and names what is wrong with them).
+fn plain_header(h: &[u8]) -> bool {
+    let mut i = 0;
+    let ws = |i: &mut usize| {
+        while *i < h.len() && h[*i].is_ascii_whitespace() {
+            *i += 1;
+        }
+    };
+    let eat = |i: &mut usize, c: u8| {
+        ws(i);
+        let ok = h.get(*i) == Some(&c);
+        *i += ok as usize;
+        ok
+    };
+    let string = |i: &mut usize| {
+        ws(i);
+        let Some(&q) = h.get(*i).filter(|&&q| q == b'\'' || q == b'"') else { return false };
+        match h[*i + 1..].iter().position(|&c| c == q || c == b'\\') {
+            Some(n) if h[*i + 1 + n] == q => {
+                *i += n + 2;
+                true
+            }
+            _ => false,
+        }
+    };
+    let word = |i: &mut usize| {
+        ws(i);
+        let n = h[*i..].iter().take_while(|c| c.is_ascii_alphanumeric() || b"_.+-".contains(c)).count();
+        *i += n;
+        n > 0
+    };
+    let tuple = |i: &mut usize| {
+        if !eat(i, b'(') {
+            return false;
+        }
+        while word(i) {
+            if !eat(i, b',') {
+                break;
+            }
+        }
+        eat(i, b')')
+    };
+    if !eat(&mut i, b'{') {
+        return false;
+    }
+    while string(&mut i) {
+        if !(eat(&mut i, b':') && (string(&mut i) || word(&mut i) || tuple(&mut i))) {
+            return false;
+        }
+        if !eat(&mut i, b',') {
+            break;
+        }
+    }
+    let closed = eat(&mut i, b'}');
+    ws(&mut i);
+    closed && i == h.len()
 }
 
 /// Write a row-major 2-D `float64` array as `.npy` version 1.0, little endian, C order.
