@@ -148,10 +148,8 @@ pub fn render(a: &RenderArgs) -> Res {
     };
     let owned = |p: Option<Vec<Prim>>| p.map_or_else(|| scene.model_primitives(m), Ok);
     // Camera rays, plus the AO rays when AO traces rays (cones trace none).
-    let ao_rays = match a.ao.resolve(a.ao_samples) {
-        (n, render::AoMethod::Rays) => n as f64,
-        _ => 0.0,
-    };
+    let (ao, ao_method) = a.ao.resolve(a.ao_samples);
+    let ao_rays = if ao_method == render::AoMethod::Rays { ao as f64 } else { 0.0 };
     let rays = Some(a.width as f64 * a.height as f64 * (1.0 + ao_rays));
     let bvh = crate::cmd_intersect::with_threads(a.threads.map(usize::from), || match tol {
         None if exact => scene_tracer(a.accel, &scene, m, prims, rays),
@@ -173,8 +171,8 @@ pub fn render(a: &RenderArgs) -> Res {
         background,
         shading: Shading::Lit,
         opacity: a.opacity,
-        ao: a.ao.resolve(a.ao_samples).0,
-        ao_method: a.ao.resolve(a.ao_samples).1,
+        ao,
+        ao_method,
         shadows: a.shadows,
         progress: crate::progress::enabled() && (a.width as u64 * a.height as u64) >= 256 * 256,
     };

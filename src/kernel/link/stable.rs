@@ -298,6 +298,9 @@ impl<T: Real> StumpSide<T> {
             let rho = pq.length();
             let dg = cc * pq.dot(q) / T::select(rho.gt(zero), rho, one) + szd;
             let open = open & dg.abs().gt(T::epsilon().sqrt());
+            if open.none() {
+                break; // no lane can step: further rounds would change nothing
+            }
             let next = (k - g / T::select(open, dg, one)).clamp(self.lo, self.hi);
             k = T::select(open, next, k);
             g = T::select(open, g_at(k), g);
