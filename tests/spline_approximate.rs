@@ -2,7 +2,7 @@
 //! `t` to `2^-iters`, but a thin tube is crossed over `~r/L` of `t`: it loses real intervals
 //! (false misses) and puts entries late, outside the kernel's band `E` (derived in
 //! `src/kernel/spline.rs`, judged as in `tests/spline_conditioning.rs`). These tests **measure**
-//! its rates on the length/radius sweep (ten families × `SEEDS` seeds per ratio, f64) and pin
+//! its rates on the length/radius sweep (eleven families × `SEEDS` seeds per ratio, f64) and pin
 //! them at the figures the API docs and notes quote, so a change that makes them worse fails.
 //! It can never report a phantom hit: reality is decided by the gap from the vectors, whatever
 //! the bracket method (asserted: zero).
@@ -53,18 +53,21 @@ fn check(solver: Solver, max_false_miss: [f64; 6]) {
     }
 }
 
-/// Salm's setting. Measured (f64, 200 cases per ratio, `cargo test --test spline_approximate
-/// -- --nocapture`): false misses among the hits deeper than `E` 0, 0.7, 6.3, 18, 72, 97 % at
-/// `L/r = 1 … 10⁵` (the ceilings here: those rounded up), and entries/exits outside `E` in
-/// 54–98 % of the hits up to `L/r = 10³` (t to 2⁻¹⁰ moves the entry by `½|f''|·2⁻²⁰`).
+/// Salm's setting. Measured (f64, 220 cases per ratio, `cargo test --test spline_approximate
+/// -- --nocapture`): false misses among the hits deeper than `E` 0, 0, 6.6, 17.5, 70.5, 93.9 %
+/// at `L/r = 1 … 10⁵` (the ceilings here: the ten-family figures of the previous sweep rounded
+/// up), and entries/exits outside `E` in 62–99 % of the hits up to `L/r = 10³` (t to 2⁻¹⁰
+/// moves the entry by `½|f''|·2⁻²⁰`).
 #[test]
 fn bisection_10_false_miss_rates() {
     check(Solver::Bisection { iters: 10 }, [0.01, 0.02, 0.1, 0.25, 0.8, 1.0]);
 }
 
-/// Twenty steps: within the band up to `L/r = 10⁴`; at `10⁵` 2.4 % false misses (3 of 127) and
-/// 6 answers outside `E`.
+/// Twenty steps: within the band up to `L/r = 10²`. The family `InsideEnd` (a crossing within
+/// a radius of an end, added with the differential finding `regression-spline-f32-exit-at-end`)
+/// costs it false misses from `10³` on: 1 of 160 at `10³`, 2 of 156 (and 1 answer outside `E`)
+/// at `10⁴`, 3 of 147 (7 outside) at `10⁵`. The ten families before it had none up to `10⁴`.
 #[test]
 fn bisection_20_false_miss_rates() {
-    check(Solver::Bisection { iters: 20 }, [0.0, 0.0, 0.0, 0.0, 0.01, 0.05]);
+    check(Solver::Bisection { iters: 20 }, [0.0, 0.0, 0.0, 0.01, 0.02, 0.05]);
 }

@@ -67,16 +67,21 @@
 //! hit needs the tube inflated by `E` to be hit, a false miss the tube deflated by `E` to be
 //! missed. `tests/spline_conditioning.rs` asserts both, and the interval between the inflated
 //! and deflated tubes' intervals, for every accurate solver in `f32` and `f64` across
-//! `L/r = 1 … 10⁵` in ten families (unit, bulge, cusp, taper to `r ≈ 0`, grazing, far origin,
-//! inside, pinched `r(½) = 0`, scales `2^±50`, direction ratios `2⁴⁰`) against an independent
+//! `L/r = 1 … 10⁵` in eleven families (unit, bulge, cusp, taper to `r ≈ 0`, grazing, far origin,
+//! inside, inside beside an end crossed at right angles, pinched `r(½) = 0`, scales `2^±50`,
+//! direction ratios `2⁴⁰`) against an independent
 //! thin-tube oracle (`tubecast_oracle::quad_crossing_offset`).
 //!
-//! *Candidates.* Whatever rounding does to `P`'s roots, the breakpoints of `g` (the cascade
-//! `g'''` → `g''` → `g'` → `g`, each level from the vectors) contain `g`'s maxima and its real
-//! intervals' ends: every real interval holds a candidate, so no hit deeper than `E` is lost;
-//! the best candidate is then polished by a bracketed solve of `F₁ = 2σh'√g − g'` towards the
-//! side its sign points to (at a real interval's ends `F₁ = −g'` has the sign that closes the
-//! bracket).
+//! *Candidates.* Whatever rounding does to `P`'s roots, the roots of `g'` and of `g` (the
+//! cascade `g'''` → `g''` → `g'` → `g`, each level from the vectors) are candidates too: `g`'s
+//! maxima and its real intervals' ends, so every real interval holds a candidate at its deepest
+//! point and no hit deeper than `E` is lost. (The ends alone were not enough: √g = 0 there, and
+//! a line that crosses a thin tube at right angles has `h' ≡ 0`, so `P = −g'²` has only double
+//! roots, which the cascade can miss — differential finding `regression-spline-f32-exit-at-end`,
+//! `tests/spline_differential_findings.rs`.) The best candidate is then polished by a bracketed
+//! solve of `F₁ = 2σh'√g − g'` towards the side its sign points to, up to the nearest candidate
+//! there whose `F₁` has the other sign (at a real interval's ends `F₁ = −g'` has the sign that
+//! closes the bracket).
 //!
 //! *Cost (exact early exits).* A line is rejected before any polynomial is formed when it is
 //! farther than the largest control radius from the control triangle (`ray_space::hull_misses`,
@@ -267,9 +272,12 @@ impl<T: Real> QuadTube<T> {
                 // the rounding of P's coefficients does to P's roots. None of them real (gap
                 // ≥ −τ): the line misses the tube deflated by the band (see "Conditioning"), a
                 // miss is a right answer and P's cascade is skipped.
-                let z = rs.dg.g_breakpoints(Bracket::Newton);
+                let gb = rs.dg.g_breakpoints(Bracket::Newton);
+                let mut z = [T::zero(); 11];
+                z[..6].copy_from_slice(&gb.roots);
+                z[6..].copy_from_slice(&gb.extrema);
                 let mut real = T::Mask::splat(false);
-                for &t in &z {
+                for &t in &gb.extrema {
                     real = real | rs.dg.gap_g(t).0.ge(-rs.dg.tau);
                 }
                 if (real & rs.near).none() {
@@ -314,7 +322,8 @@ impl<T: Real> QuadTube<T> {
             Solver::Newton | Solver::Polynomial => Bracket::Newton,
         };
         // Real intervals of g: breakpoints 0 = z₀ ≤ z₁ ≤ … ≤ z₅ = 1, g of one sign on each piece.
-        let z = rs.dg.g_breakpoints(method);
+        let gb = rs.dg.g_breakpoints(method);
+        let z = gb.roots;
         let mut real = [T::Mask::splat(false); 5];
         for k in 0..5 {
             let mid = (z[k] + z[k + 1]) * half;
@@ -342,7 +351,9 @@ impl<T: Real> QuadTube<T> {
                 hi = T::select(open, z[j + 1], hi);
             }
             let x = match ppoly {
-                Some((bp, n)) => rs.polished_candidates(&bp[..n], &[], lo, hi, true).0,
+                // g's maxima as well as P's roots: in f32 a thin tube's P can lose them all
+                // (see `Direct::g_breakpoints`); outside [lo, hi] they clamp to its ends.
+                Some((bp, n)) => rs.polished_candidates(&bp[..n], &gb.extrema, lo, hi, true).0,
                 None => rs.russig(lo, hi, method),
             };
             out[k] = rs.interval(ray, x, first, clip);

@@ -25,6 +25,12 @@ pub enum ThinFamily {
     FarOrigin,
     /// The origin inside the tube.
     Inside,
+    /// A straight segment along a coordinate axis, the origin on its axis one end radius from
+    /// an end (to `10⁻¹²…10⁻²`), the line exactly at right angles to the axis: `h` is
+    /// constant, so `P = 4h'²g − g'² = −g'²` has only double roots, and the entry and exit lie
+    /// at `g`'s maximum beside the end (the differential fuzz finding
+    /// `regression-spline-f32-exit-at-end`).
+    InsideEnd,
     /// A zero-radius middle: `r = [a, −a, a]` (`r(½) = 0`), aimed within `t ∈ [0.3, 0.7]`.
     Pinched,
     /// Everything scaled by `2^k`, `k ∈ [−50, 50]` (in f32 the kernel rejects extents whose
@@ -35,7 +41,7 @@ pub enum ThinFamily {
 }
 
 /// Every family, in report order.
-pub const THIN_FAMILIES: [ThinFamily; 10] = [
+pub const THIN_FAMILIES: [ThinFamily; 11] = [
     ThinFamily::Unit,
     ThinFamily::Bulge,
     ThinFamily::Cusp,
@@ -43,6 +49,7 @@ pub const THIN_FAMILIES: [ThinFamily; 10] = [
     ThinFamily::Grazing,
     ThinFamily::FarOrigin,
     ThinFamily::Inside,
+    ThinFamily::InsideEnd,
     ThinFamily::Pinched,
     ThinFamily::Scale,
     ThinFamily::DirRatio,
@@ -72,7 +79,14 @@ fn segment(rng: &mut SplitMix64, ratio: f64, family: ThinFamily) -> (Quad, f64) 
     let len = 2.0;
     let r = len / ratio;
     let mut rr = [r * rng.range(0.5, 1.5), r * rng.range(0.5, 1.5), r * rng.range(0.5, 1.5)];
+    let k = (rng.next_u64() % 3) as usize;
     let (b1, b2) = match family {
+        ThinFamily::InsideEnd => {
+            let mut e = [0.0; 3];
+            e[k] = if rng.coin() { len } else { -len };
+            let b2 = b0 + Vec3::from(e);
+            ((b0 + b2) * 0.5, b2)
+        }
         ThinFamily::Bulge => (b0 + unit(rng) * len, b0 + unit(rng) * (len * rng.range(1e-3, 0.05))),
         ThinFamily::Cusp => (b0 + unit(rng) * len, b0 + unit(rng) * (len * 10f64.powf(rng.range(-6.0, -2.0)))),
         _ => {
@@ -91,6 +105,18 @@ fn segment(rng: &mut SplitMix64, ratio: f64, family: ThinFamily) -> (Quad, f64) 
             let a = rr[0] as f32 as f64;
             rr = [a, -a, a];
             t0 = rng.range(0.3, 0.7);
+        }
+        ThinFamily::InsideEnd => {
+            // The line crosses the axis at a distance a = r_end·(1 ± 10⁻¹²…10⁻²) from the end's
+            // centre: it touches the end sphere to within rounding in f32, where g(end) ≈ 0
+            // ties the end with the real interval's other end as the exit candidate.
+            let s = if rng.coin() { 1.0 } else { -1.0 };
+            let rel = 1.0 + s * 10f64.powf(rng.range(-12.0, -2.0));
+            let at_end = rng.coin();
+            rr = [rr[0], rr[0], rr[0] * (1.0 + rng.range(-1e-3, 1e-3))];
+            let a = if at_end { rr[2] } else { rr[0] } * rel;
+            let near = (a / len).min(0.5);
+            t0 = if at_end { 1.0 - near } else { near };
         }
         _ => {}
     }
@@ -111,6 +137,7 @@ pub fn thin_case(seed: u64, ratio: f64, family: ThinFamily) -> ThinCase {
             1.0 + s * 10f64.powf(rng.range(-6.0, -2.0))
         }
         ThinFamily::Inside => rng.range(0.0, 0.5),
+        ThinFamily::InsideEnd => 0.0,
         _ => rng.range(0.0, 2.5),
     };
     // Aim perpendicular to the tangent, `off` local radii from the centre.
@@ -121,6 +148,15 @@ pub fn thin_case(seed: u64, ratio: f64, family: ThinFamily) -> ThinCase {
         // Graze: the direction perpendicular to the offset, so the line's distance is `off·r`.
         let n = (target - pc) * (1.0 / (target - pc).length().max(f64::MIN_POSITIVE));
         dir = perp(n, &mut rng);
+    }
+    if family == ThinFamily::InsideEnd {
+        // Exactly ⊥ the axis (the coordinate axis the segment runs along, after rounding).
+        let ta = [tan.x.abs(), tan.y.abs(), tan.z.abs()];
+        let k = (0..3).fold(0, |k, i| if ta[i] > ta[k] { i } else { k });
+        let mut d = [dir.x, dir.y, dir.z];
+        d[k] = 0.0;
+        let d = Vec3::from(d);
+        dir = d * (1.0 / d.length().max(f64::MIN_POSITIVE));
     }
     if family == ThinFamily::DirRatio {
         let mut d = [0.0; 3];
@@ -133,7 +169,7 @@ pub fn thin_case(seed: u64, ratio: f64, family: ThinFamily) -> ThinCase {
     }
     let dist = match family {
         ThinFamily::FarOrigin => 10f64.powf(rng.range(3.0, 4.0)) * 2.0,
-        ThinFamily::Inside => 0.0,
+        ThinFamily::Inside | ThinFamily::InsideEnd => 0.0,
         _ => rng.range(3.0, 6.0),
     };
     let mut o = target - dir * dist;

@@ -73,6 +73,15 @@ impl<T: Real> Direct<T> {
         (w, r, self.wa * (two * t) + self.wb, two * self.ra * t + self.rb)
     }
 
+    /// `(r − |w|, g, g')` at `t` from one evaluation of the jet.
+    #[inline(always)]
+    pub(super) fn gap_g_g1(&self, t: T) -> (T, T, T) {
+        let (w, r, w1, r1) = self.jet(t);
+        let lw = w.length();
+        let gap = r - lw;
+        (gap, gap * (r + lw), T::cst(2.0) * (r * r1 - w.dot(w1)))
+    }
+
     /// `g'(t) = 2(r r' − w·w')`.
     #[inline(always)]
     pub(super) fn g1(&self, t: T) -> T {
@@ -100,11 +109,21 @@ impl<T: Real> Direct<T> {
         (self.ra * self.rb - self.wa.dot(self.wb), self.ra * self.ra - self.wa.dot(self.wa))
     }
 
-    /// Breakpoints `0 = z₀ ≤ … ≤ z₅ = 1` with `g` monotone between them (its real intervals
-    /// are unions of pieces): the derivative cascade `g'''` (linear, solved) → `g''` → `g'` →
-    /// `g`, every level evaluated from the vectors ([`Self::g2`], [`Self::g1`], [`Self::g`]).
+    /// The roots of `g` and of `g'` on `[0, 1]`, by the derivative cascade `g'''` (linear,
+    /// solved) → `g''` → `g'` → `g`, every level evaluated from the vectors ([`Self::g2`],
+    /// [`Self::g1`], [`Self::g`]):
+    /// * `roots`: `0 = z₀ ≤ … ≤ z₅ = 1` with `g` of one sign between them (its real intervals
+    ///   are unions of pieces);
+    /// * `extrema`: `0 = y₀ ≤ … ≤ y₄ = 1` with `g` monotone between them, so every maximum of
+    ///   `g` — the deepest point of each real interval — is one of them.
+    ///
+    /// A real interval's ends alone are not enough candidates: √g = 0 there, and when the ray
+    /// crosses a thin tube the entry and exit lie at its interior maximum (differential fuzz
+    /// finding, `regression-spline-f32-exit-at-end`: in f32 at L/r ≈ 4,000, with `P`'s roots
+    /// lost to rounding, the exit was taken at the end `t = 1` of the real interval and its
+    /// polish bracket held no root: 9.2·10⁻⁷ against 0.166).
     #[inline(always)]
-    pub(super) fn g_breakpoints(&self, m: Bracket) -> [T; 6] {
+    pub(super) fn g_breakpoints(&self, m: Bracket) -> GBreaks<T> {
         let (zero, one) = (T::zero(), T::one());
         let (c0, c1) = self.g3_coeffs();
         let den = T::cst(2.0) * c1;
@@ -115,8 +134,17 @@ impl<T: Real> Direct<T> {
         bp[0] = zero;
         bp[1] = t3;
         let bp = cascade_level(&bp, 3, |t| self.g2(t), |t| self.g3(t), m);
-        let bp = cascade_level(&bp, 4, |t| self.g1(t), |t| self.g2(t), m);
-        let bp = cascade_level(&bp, 5, |t| self.g(t), |t| self.g1(t), m);
-        [bp[0], bp[1], bp[2], bp[3], bp[4], bp[5]]
+        let ext = cascade_level(&bp, 4, |t| self.g1(t), |t| self.g2(t), m);
+        let bp = cascade_level(&ext, 5, |t| self.g(t), |t| self.g1(t), m);
+        GBreaks { roots: [bp[0], bp[1], bp[2], bp[3], bp[4], bp[5]], extrema: [ext[0], ext[1], ext[2], ext[3], ext[4]] }
     }
+}
+
+/// [`Direct::g_breakpoints`]: the roots of `g` and of `g'` on `[0, 1]`, with both ends.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct GBreaks<T> {
+    /// `g` of one sign between consecutive entries.
+    pub(super) roots: [T; 6],
+    /// `g` monotone between consecutive entries (its maxima are among them).
+    pub(super) extrema: [T; 5],
 }

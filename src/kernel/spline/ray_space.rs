@@ -375,17 +375,25 @@ impl<T: Real> RaySpace<T> {
         (Crossings { s_in: vi, u_in: ui, s_out: -vo, u_out: uo }, best.any)
     }
 
-    /// Entry/exit from candidate parameters `c ∪ extra` (clamped to `[lo, hi]`), keeping only
-    /// real ones (gap `r − |w| ≥ −τ`, [`Direct`]) unless `all_real`; with each winner's nearest
-    /// candidates on either side (or `lo`, `hi`) as its polish brackets.
+    /// Entry/exit from candidate parameters `c ∪ extra` (clamped to `[lo, hi]`, at most 32),
+    /// keeping only real ones (gap `r − |w| ≥ −τ`, [`Direct`]) unless `all_real`; with each
+    /// winner's polish bracket: the nearest candidate (or `lo`, `hi`) on the side that `F₁`'s
+    /// sign at the winner points to **whose `F₁` has the other sign**, so that the bracket holds
+    /// a root. The nearest candidate alone is not enough: two candidates can lie within
+    /// rounding of each other (a root of `P` and the maximum of `g` beside it on a grazing
+    /// ray), and a bracket between them holds none.
     #[inline(always)]
     fn best_of_candidates(&self, c: &[T], extra: &[T], lo: T, hi: T, all_real: bool) -> Candidates<T> {
-        let inf = T::infinity();
+        let (inf, two) = (T::infinity(), T::cst(2.0));
+        let h1 = [self.h[1], two * self.h[2]];
         let (mut bi, mut ti, mut bo, mut to) = (inf, lo, inf, lo);
         let mut any = T::Mask::splat(false);
-        for &t in c.iter().chain(extra) {
+        // Each candidate's t and its F₁ for the entry (σ = 1) and the exit (σ = −1).
+        let mut at = [(lo, T::zero(), T::zero()); 32];
+        let mut n = 0;
+        for &t in c.iter().chain(extra).take(32) {
             let t = t.clamp(lo, hi);
-            let (gap, gv) = self.dg.gap_g(t);
+            let (gap, gv, g1) = self.dg.gap_g_g1(t);
             // Within the gap's rounding τ of 0 counts as real (e.g. r = 0 at an end on the ray).
             let ok = if all_real { T::Mask::splat(true) } else { gap.ge(-self.dg.tau) };
             let hv = horner(&self.h, t);
@@ -398,15 +406,26 @@ impl<T: Real> RaySpace<T> {
             bo = T::select(bo_, vo, bo);
             to = T::select(bo_, t, to);
             any = any | ok;
+            let hs = two * horner(&h1, t) * sq;
+            at[n] = (t, hs - g1, -hs - g1);
+            n += 1;
         }
-        // Nearest candidates strictly left and right of each winner.
+        // F₁ at each winner (the winner's own entry in `at`); F₁ < 0: the minimum lies right.
+        let (mut fi, mut fo) = (T::zero(), T::zero());
+        for &(t, f_in, f_out) in &at[..n] {
+            fi = T::select(t.eq(ti), f_in, fi);
+            fo = T::select(t.eq(to), f_out, fo);
+        }
+        let (ri, ro) = (fi.lt(T::zero()), fo.lt(T::zero()));
         let mut nb = [lo, hi, lo, hi];
-        for &t in c.iter().chain(extra) {
-            let t = t.clamp(lo, hi);
-            nb[0] = T::select(t.lt(ti) & t.gt(nb[0]), t, nb[0]);
-            nb[1] = T::select(t.gt(ti) & t.lt(nb[1]), t, nb[1]);
-            nb[2] = T::select(t.lt(to) & t.gt(nb[2]), t, nb[2]);
-            nb[3] = T::select(t.gt(to) & t.lt(nb[3]), t, nb[3]);
+        for &(t, f_in, f_out) in &at[..n] {
+            // Right of the winner with F₁ ≥ 0, or left with F₁ ≤ 0: a sign change between.
+            let (right_i, left_i) = (ri & f_in.ge(T::zero()), !ri & f_in.le(T::zero()));
+            let (right_o, left_o) = (ro & f_out.ge(T::zero()), !ro & f_out.le(T::zero()));
+            nb[0] = T::select(left_i & t.lt(ti) & t.gt(nb[0]), t, nb[0]);
+            nb[1] = T::select(right_i & t.gt(ti) & t.lt(nb[1]), t, nb[1]);
+            nb[2] = T::select(left_o & t.lt(to) & t.gt(nb[2]), t, nb[2]);
+            nb[3] = T::select(right_o & t.gt(to) & t.lt(nb[3]), t, nb[3]);
         }
         Candidates {
             at: Crossings { s_in: bi, u_in: ti, s_out: -bo, u_out: to },
