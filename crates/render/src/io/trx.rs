@@ -79,9 +79,6 @@ fn count(h: &Value, key: &str, name: &str) -> Result<usize, IoError> {
 
 type Zip<R> = zip::ZipArchive<R>;
 
-/// A data array read whole: name, columns, values.
-type Array = (String, usize, Vec<f64>);
-
 /// The array entries of the archive (skipping JSON, folders and unknown dtypes), from its
 /// directory: nothing is decompressed.
 fn entries<R: Read + Seek>(zip: &mut Zip<R>, name: &str) -> Result<Vec<Entry>, IoError> {
@@ -159,12 +156,12 @@ pub struct TrxInfo {
     pub groups: Vec<(String, Vec<u64>)>,
 }
 
-/// Column groups of `fields` laid side by side, and the total width.
-fn columns(fields: &[Array]) -> (Vec<(String, usize, usize)>, usize) {
+/// Column groups of `fields` (name, width) laid side by side, and the total width.
+fn columns(fields: &[(String, usize)]) -> (Vec<(String, usize, usize)>, usize) {
     let mut at = 0;
     let groups = fields
         .iter()
-        .map(|(n, w, _)| {
+        .map(|(n, w)| {
             at += w;
             (n.clone(), at - w, *w)
         })
@@ -191,17 +188,31 @@ fn counts<R: Read + Seek>(zip: &mut Zip<R>, name: &str) -> Result<(usize, usize)
 
 /// Stream a `.trx` file: each streamline goes to `each` as its positions are decompressed,
 /// with, when `data`, its per-vertex values ([`Line::scalars`]) and per-streamline values
-/// ([`Line::properties`]) laid out as the returned [`TrxInfo`] says (the `dpv`/`dps` arrays
-/// are then read whole, and the groups are read and checked). Without `data` only the
-/// offsets are held whole (8 bytes per streamline). The checks of [`read`].
-pub fn stream<R: Read + Seek>(
+/// ([`Line::properties`]) laid out as the returned [`TrxInfo`] says, and the groups read and
+/// checked. Every array is read streamline by streamline, from its own clone of `r` (one
+/// view of the archive per `dpv`/`dps` array): nothing is held whole but the offsets (8 bytes
+/// per streamline) and the groups. The checks of [`read`].
+pub fn stream<R: Read + Seek + Clone>(
     r: R,
     name: &str,
     data: bool,
     each: &mut dyn FnMut(Line<'_>) -> Flow,
 ) -> Result<TrxInfo, IoError> {
-    let mut zip =
-        zip::ZipArchive::new(r).map_err(|e| IoError::file(name, format!("not a TRX file (zip archive): {e}")))?;
+    stream_from(&mut || Ok(r.clone()), name, data, each)
+}
+
+/// [`stream`] with a reader per view of the archive from `open` (called once for the
+/// streamlines and once per `dpv`/`dps` array when `data`): e.g. the file opened again, so
+/// that a reader need not be `Clone`.
+pub fn stream_from<R: Read + Seek>(
+    open: &mut dyn FnMut() -> Result<R, IoError>,
+    name: &str,
+    data: bool,
+    each: &mut dyn FnMut(Line<'_>) -> Flow,
+) -> Result<TrxInfo, IoError> {
+    let archive =
+        |r: R| zip::ZipArchive::new(r).map_err(|e| IoError::file(name, format!("not a TRX file (zip archive): {e}")));
+    let mut zip = archive(open()?)?;
     let (ns, nv) = counts(&mut zip, name)?;
     let mut info = TrxInfo { counts: (ns, nv), ..TrxInfo::default() };
     if ns == 0 || nv == 0 {
@@ -240,29 +251,84 @@ pub fn stream<R: Read + Seek>(
         return Err(IoError::file(name, format!("offsets must rise from 0 to NB_VERTICES = {nv}")));
     }
     let off: Vec<u64> = off.iter().map(|&v| v as u64).collect();
-    let load = |zip: &mut Zip<R>, list: Vec<Entry>| -> Result<Vec<Array>, IoError> {
-        let mut out = Vec::new();
-        for e in list.into_iter().filter(|_| data) {
-            out.push((e.base.clone(), e.dim, values(zip, &e, name)?));
-        }
-        out.sort_by(|a, b| a.0.cmp(&b.0));
-        Ok(out)
-    };
-    let (dpv, dps) = (load(&mut zip, dpv)?, load(&mut zip, dps)?);
-    ((info.scalars, _), (info.properties, _)) = (columns(&dpv), columns(&dps));
+    if !data {
+        (dpv, dps) = (Vec::new(), Vec::new());
+    }
+    dpv.sort_by(|a, b| a.base.cmp(&b.base));
+    dps.sort_by(|a, b| a.base.cmp(&b.base));
+    let fields = |list: &[Entry]| columns(&list.iter().map(|e| (e.base.clone(), e.dim)).collect::<Vec<_>>()).0;
+    (info.scalars, info.properties) = (fields(&dpv), fields(&dps));
     info.groups.sort();
+    // One view of the archive per data array, each read as the streamlines go.
+    let mut views = Vec::with_capacity(dpv.len() + dps.len());
+    for _ in 0..dpv.len() + dps.len() {
+        views.push(archive(open()?)?);
+    }
+    let mut cols = Vec::with_capacity(views.len());
+    for (z, e) in views.iter_mut().zip(dpv.iter().chain(&dps)) {
+        cols.push(Column::new(z, e, name)?);
+    }
+    let (cv, cs) = cols.split_at_mut(dpv.len());
     let f = zip.by_index(pos.index).map_err(|e| IoError::file(name, format!("entry \"positions\": {e}")))?;
-    walk(Src::new(f, name), &pos.dtype, &off, (&dpv, &dps), each)?;
-    Ok(info)
+    walk(Src::new(f, name), &pos.dtype, &off, (cv, cs), each).map(|()| info)
+}
+
+/// A `dpv`/`dps` array read item by item (`dim` values each) from its own view of the archive.
+struct Column<'a, R: Read> {
+    src: Src<'a, zip::read::ZipFile<'a, R>>,
+    path: String,
+    dim: usize,
+    dtype: String,
+    buf: Vec<u8>,
+    vals: Vec<f64>,
+}
+
+impl<'a, R: Read + Seek> Column<'a, R> {
+    fn new(zip: &'a mut Zip<R>, e: &Entry, name: &'a str) -> Result<Self, IoError> {
+        let path = format!("{}/{}", e.folder, e.base);
+        let f = zip.by_index(e.index).map_err(|err| IoError::file(name, format!("entry {path:?}: {err}")))?;
+        let (dim, dtype) = (e.dim, e.dtype.clone());
+        Ok(Self { src: Src::new(f, name), path, dim, dtype, buf: Vec::new(), vals: Vec::new() })
+    }
+
+    /// The next `n` items' values into `self.vals`. An entry shorter than its directory record
+    /// says is an error, as in [`values`].
+    fn next(&mut self, n: u64) -> Result<(), IoError> {
+        let need = n * self.dim as u64 * dtype_size(&self.dtype).unwrap_or(1) as u64;
+        let name = self.src.name;
+        if (self.src.chunk(need, &mut self.buf)? as u64) < need {
+            return Err(IoError::file(
+                name,
+                format!("entry {:?} holds fewer bytes than the zip directory says", self.path),
+            ));
+        }
+        self.vals = match decode(&self.buf, &self.dtype) {
+            Some(Ok(v)) => v,
+            _ => return Err(IoError::file(name, format!("entry {:?}: not {}", self.path, self.dtype))),
+        };
+        Ok(())
+    }
+
+    /// After the last item: an entry longer than its directory record says is an error.
+    fn end(&mut self) -> Result<(), IoError> {
+        let mut one = [0u8; 1];
+        match self.src.fill(&mut one)? {
+            0 => Ok(()),
+            _ => Err(IoError::file(
+                self.src.name,
+                format!("entry {:?} holds more bytes than the zip directory says", self.path),
+            )),
+        }
+    }
 }
 
 /// Decode the positions from `src` streamline by streamline (offsets `off`), with the data
 /// `(dpv, dps)` of each, into `each`.
-fn walk<R: Read>(
+fn walk<'a, R: Read, C: Read + Seek>(
     mut src: Src<'_, R>,
     dtype: &str,
     off: &[u64],
-    (dpv, dps): (&[Array], &[Array]),
+    (dpv, dps): (&mut [Column<'a, C>], &mut [Column<'a, C>]),
     each: &mut dyn FnMut(Line<'_>) -> Flow,
 ) -> Result<(), IoError> {
     let name = src.name;
@@ -283,19 +349,26 @@ fn walk<R: Read>(
         }
         points.clear();
         points.extend(v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]));
+        for c in dpv.iter_mut() {
+            c.next(w[1] - w[0])?;
+        }
         scal.clear();
-        for i in w[0] as usize..w[1] as usize {
-            for (_, d, vals) in dpv {
-                scal.extend_from_slice(&vals[i * d..(i + 1) * d]);
+        for i in 0..(w[1] - w[0]) as usize {
+            for c in dpv.iter() {
+                scal.extend_from_slice(&c.vals[i * c.dim..(i + 1) * c.dim]);
             }
         }
         prop.clear();
-        for (_, d, vals) in dps {
-            prop.extend_from_slice(&vals[k * d..(k + 1) * d]);
+        for c in dps.iter_mut() {
+            c.next(1)?;
+            prop.extend_from_slice(&c.vals);
         }
         if each(Line { index: k, points: &points, scalars: &scal, properties: &prop }) == Flow::Stop {
-            break;
+            return Ok(());
         }
+    }
+    for c in dpv.iter_mut().chain(dps.iter_mut()) {
+        c.end()?;
     }
     Ok(())
 }

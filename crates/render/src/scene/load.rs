@@ -105,7 +105,14 @@ impl Scene {
             }
             "tck" => load_tck(file, path, len, &mut sink)?,
             "trx" => {
-                let info = io::trx::stream(file, &name, data, &mut |l| sink.push(l))?;
+                // The streamlines through `file` (its progress), each data array through the
+                // file opened again (TRX reads them side by side, streamline by streamline).
+                let mut first = Some(file);
+                let mut open = || match first.take() {
+                    Some(f) => Ok(f),
+                    None => io::stream::open(path).map(|(f, _)| ProgressBar::hidden().wrap_read(f)),
+                };
+                let info = io::trx::stream_from(&mut open, &name, data, &mut |l| sink.push(l))?;
                 (info.scalars, info.properties)
             }
             _ => return load_obj(file, &name, opts, sel, data),
