@@ -237,3 +237,32 @@ fn far_term_of_the_bound_must_not_underflow() {
     assert!(t.sdf(ray.at(iv.t_out)).abs() <= bound);
     check::check(BYTES);
 }
+
+/// Spline campaign seed 2102 (19.7·10⁶ executions on 2b1aa2b), kept as
+/// fuzz/corpus/spline/regression-ball-far-from-origin: all three control points at
+/// c = −1.4568159901474629e144·(1, 1, 1), radii r = [r₀, 3.26e-311, 0], r₀ = 3.242498108496268e-5,
+/// the ray from o = c with d = c. Every sphere of the sweep is centred at c with radius
+/// r(u) = r₀(1 − u)² + 2u(1 − u)·3.26e-311 ≤ r₀ (u ∈ [0, 1]), so the sweep is the ball (c, r₀)
+/// and the line through its centre meets it at s = ∓r₀ along d̂: t = ∓r₀/|d|, at u = 0.
+///
+/// The kernel was right (to 3ε: t = tc + s·(big·(1/|d|)) with tc = 0 and s = ∓1 exactly); the
+/// check was wrong: it formed the hit point o + t·d in world coordinates, where it rounds by
+/// ε|o| = 5.6e128 — back to the centre — and reported it r₀ inside the surface. The check now
+/// measures the point relative to b₀, as its bound assumes.
+#[test]
+fn ball_far_from_the_world_origin() {
+    let c: f64 = -1.4568159901474629e144;
+    let p = tubecast::V3::new(c, c, c);
+    let r0: f64 = 3.242498108496268e-5;
+    let tube = QuadTube::new([p, p, p], [r0, 3.2593899708575e-311, 0.0]).unwrap();
+    let ray = Ray::new(p, p);
+    let exact = r0 / ray.d.length();
+    for solver in [Solver::Polynomial, Solver::Newton, Solver::Itp] {
+        let iv = tube.intersect_with(&ray, solver);
+        assert!(iv.hit, "{solver:?}");
+        assert!((iv.t_in + exact).abs() <= 3.0 * f64::EPSILON * exact, "{solver:?} t_in {} vs {}", iv.t_in, -exact);
+        assert!((iv.t_out - exact).abs() <= 3.0 * f64::EPSILON * exact, "{solver:?} t_out {} vs {exact}", iv.t_out);
+    }
+    // The corpus entry replays clean through the (corrected) check.
+    check::check(include_bytes!("../fuzz/corpus/spline/regression-ball-far-from-origin"));
+}
