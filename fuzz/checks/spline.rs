@@ -99,7 +99,7 @@ pub fn check(data: &[u8]) {
             // which for a tube far from the world's origin exceeds the tube itself (campaign
             // seed 2102, regression-ball-far-from-origin: a ball of radius 3.2e-5 at 1.5e144,
             // the kernel's t exact, its point o + t·d rounded back to the centre).
-            let rel = QuadTube { b: [b[0] - b[0], b[1] - b[0], b[2] - b[0]], r };
+            let rel = QuadTube { b: [V3::new(0.0, 0.0, 0.0), b[1] - b[0], b[2] - b[0]], r };
             for tt in [iv.t_in, iv.t_out] {
                 let e = rel.sdf((ray.o - b[0]) + ray.d * tt);
                 let mut bound = surface_bound(&t, &ray, tt, true);
