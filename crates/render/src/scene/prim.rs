@@ -134,11 +134,22 @@ fn sphere_cone(r: f32) -> RoundCone<f32> {
     RoundCone { a: V3::zero(), ra: r, b: V3::zero(), rb: r }
 }
 
+/// Whether [`Prim::from_link`] stores the link as a sphere (its larger end sphere): where one end
+/// sphere contains the other ([`LinkShape::Sphere`]), and where the link is shorter than
+/// [`super::SHORT_LINK`], whose `f32` squared length would be subnormal (derivation and bound
+/// at [`super::MIN_RADIUS`]).
+#[inline]
+pub(crate) fn stored_as_sphere(l: &RoundCone<f64>) -> bool {
+    l.shape() == LinkShape::Sphere || (l.b - l.a).length() < super::SHORT_LINK
+}
+
 impl Prim {
-    /// The cheapest exact primitive for a validated link.
+    /// The cheapest exact primitive for a validated link: a sphere where [`stored_as_sphere`]
+    /// (one end sphere contains the other, or the link is shorter than [`super::SHORT_LINK`]),
+    /// else a cylinder or a tangent-cone link.
     pub fn from_link(l: &RoundCone<f64>, link: u32) -> Self {
         let shape = l.shape();
-        if shape == LinkShape::Sphere {
+        if stored_as_sphere(l) {
             // The larger sphere contains the link.
             let (c, r) = if l.ra >= l.rb { (l.a, l.ra) } else { (l.b, l.rb) };
             return Self { origin: c.to_array(), link, shape: Shape::Sphere { r: r as f32 } };
