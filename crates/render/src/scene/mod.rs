@@ -135,7 +135,9 @@ pub const MAX_COORD: f64 = 1e18;
 pub const MIN_RADIUS: f64 = 1.0 / (1u64 << 44) as f64;
 
 /// Links shorter than this, `2⁻⁶²`, are stored as their larger end sphere ([`Prim::from_link`]):
-/// their `f32` squared length would be subnormal (derivation at [`MIN_RADIUS`]).
+/// their `f32` squared length would be subnormal (derivation at [`MIN_RADIUS`]). (Where such a
+/// link is not also shorter than `2⁻¹⁸` of its radius — only beyond the scene's radius limit —
+/// it is left a link.)
 pub const SHORT_LINK: f64 = 1.0 / (1u64 << 62) as f64;
 
 /// One node of a tube: 24 bytes (its radius is in [`Scene::radii`], its SWC structure type,
