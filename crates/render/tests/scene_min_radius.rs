@@ -5,7 +5,9 @@
 //! The finding: brute force over the primitives of a one-sphere scene (radius 5.8·10⁻³¹) reported
 //! a touch for a line that misses the sphere by 8,000 radii, because the `f32` sphere kernel
 //! squared both the radius and the line's distance to 0. Scenes now refuse non-zero radii below
-//! `MIN_RADIUS` (the kernels' own `f32` validation rule), and so does the fuzz check.
+//! `MIN_RADIUS` (stricter than the kernels' own `f32` rule, `2⁻⁵¹·⁵`, so that links shorter
+//! than `SHORT_LINK = 2⁻⁶²`, whose `f32` squared length is subnormal, can be stored as their
+//! larger end sphere within `2⁻¹⁸·r`, half the kernels' band), and so does the fuzz check.
 //!
 //! ## The band the scaled scenes are judged by
 //! A renderer primitive stores its geometry in `f32` relative to an `f64` origin and runs the
@@ -27,7 +29,8 @@
 //! (`t = (tc + τ)/|d|`: two roundings of `|t|`, `≤ 2⁻⁵²·|t|`, taken ×16).
 //!
 //! `B` is proportional to the scene's scale, with no term for underflow: the claim is that above
-//! `MIN_RADIUS` underflow costs nothing measurable (the derivation bounds it by `2⁻⁴⁶·r`). The
+//! `MIN_RADIUS` underflow costs nothing measurable (the derivation bounds it by `2⁻⁶⁰·r`; a short
+//! link stored as a sphere is within `2⁻¹⁸·r ≤ E₃₂/2`). The
 //! finding shows the claim failing below the limit (a gap of `8·10³` radii, far outside `B`).
 
 mod accel {
