@@ -42,8 +42,13 @@ pub fn check(data: &[u8]) {
     for k in 0..n {
         let s = 8 * k;
         if let Ok(l) = RoundCone::new(v(s), f(s + 3), v(s + 4), f(s + 7)) {
-            // The renderer's own limit on coordinates (its scenes refuse larger ones).
-            if l.a.max_abs().max(l.b.max_abs()).max(l.ra).max(l.rb) <= tubecast_render::scene::MAX_COORD {
+            // The renderer's own limit on coordinates (its scenes refuse larger ones) and on
+            // radii (a non-zero one below MIN_RADIUS underflows when squared in f32).
+            let tiny = |r: f64| r > 0.0 && r < tubecast_render::scene::MIN_RADIUS;
+            if l.a.max_abs().max(l.b.max_abs()).max(l.ra).max(l.rb) <= tubecast_render::scene::MAX_COORD
+                && !tiny(l.ra)
+                && !tiny(l.rb)
+            {
                 prims.push(Prim::from_link(&l, k as u32));
             }
         }

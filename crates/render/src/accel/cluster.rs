@@ -37,8 +37,8 @@
 //! volume), and in a dense bundle a ray entered so many that tracing was 6× slower (peers
 //! report, Bundle 10⁵: 0.14 against 0.82 Mrays/s; pieces of two links: 0.41).
 
-use crate::scene::{link_interval, local_origin, Prim, Scene, Shape};
-use tubecast::{Interval, LinkShape, Ray, RoundCone, V3};
+use crate::scene::{link_interval, local_origin, stored_as_sphere, Prim, Scene, Shape};
+use tubecast::{Interval, Ray, RoundCone, V3};
 
 mod pending;
 pub(crate) use pending::Pending;
@@ -76,7 +76,8 @@ pub(crate) struct Run {
 
 impl Clusters {
     /// Split the scene's links into runs (see the module docs) and the primitives of the links
-    /// that join none (spheres: a link whose larger end sphere contains the other). One pass over
+    /// that join none (spheres: a link whose larger end sphere contains the other, or one shorter
+    /// than [`crate::scene::SHORT_LINK`]). One pass over
     /// [`crate::scene::Links::iter`] (each link read once, whatever the streamline lengths).
     pub fn group(scene: &Scene) -> (Vec<Run>, Vec<Prim>) {
         let mut runs: Vec<Run> = Vec::new();
@@ -89,7 +90,7 @@ impl Clusters {
             prev_end = Some(nb);
             let ((pa, ra), (pb, rb)) = (node(na), node(nb));
             let l = RoundCone::new(pa, ra, pb, rb).expect("scene links are validated when the scene is built");
-            if l.shape() == LinkShape::Sphere {
+            if stored_as_sphere(&l) {
                 single.push(Prim::from_link(&l, k as u32));
                 runs.extend(cur.take().map(|c| c.0));
                 continue;
@@ -266,6 +267,7 @@ fn max3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 mod tests {
     use super::*;
     use crate::scene::generate;
+    use tubecast::LinkShape;
 
     /// Scenes with chains, bifurcations, tapering and far origins (a bundle moved 10⁶ away),
     /// and SWC trees whose soma links are spheres.

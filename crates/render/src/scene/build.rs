@@ -1,6 +1,6 @@
 //! Building a [`Scene`] from reader output, with validation.
 
-use super::{Links, Node, Radii, Scene, SceneError, MAX_COORD};
+use super::{Links, Node, Radii, Scene, SceneError, MAX_COORD, MIN_RADIUS};
 use crate::io::{self, Polyline};
 
 /// Nodes, links, node kinds (empty: all 0) and radii before validation.
@@ -65,7 +65,8 @@ impl Scene {
     }
 
     /// Validate nodes and links into a scene (no nodes: the empty scene); `kinds` is dropped
-    /// when every kind is 0.
+    /// when every kind is 0. Coordinates and radii must be finite and within [`MAX_COORD`],
+    /// radii `≥ 0`, non-zero radii `≥` [`MIN_RADIUS`], and no link may have radius 0 at both ends.
     pub(super) fn finish(parts: Parts, name: &str) -> Result<Self, SceneError> {
         let (mut nodes, mut links, mut kinds, mut radii) = parts;
         if nodes.len() > u32::MAX as usize - 1 {
@@ -78,6 +79,9 @@ impl Scene {
             }
             if radius < 0.0 {
                 return Err(SceneError::NegativeRadius { file: name.to_string(), node: i, radius });
+            }
+            if radius > 0.0 && radius < MIN_RADIUS {
+                return Err(SceneError::RadiusTooSmall { file: name.to_string(), node: i, radius });
             }
         }
         let mut used = vec![false; nodes.len()];

@@ -1,6 +1,6 @@
 //! Why a scene could not be built or loaded.
 
-use super::MAX_COORD;
+use super::{MAX_COORD, MIN_RADIUS};
 use crate::io::swc::MIN_RADIUS_HINT;
 use crate::io::IoError;
 use std::fmt;
@@ -57,6 +57,16 @@ pub enum SceneError {
         /// The radius.
         radius: f64,
     },
+    /// A node's radius is not zero but below [`MIN_RADIUS`]: its square underflows in the
+    /// renderer's `f32` primitives.
+    RadiusTooSmall {
+        /// Input name.
+        file: String,
+        /// Node index.
+        node: usize,
+        /// The radius.
+        radius: f64,
+    },
     /// A link has zero radius at both ends, so no volume.
     NoVolume {
         /// Input name.
@@ -102,6 +112,12 @@ impl fmt::Display for SceneError {
             Self::NegativeRadius { file, node, radius } => {
                 write!(f, "{file}: node {node} has negative radius {radius}")
             }
+            Self::RadiusTooSmall { file, node, radius } => write!(
+                f,
+                "{file}: node {node} has radius {radius:e}, below the smallest non-zero radius the renderer \
+                 resolves, {MIN_RADIUS:e} (2⁻⁴⁴: smaller ones underflow in its f32 primitives); \
+                 scale the scene up (e.g. to micrometres), or raise such radii (`--min-radius R`)"
+            ),
             Self::NoVolume { file, link, nodes: [a, b] } => {
                 write!(f, "{file}: link {link} (nodes {a} and {b}) has zero radius at both ends, so no volume")
             }

@@ -65,7 +65,7 @@ pub use chains::{Chain, SplineFidelity, SplineSegment, SPLINE_MAX_DEPTH, SPLINE_
 pub use error::SceneError;
 pub use links::{Iter as LinkIter, Links};
 pub use load::{LoadOptions, LoadReport};
-pub(crate) use prim::{link_interval, local_origin};
+pub(crate) use prim::{link_interval, local_origin, stored_as_sphere};
 pub use prim::{Prim, PrimKind, Shape};
 pub use radii::Radii;
 pub use stats::Stats;
@@ -78,6 +78,67 @@ use tubecast::{HermiteSegment, QuadTube};
 /// Largest coordinate or radius magnitude a scene may hold: squares of lengths must stay
 /// finite in `f32` (`(2·1e18)² ≈ 4e36 < 3.4e38`), since primitives are stored in `f32`.
 pub const MAX_COORD: f64 = 1e18;
+
+/// Smallest non-zero radius a scene may hold, `2⁻⁴⁴ ≈ 5.7·10⁻¹⁴`: the counterpart of
+/// [`MAX_COORD`] at small scales. Radius 0 stays allowed at one end of a link (a pointed tip;
+/// both ends 0 is [`SceneError::NoVolume`]).
+///
+/// **Why a limit** (fuzz finding `regression-underflow-touch`): the renderer stores its
+/// primitives in `f32` ([`Prim`]), and the `f32` sphere kernel decides hit or miss by
+/// `disc = r² − |l|²` (`l`: the centre's perpendicular to the line). A sphere of radius
+/// `5.8·10⁻³¹` missed by `4.8·10⁻²⁷` squares both to 0 (`f32`'s smallest subnormal is
+/// `2⁻¹⁴⁹ ≈ 1.4·10⁻⁴⁵`), so `disc = 0` and it reported a touch 8,000 radii away. The kernels'
+/// own constructors ([`tubecast::Sphere::new`], [`RoundCone::new`]) refuse a non-zero `f32`
+/// radius below `2⁻⁵¹·⁵` (square below `MIN_POSITIVE/EPS = 2⁻¹⁰³`); the renderer's primitives
+/// do not go through them, so the scene applies a limit itself, and a stricter one (below).
+/// A radius `r ≥ 2⁻⁴⁴` in `f64` stays `≥ 2⁻⁴⁴` when rounded to `f32` (rounding is monotone and
+/// `2⁻⁴⁴` is an `f32`).
+///
+/// **Radii** (`u = 2⁻²⁴`, `f32`'s unit roundoff): every `f32` product or sum errs by `≤ u·|x|`
+/// where the result is normal and by `≤ 2⁻¹⁵⁰` (half the subnormal spacing, gradual underflow)
+/// where it is subnormal; with `r ≥ 2⁻⁴⁴`, `2⁻¹⁵⁰ ≤ 2⁻⁶²·r²`. So the computed
+/// `disc = r²(1 + δ₀) − |l|²(1 + δ₁) + η` with `|δ₀| ≤ u`, `|δ₁| ≤ 3u` (three squares, two
+/// sums) and `|η| ≤ 4·2⁻¹⁵⁰ ≤ 2⁻⁶⁰·r²` (squares of components below `2⁻⁶³`), for **every**
+/// `|l|`, subnormal `|l|²` included (there `|l| < 2⁻⁶³ < r` and `disc > 0`: a hit, which is
+/// right); `l`'s components err by `≤ u·|l| + 2⁻¹⁵⁰`, and the final subtraction keeps the sign.
+/// So the sign is the exact one unless `|r² − |l|²| ≤ u·r² + 3u·|l|² + 2⁻⁶⁰r²`: for `|l| ≥ 2r`
+/// never (`r² − |l|² ≤ −3r²`), otherwise only where `||l| − r| ≤ (13u + 2⁻⁶⁰)·r`, a line
+/// within `≈ 13u·r` of the surface (`≈ 2u·r` where `|l| ≈ r`). Underflow adds `2⁻⁶⁰·r`, nothing
+/// against the link kernels' band `E = 64ε·S ≥ 2⁻¹⁷·r` (`ε = 2⁻²³`; the kernel crate's
+/// `tests/link_props.rs`).
+///
+/// **Link lengths.** The link kernel normalises its axis by `L = √|b − a|²`, formed in `f32`; for
+/// `L < 2⁻⁶³` that square is subnormal, `L` loses up to all its digits, and the stump's sine
+/// `(ra − rb)/L` and unit axis go wrong by a share of the radius: measured, hit points up to
+/// `1,400·E` off for links `2⁻⁷⁵…2⁻⁷¹` long with radii `2⁻⁵¹…2⁻³⁰` (this crate's
+/// `tests/scene_min_radius.rs`). So [`Prim::from_link`] (and the compact tree's clusters) store
+/// a link shorter than [`SHORT_LINK`] `= 2⁻⁶²` as its larger end sphere. That is within
+/// `L` of the link (the hull lies in `B(a, ra + L)` for `ra ≥ rb`, since `B(b, rb) ⊂ B(a, ra + L)`,
+/// and contains `B(a, ra)`), and a short link has a non-zero radius at both ends (one 0 needs
+/// `L > ra − 0`), so `r ≥ 2⁻⁴⁴` gives `L < 2⁻⁶² ≤ 2⁻¹⁸·r`: half the band `E`. That is the reason
+/// for `2⁻⁴⁴` rather than the kernels' `2⁻⁵¹·⁵`. A link `≥ 2⁻⁶²` long has a normal `f32` squared
+/// length (its stored offsets round by `≤ u` relative), accurate to `≈ 4u` like any other.
+///
+/// `tests/scene_min_radius.rs` checks the `f32` primitives (spheres, cylinders, cones, zero
+/// tips, links `2⁻⁹⁰` to `2⁶` of their radius long, far ray origins; per link and the compact
+/// tree's) against the `f64` kernels within that band over scenes scaled by `2ᵏ` down to this
+/// limit, and shows them leaving it below.
+///
+/// ```
+/// use tubecast::{RoundCone, V3};
+/// use tubecast_render::scene::MIN_RADIUS;
+/// assert_eq!(MIN_RADIUS, 2f64.powi(-44));
+/// // Stricter than the f32 kernels' own rule: that accepts down to 2⁻⁵¹ = MIN_RADIUS/2⁷.
+/// let link = |r: f32| RoundCone::new(V3::zero(), r, V3::new(1.0, 0.0, 0.0), r);
+/// assert!(link(MIN_RADIUS as f32 / 128.0).is_ok() && link(MIN_RADIUS as f32 / 256.0).is_err());
+/// ```
+pub const MIN_RADIUS: f64 = 1.0 / (1u64 << 44) as f64;
+
+/// Links shorter than this, `2⁻⁶²`, are stored as their larger end sphere ([`Prim::from_link`]):
+/// their `f32` squared length would be subnormal (derivation at [`MIN_RADIUS`]). (Where such a
+/// link is not also shorter than `2⁻¹⁸` of its radius — only beyond the scene's radius limit —
+/// it is left a link.)
+pub const SHORT_LINK: f64 = 1.0 / (1u64 << 62) as f64;
 
 /// One node of a tube: 24 bytes (its radius is in [`Scene::radii`], its SWC structure type,
 /// when it has one, in [`Scene::kinds`]).
@@ -104,7 +165,8 @@ pub struct Scene {
     /// A node that no link uses is stored as the zero-length link `[i, i]` (a sphere), so
     /// every primitive has a link index.
     pub links: Links,
-    /// Radius (≥ 0) of each node ([`Scene::radius`]), stored once while they are all equal.
+    /// Radius (0, or in [`MIN_RADIUS`]…[`MAX_COORD`]) of each node ([`Scene::radius`]), stored
+    /// once while they are all equal.
     pub radii: Radii,
     /// SWC structure type of each node ([`Scene::kind`]), or empty when every node's is 0
     /// (tractography, polylines).

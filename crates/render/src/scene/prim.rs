@@ -134,11 +134,25 @@ fn sphere_cone(r: f32) -> RoundCone<f32> {
     RoundCone { a: V3::zero(), ra: r, b: V3::zero(), rb: r }
 }
 
+/// Whether [`Prim::from_link`] stores the link as a sphere (its larger end sphere): where one end
+/// sphere contains the other ([`LinkShape::Sphere`]), and where the link is shorter than
+/// [`super::SHORT_LINK`] (its `f32` squared length would be subnormal) and than `2⁻¹⁸` of its
+/// larger radius (so the sphere is within half the kernels' band of it; derivation at
+/// [`super::MIN_RADIUS`]). In a scene (radii `≥ MIN_RADIUS`) the second condition follows
+/// from the first; it leaves primitives built beyond the scene's limits as they were.
+#[inline]
+pub(crate) fn stored_as_sphere(l: &RoundCone<f64>) -> bool {
+    let len = (l.b - l.a).length();
+    l.shape() == LinkShape::Sphere || (len < super::SHORT_LINK && len * 262_144.0 <= l.ra.max(l.rb))
+}
+
 impl Prim {
-    /// The cheapest exact primitive for a validated link.
+    /// The cheapest exact primitive for a validated link: a sphere where [`stored_as_sphere`]
+    /// (one end sphere contains the other, or the link is shorter than [`super::SHORT_LINK`] and
+    /// than `2⁻¹⁸` of its radius), else a cylinder or a tangent-cone link.
     pub fn from_link(l: &RoundCone<f64>, link: u32) -> Self {
         let shape = l.shape();
-        if shape == LinkShape::Sphere {
+        if stored_as_sphere(l) {
             // The larger sphere contains the link.
             let (c, r) = if l.ra >= l.rb { (l.a, l.ra) } else { (l.b, l.rb) };
             return Self { origin: c.to_array(), link, shape: Shape::Sphere { r: r as f32 } };
