@@ -17,14 +17,22 @@
 //!   build holds on top of it, the runs' heads and the tables in item order;
 //!   [`BUILD_BYTES_PER_ITEM`]: the tree builder's buffers per item it builds at once, at most
 //!   [`BUILD_ITEMS`]);
-//! - **a tracer built whole over a primitive list** (`--accel bvh2`, `--accel grid`, the spline
-//!   model): `links × (scene' + tracer + WHOLE_BUILD_BYTES)`: these builds are not chunked, so
-//!   the builder's share ([`WHOLE_BUILD_BYTES`]) grows with every link;
+//! - **a tracer built whole over a primitive list** (`--accel bvh2`, the spline model):
+//!   `links × (scene' + tracer + WHOLE_BUILD_BYTES)`: these builds are not chunked, so the
+//!   builder's share ([`WHOLE_BUILD_BYTES`]) grows with every link;
+//! - **the voxel grid** (`--accel grid`, [`Work::grid`]): `links × scene' +` the grid build's
+//!   peak ([`Footprint::build_bytes`]: its primitives, pairs, counters, offsets and lists), at
+//!   the resolution the build will choose for the whole scene ([`grid_footprint`]). A grid's
+//!   bytes per link are not those of a sample: its cells and references per link depend on the
+//!   link count, the box and the rays per build, so a sample's grid (built at the sample's own,
+//!   coarser, resolution) said 0.49 GB where `render --accel grid` at 10⁶ links peaked at
+//!   0.61 GB;
 //! - **`render`'s primitive list** (every path but the compact tree's exact one, which takes
 //!   the bounds from the scene one primitive at a time and builds from the scene alone):
 //!   `render` computes one [`crate::scene::Prim`] per link ([`PRIM_BYTES`]) for the scene's
 //!   bounds and after the clamp, beside `scene'`: `links × (scene' + PRIM_BYTES)`.
 
+use crate::accel::grid::{Footprint, GridParams, SceneSums};
 use crate::io::stream::{open, Selection};
 use crate::io::{self, IoError};
 use std::fmt;
@@ -65,11 +73,21 @@ pub const THIN_BYTES_PER_NODE: f64 = 12.0;
 /// primitives).
 pub const PRIM_BYTES: f64 = std::mem::size_of::<crate::scene::Prim>() as f64;
 
-/// Bytes per link a tracer built whole over its primitive list (obvhs's binary BVH, the voxel
-/// grid) holds during its build beyond its finished size (builder arrays, item boxes): fitted
-/// to the peaks of `tubecast intersect` and `render` with `--accel bvh2` and `--accel grid` at
-/// 10⁶ links (see the tests: the grid needs 267 B, the binary BVH 185 B), rounded up.
+/// Bytes per link a tracer built whole over its primitive list (obvhs's binary BVH) holds
+/// during its build beyond its finished size (builder arrays, item boxes): fitted to the peaks
+/// of `tubecast intersect` and `render` with `--accel bvh2` at 10⁶ links (see the tests: 185 B;
+/// the former λ = 2 grid needed 267 B), rounded up. The grid has its own model
+/// ([`Work::grid`]).
 pub const WHOLE_BUILD_BYTES: f64 = 280.0;
+
+/// Bytes of one ray `intersect` holds (a [`tubecast::Ray`] in `f64`).
+pub const RAY_BYTES: u64 = std::mem::size_of::<tubecast::Ray<f64>>() as u64;
+
+/// The references a grid lists over Steiner's expectation ([`grid_footprint`]): the voxelizer is
+/// conservative (it lists every voxel the padded solid may meet) and grows the radii by the
+/// margin; `tubecast-lab voxel` measured 0.96–1.08× the expectation over its sweep (issue 11),
+/// and `generate bundle` at 10⁶ links lists 1.05× (512² rays per build) and 1.02× (10⁵).
+pub const GRID_REFERENCE_MARGIN: f64 = 1.08;
 
 /// Bytes per pixel of `render`'s image: linear RGB, alpha and depth (24 B, [`crate::render::
 /// Image`]) and the 8-bit RGB(A) copy written to the PNG (3–4 B), rounded up.
@@ -100,11 +118,59 @@ pub struct Work {
     pub thin_nodes: f32,
     /// Pixels of the image (0: no image).
     pub pixels: u64,
+    /// The voxel grid the command builds over the whole scene (`--accel grid`,
+    /// [`grid_footprint`]), whose build's peak replaces the tracer's bytes per link
+    /// (`compact` is then `false`).
+    pub grid: Option<Footprint>,
+    /// Rays the command holds ([`RAY_BYTES`] each; `intersect`'s table of rays).
+    pub rays: u64,
 }
 
 impl Work {
     /// `info`: the compact tree, nothing else.
-    pub const INFO: Work = Work { compact: true, prim_list: false, thin_nodes: 0.0, pixels: 0 };
+    pub const INFO: Work = Work { compact: true, prim_list: false, thin_nodes: 0.0, pixels: 0, grid: None, rays: 0 };
+}
+
+/// The grid that `--accel grid` will build over `links` links, from a sample of the file: the
+/// sample's primitive sums `sample` ([`SceneSums::of`]) over its `sample_links` links, scaled to
+/// `links`, in the sample's padded box `ext` ([`crate::accel::grid::padded_extent`]), at the
+/// resolution `params` (the command's rays per build) chooses for them
+/// ([`GridParams::footprint`], the build's own resolution code), with
+/// [`GRID_REFERENCE_MARGIN`] times Steiner's expected references.
+///
+/// The whole scene's box is not known before it is loaded; the sample's stands in. A sample
+/// whose box is smaller than the scene's over-estimates: at a fixed link count a smaller box
+/// packs the same links denser, and the cost models choose more cells and references per link
+/// there (`the_grid_model_takes_more_in_a_smaller_box` checks it on the bundle's statistics).
+///
+/// ```
+/// use tubecast_render::accel::grid::{padded_extent, GridParams, SceneSums};
+/// use tubecast_render::estimate::grid_footprint;
+/// use tubecast_render::scene::{generate, Scene};
+/// let prims = Scene::from_polylines(&generate::bundle(200, 84, 1), 0.12, "sample").unwrap().primitives();
+/// let (sums, ext) = (SceneSums::of(&prims), padded_extent(&prims));
+/// let params = GridParams { rays_per_build: Some(512.0 * 512.0), ..GridParams::default() };
+/// let big = grid_footprint(&sums, 16_800, ext, 1_000_020, &params);
+/// assert_eq!(big.prims, 1_000_020);
+/// assert!(big.cells() > params.footprint(ext, &sums).cells()); // finer than the sample's grid
+/// ```
+pub fn grid_footprint(
+    sample: &SceneSums,
+    sample_links: u64,
+    ext: [f64; 3],
+    links: u64,
+    params: &GridParams,
+) -> Footprint {
+    let k = links as f64 / sample_links.max(1) as f64;
+    let sums = SceneSums {
+        count: (sample.count as f64 * k).round() as usize,
+        length: sample.length * k,
+        radius: sample.radius * k,
+        cross: sample.cross * k,
+        solid: sample.solid * k,
+    };
+    let f = params.footprint(ext, &sums);
+    Footprint { references: f.references * GRID_REFERENCE_MARGIN, ..f }
 }
 
 /// What a file holds, from its header and size, without reading its body.
@@ -226,15 +292,16 @@ impl PerLink {
     pub fn needed_for(&self, links: u64, work: &Work) -> f64 {
         let n = links as f64;
         let scene = self.scene + THIN_BYTES_PER_NODE * work.thin_nodes as f64;
-        let build = match work.compact {
-            true => {
+        let build = match (work.compact, work.grid) {
+            (true, _) => {
                 n * (scene + self.tracer * (1.0 + BUILD_OVERHEAD))
                     + links.min(BUILD_ITEMS) as f64 * BUILD_BYTES_PER_ITEM
             }
-            false => n * (scene + self.tracer + WHOLE_BUILD_BYTES),
+            (false, Some(g)) => n * scene + g.build_bytes(),
+            (false, None) => n * (scene + self.tracer + WHOLE_BUILD_BYTES),
         };
         let list = if work.prim_list { n * (scene + PRIM_BYTES) } else { 0.0 };
-        build.max(list) + (work.pixels * PIXEL_BYTES) as f64
+        build.max(list) + (work.pixels * PIXEL_BYTES + work.rays * RAY_BYTES) as f64
     }
 }
 
@@ -250,7 +317,7 @@ pub struct TooLarge {
     /// Bytes per link (scene, tracer).
     pub per_link: PerLink,
     /// What the command builds besides the scene.
-    pub work: Work,
+    pub work: Box<Work>,
     /// Estimated peak bytes.
     pub needed: u64,
     /// The bytes there are, and where that figure comes from.
@@ -260,7 +327,7 @@ pub struct TooLarge {
 impl TooLarge {
     /// How the peak is made up, in words, and the options of the command that lower it.
     fn parts(&self) -> (String, String) {
-        let (w, p) = (&self.work, &self.per_link);
+        let (w, p) = (&*self.work, &self.per_link);
         let mut how = format!("scene {:.1} B + primitives and tree {:.1} B", p.scene, p.tracer);
         let mut help = String::new();
         if w.thin_nodes > 0.0 {
@@ -275,6 +342,10 @@ impl TooLarge {
                 100.0 * BUILD_OVERHEAD,
                 BUILD_BYTES_PER_ITEM
             );
+        } else if let Some(g) = w.grid {
+            let more = (g.build_bytes() - g.finished_bytes()) / n.max(1.0);
+            how += &format!(", a grid of {} voxels built whole with {more:.0} B more per link", g.cells());
+            help += ", --accel bvh (built in chunks)";
         } else {
             how += &format!(", built whole with {WHOLE_BUILD_BYTES:.0} B more per link");
             help += ", --accel bvh (built in chunks)";
@@ -341,7 +412,15 @@ pub fn check_with(
 ) -> Result<u64, TooLarge> {
     let needed = per_link.needed_for(links, &work) as u64 + BASE_BYTES;
     if needed > available.0 {
-        return Err(TooLarge { file: file.to_string(), links, streamlines, per_link, work, needed, available });
+        return Err(TooLarge {
+            file: file.to_string(),
+            links,
+            streamlines,
+            per_link,
+            work: Box::new(work),
+            needed,
+            available,
+        });
     }
     Ok(needed)
 }
@@ -406,29 +485,29 @@ mod tests {
     /// in kB; render `--width 512 --height 512 --ao off`, its thin-tube clamp on as `auto` is
     /// for `.tck`; intersect: 10⁵ rays). The tracer's bytes per link are what the CLI's
     /// sample of 200 streamlines measures: compact tree 35.3, obvhs Bvh2 over the primitives
-    /// 183.2, grid 104.1.
+    /// 183.2. The grid has its own test (`the_grid_estimate_covers_its_measured_peaks`).
     #[test]
     fn the_estimate_covers_each_command() {
         let thin = 85.0 / 84.0;
         let render = Work { thin_nodes: thin, pixels: 512 * 512, ..Work::INFO };
         let listed = Work { prim_list: true, ..render };
         let whole = |w: Work| Work { compact: false, ..w };
-        let (compact, bvh2, grid) = (35.3, 183.2, 104.1);
+        let (compact, bvh2) = (35.3, 183.2);
         let per = |tracer: f64| PerLink { scene: 24.43, tracer };
         // 10⁶ links (1 000 020; `generate bundle --count 11905`), one run each: the compact
         // rows with the clusters stored once (before: info 318 080, intersect 324 892, render
-        // 330 328 / 330 288 / 318 128 kB); `render --accel bvh2|grid` after it stopped holding
-        // two primitive lists at once (483 476 and 486 072 kB before).
+        // 330 328 / 330 288 / 318 128 kB); `render --accel bvh2` after it stopped holding two
+        // primitive lists at once (483 476 kB before). The rows of the former λ = 2 grid
+        // (intersect 402 112, render 408 208 kB) are in the grid's own test.
         let e6 = 1_000_020;
         assert_covers("info", e6, per(compact), &Work::INFO, 300_656.0);
-        assert_covers("intersect", e6, per(compact), &Work::INFO, 307_268.0);
+        let intersect = Work { rays: 100_000, ..Work::INFO };
+        assert_covers("intersect", e6, per(compact), &intersect, 307_268.0);
         assert_covers("render opaque", e6, per(compact), &render, 313_080.0);
         assert_covers("render --opacity 0.3", e6, per(compact), &render, 312_968.0);
         assert_covers("render --thin off", e6, per(compact), &Work { thin_nodes: 0.0, ..render }, 300_612.0);
-        assert_covers("intersect --accel bvh2", e6, per(bvh2), &whole(Work::INFO), 399_964.0);
-        assert_covers("intersect --accel grid", e6, per(grid), &whole(Work::INFO), 402_112.0);
+        assert_covers("intersect --accel bvh2", e6, per(bvh2), &whole(intersect), 399_964.0);
         assert_covers("render --accel bvh2", e6, per(bvh2), &whole(listed), 404_988.0);
-        assert_covers("render --accel grid", e6, per(grid), &whole(listed), 408_208.0);
         // 10⁷ links (10 000 032; `--count 119048`), once, niced beside builds (1 402 832 kB
         // with the primitive list and the clusters stored twice).
         assert_covers("render opaque", 10_000_032, per(compact), &render, 1_239_460.0);
@@ -439,9 +518,76 @@ mod tests {
         let e8 = 99_999_984;
         let per8 = PerLink { scene: 24.43, tracer: compact };
         assert_covers("info", e8, per8, &Work::INFO, E8_INFO_KB);
-        assert_covers("intersect", e8, per8, &Work::INFO, 6_353_876.0);
+        assert_covers("intersect", e8, per8, &Work { rays: 100_000, ..Work::INFO }, 6_353_876.0);
         assert_covers("render opaque", e8, per8, &render, E8_RENDER_KB);
         // The list would not fit the 8 GB target beside the clamped scene.
         assert!(per8.needed_for(e8, &listed) > 8e9);
+    }
+
+    /// What the CLI estimates for `--accel grid` on `links` links of `generate bundle
+    /// --segments 84` with `rays` rays per build: the sample of its first 200 streamlines
+    /// (`cmd_load`'s `SAMPLE_STREAMLINES`; the generator's first tubes do not depend on the
+    /// count), the grid's primitives ([`crate::accel::WideBvh::scene_primitives`]), their sums
+    /// and box scaled to `links` ([`grid_footprint`]).
+    fn grid_work(links: u64, rays: f64, work: Work) -> (PerLink, Work) {
+        let sample = crate::scene::generate::bundle(200, 84, 1);
+        let scene = crate::scene::Scene::from_polylines(&sample, 0.12, "sample").unwrap();
+        let prims = crate::accel::WideBvh::scene_primitives(&scene);
+        let (sums, ext) = (SceneSums::of(&prims), crate::accel::grid::padded_extent(&prims));
+        let params = GridParams { rays_per_build: Some(rays), ..GridParams::default() };
+        let f = grid_footprint(&sums, scene.links.len() as u64, ext, links, &params);
+        let per_link = PerLink { scene: 24.43, tracer: f.finished_bytes() / links as f64 };
+        (per_link, Work { compact: false, grid: Some(f), ..work })
+    }
+
+    /// `--accel grid` against its measured peaks: `generate bundle --segments 84` with
+    /// `--count 1191` (100 044 links) and `--count 11905` (1 000 020), `TUBECAST_PEAK_RSS=1
+    /// /usr/bin/time -v tubecast CMD FILE --radius 0.12 --accel grid` (plain release build,
+    /// `VmHWM` in kB, one run each, niced at load 5–6): `render --width 512 --height 512 --ao
+    /// off` (262 144 rays per build; `--thin auto`, on for `.tck`) and `intersect --rays` of 10⁵
+    /// rays. The grid's resolution, and with it its bytes per link, follow the link count and
+    /// the rays (`grid_footprint`); the former estimate took a sample's grid, built at the
+    /// sample's own coarser resolution with the static model, and said 0.49 GB against the
+    /// 10⁶ render's 0.61 GB (0.40× what the static model's build then took).
+    #[test]
+    fn the_grid_estimate_covers_its_measured_peaks() {
+        let render = Work { thin_nodes: 85.0 / 84.0, pixels: 512 * 512, prim_list: true, ..Work::INFO };
+        let frame = 512.0 * 512.0;
+        let intersect = Work { rays: 100_000, ..Work::INFO };
+        let rows = [
+            ("render", 100_044, frame, render, 65_172.0),
+            ("intersect", 100_044, 1e5, intersect, 65_228.0),
+            ("render", 1_000_020, frame, render, 609_256.0),
+            ("render --thin off", 1_000_020, frame, Work { thin_nodes: 0.0, ..render }, 597_028.0),
+            ("intersect", 1_000_020, 1e5, intersect, 395_708.0),
+        ];
+        for (what, links, rays, work, kb) in rows {
+            let (per_link, work) = grid_work(links, rays, work);
+            assert_covers(what, links, per_link, &work, kb);
+        }
+    }
+
+    /// [`grid_footprint`] takes the sample's box for the scene's (not known before loading):
+    /// that over-estimates only if a smaller box never gives a cheaper grid. Checked on the
+    /// bundle's statistics at 10⁵–10⁸ links, for the static model and 10⁵–4·10⁶ rays per
+    /// build, with the box grown on every axis and on one axis alone.
+    #[test]
+    fn the_grid_model_takes_more_in_a_smaller_box() {
+        let sample = crate::scene::generate::bundle(200, 84, 1);
+        let scene = crate::scene::Scene::from_polylines(&sample, 0.12, "sample").unwrap();
+        let prims = crate::accel::WideBvh::scene_primitives(&scene);
+        let (sums, ext) = (SceneSums::of(&prims), crate::accel::grid::padded_extent(&prims));
+        for links in [100_044u64, 1_000_020, 10_000_032, 100_000_000] {
+            for rays in [None, Some(1e5), Some(512.0 * 512.0), Some(4e6)] {
+                let params = GridParams { rays_per_build: rays, ..GridParams::default() };
+                let bytes = |e: [f64; 3]| grid_footprint(&sums, 16_800, e, links, &params).build_bytes();
+                let mut last = (f64::INFINITY, f64::INFINITY);
+                for k in [0.5, 0.8, 1.0, 1.25, 1.5, 2.0, 4.0] {
+                    let now = (bytes(ext.map(|x| x * k)), bytes([ext[0], ext[1] * k, ext[2]]));
+                    assert!(now.0 < last.0 && now.1 < last.1, "{links} links, {rays:?} rays, box × {k}");
+                    last = now;
+                }
+            }
+        }
     }
 }
