@@ -8,13 +8,17 @@
 //! first streamlines, up to [`SAMPLE_STREAMLINES`], loaded and built exactly as the command
 //! will: same radius, selection, model and accelerator; an SWC tree: a generated bundle), and
 //! refuses a scene whose peak ([`tubecast_render::estimate`]'s model) exceeds `--memory-limit`
-//! or, without it, the memory available.
+//! or, without it, the memory available. The voxel grid is not built on the sample: its bytes
+//! per link depend on the link count, so the estimate asks the grid's own resolution what it
+//! will build over the whole scene ([`estimate::grid_footprint`], with the command's rays).
 
 use crate::args::Accel;
 use crate::error::CliError;
 use crate::render_opts::Radius;
 use clap::Args;
 use std::path::Path;
+use tubecast_render::accel::grid::{padded_extent, Footprint, GridParams, SceneSums};
+use tubecast_render::accel::WideBvh;
 use tubecast_render::estimate::{self, PerLink, Work};
 use tubecast_render::io::stream::Selection;
 use tubecast_render::scene::{generate, LoadOptions, Model, Scene};
@@ -79,6 +83,9 @@ pub struct Plan {
     pub accel: Accel,
     /// What `render` holds besides (`None`: no image).
     pub render: Option<RenderPlan>,
+    /// Rays the command traces through its tracer (`None`: unknown), which the grid's
+    /// resolution weighs against its build (`GridParams::rays_per_build`).
+    pub rays: Option<f64>,
 }
 
 /// What `render` holds besides the scene and its tracer.
@@ -97,11 +104,18 @@ impl Plan {
     /// What the command builds besides the scene, for the estimate (`nodes_per_link`: of the
     /// sample). The clamp is counted whenever `--thin` is on, whether or not a tube turns out
     /// thinner than `--min-pixels` (an over-estimate of 12 B per node otherwise).
-    fn work(&self, nodes_per_link: f64) -> Work {
+    fn work(&self, nodes_per_link: f64, grid: Option<Footprint>) -> Work {
         let compact = matches!(self.accel, Accel::Bvh) && self.model == Model::Links;
         let r = self.render.unwrap_or(RenderPlan { thin: false, pixels: 0, list: false });
         let thin_nodes = if r.thin { nodes_per_link as f32 } else { 0.0 };
-        Work { compact, prim_list: r.list, thin_nodes, pixels: r.pixels }
+        // `intersect` holds its rays (`render`'s are made one at a time).
+        let rays = if self.render.is_none() { self.rays.unwrap_or(0.0) as u64 } else { 0 };
+        Work { compact, prim_list: r.list, thin_nodes, pixels: r.pixels, grid, rays }
+    }
+
+    /// The grid's parameters as [`crate::commands::tracer`] sets them.
+    fn grid_params(&self) -> GridParams {
+        GridParams { rays_per_build: self.rays, ..GridParams::default() }
     }
 }
 
@@ -150,17 +164,38 @@ pub fn check_memory(
     };
     // Unreadable or malformed files are reported by the load itself, with its own message.
     let Ok(counts) = estimate::probe(input) else { return Ok(None) };
-    let Some((per_link, avg, nodes_per_link)) = sample(input, opts, sel, plan) else { return Ok(None) };
+    let Some(Sample { mut per_link, avg, nodes_per_link, links, grid }) = sample(input, opts, sel, plan) else {
+        return Ok(None);
+    };
     let kept = (counts.links(sel, avg), counts.kept_lines(sel, avg));
+    let grid = grid.map(|(sums, ext)| {
+        let f = estimate::grid_footprint(&sums, links, ext, kept.0, &plan.grid_params());
+        per_link.tracer = f.finished_bytes() / kept.0.max(1) as f64;
+        f
+    });
     let name = input.display().to_string();
-    let work = plan.work(nodes_per_link);
+    let work = plan.work(nodes_per_link, grid);
     Ok(Some(estimate::check_with(&name, kept, per_link, work, available).map_err(CliError::Memory)?))
+}
+
+/// What the estimate measures on a sample of the file.
+struct Sample {
+    /// Bytes per link (the tracer's: 0 for the grid, which is not built on the sample).
+    per_link: PerLink,
+    /// Points per streamline (not for SWC).
+    avg: Option<f64>,
+    /// Nodes per link.
+    nodes_per_link: f64,
+    /// Links of the sample.
+    links: u64,
+    /// For `--accel grid`: the sums and padded box of the sample's primitives.
+    grid: Option<(SceneSums, [f64; 3])>,
 }
 
 /// Bytes per link of the first streamlines of `input` (a generated bundle for SWC), built as
 /// `plan` says, their points per streamline and nodes per link; `None` when the sample has no
 /// links.
-fn sample(input: &Path, opts: &LoadOptions, sel: &Selection, plan: Plan) -> Option<(PerLink, Option<f64>, f64)> {
+fn sample(input: &Path, opts: &LoadOptions, sel: &Selection, plan: Plan) -> Option<Sample> {
     let is_swc = input.extension().is_some_and(|e| e.eq_ignore_ascii_case("swc"));
     let scene = if is_swc {
         Scene::from_polylines(&generate::bundle(16, 64, 1), opts.default_radius, "sample").ok()?
@@ -174,14 +209,22 @@ fn sample(input: &Path, opts: &LoadOptions, sel: &Selection, plan: Plan) -> Opti
     if links == 0 {
         return None;
     }
-    // A sample's tracer, for bytes per link: the grid at its finest (static) resolution, the most
-    // memory the command's own build can take.
-    let tracer = crate::commands::scene_tracer(plan.accel, &scene, plan.model, None, None).ok()?;
     let per = |b: usize| b as f64 / links as f64;
-    let per_link = PerLink { scene: per(scene.memory_bytes()), tracer: per(tracer.memory_bytes()) };
+    let (tracer, grid) = if matches!(plan.accel, Accel::Grid) {
+        // The grid's own primitives ([`crate::commands::scene_tracer`]), for their sums and box.
+        let prims = match plan.model {
+            Model::Links => WideBvh::scene_primitives(&scene),
+            m => scene.model_primitives(m).ok()?,
+        };
+        (0.0, Some((SceneSums::of(&prims), padded_extent(&prims))))
+    } else {
+        let tracer = crate::commands::scene_tracer(plan.accel, &scene, plan.model, None, None).ok()?;
+        (per(tracer.memory_bytes()), None)
+    };
+    let per_link = PerLink { scene: per(scene.memory_bytes()), tracer };
     let lines = scene.nodes.len().saturating_sub(links);
     let avg = (!is_swc && lines > 0).then(|| scene.nodes.len() as f64 / lines as f64);
-    Some((per_link, avg, scene.nodes.len() as f64 / links as f64))
+    Some(Sample { per_link, avg, nodes_per_link: scene.nodes.len() as f64 / links as f64, links: links as u64, grid })
 }
 
 /// The default radius: absolute, or the fraction of the diagonal of the bounding box of the

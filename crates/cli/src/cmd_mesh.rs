@@ -28,6 +28,7 @@ pub fn mesh(a: &MeshArgs) -> Result<(), CliError> {
         model: crate::commands::model(a.splines),
         accel: crate::args::Accel::Bvh,
         render: None,
+        rays: None,
     };
     let radius = (crate::render_opts::Radius::Absolute(a.io.radius), a.min_radius);
     let args = crate::cmd_load::LoadArgs::default();

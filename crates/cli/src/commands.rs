@@ -123,7 +123,11 @@ pub fn render(a: &RenderArgs) -> Res {
     let compact = exact && matches!(a.accel, Accel::Bvh) && m == Model::Links;
     let image =
         RenderPlan { thin: thin_on(a.thin, &a.input), pixels: a.width as u64 * a.height as u64, list: !compact };
-    let plan = Plan { model: m, accel: a.accel, render: Some(image) };
+    // Camera rays, plus the AO rays when AO traces rays (cones trace none).
+    let (ao, ao_method) = a.ao.resolve(a.ao_samples);
+    let ao_rays = if ao_method == render::AoMethod::Rays { ao as f64 } else { 0.0 };
+    let rays = Some(a.width as f64 * a.height as f64 * (1.0 + ao_rays));
+    let plan = Plan { model: m, accel: a.accel, render: Some(image), rays };
     let empty = "the image shows the background only";
     if let (Surface::Quantized, Some(key)) = (a.model, field) {
         return Err(crate::cmd_quantized::QuantError::Data(key.into()).into());
@@ -147,10 +151,6 @@ pub fn render(a: &RenderArgs) -> Res {
         (Surface::Mesh, t) => (prims, Some(t.ok_or(CliError::MeshTolerance)?)),
     };
     let owned = |p: Option<Vec<Prim>>| p.map_or_else(|| scene.model_primitives(m), Ok);
-    // Camera rays, plus the AO rays when AO traces rays (cones trace none).
-    let (ao, ao_method) = a.ao.resolve(a.ao_samples);
-    let ao_rays = if ao_method == render::AoMethod::Rays { ao as f64 } else { 0.0 };
-    let rays = Some(a.width as f64 * a.height as f64 * (1.0 + ao_rays));
     let bvh = crate::cmd_intersect::with_threads(a.threads.map(usize::from), || match tol {
         None if exact => scene_tracer(a.accel, &scene, m, prims, rays),
         None => Ok(tracer(a.accel, owned(prims)?, rays)),
@@ -224,7 +224,7 @@ fn units(input: &Path) -> &'static str {
 }
 
 pub fn info(a: &InfoArgs) -> Res {
-    let plan = Plan { model: model(a.splines), accel: Accel::Bvh, render: None };
+    let plan = Plan { model: model(a.splines), accel: Accel::Bvh, render: None, rays: None };
     let scene = load(&a.input, (a.radius, a.min_radius), &a.load, plan, "counts are zero", None)?;
     let prims = if a.splines { scene.model_primitives(Model::Splines)? } else { Vec::new() };
     let st = if a.splines { scene.stats_of(&prims) } else { scene.stats() };

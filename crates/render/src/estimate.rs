@@ -17,14 +17,22 @@
 //!   build holds on top of it, the runs' heads and the tables in item order;
 //!   [`BUILD_BYTES_PER_ITEM`]: the tree builder's buffers per item it builds at once, at most
 //!   [`BUILD_ITEMS`]);
-//! - **a tracer built whole over a primitive list** (`--accel bvh2`, `--accel grid`, the spline
-//!   model): `links × (scene' + tracer + WHOLE_BUILD_BYTES)`: these builds are not chunked, so
-//!   the builder's share ([`WHOLE_BUILD_BYTES`]) grows with every link;
+//! - **a tracer built whole over a primitive list** (`--accel bvh2`, the spline model):
+//!   `links × (scene' + tracer + WHOLE_BUILD_BYTES)`: these builds are not chunked, so the
+//!   builder's share ([`WHOLE_BUILD_BYTES`]) grows with every link;
+//! - **the voxel grid** (`--accel grid`, [`Work::grid`]): `links × scene' +` the grid build's
+//!   peak ([`Footprint::build_bytes`]: its primitives, pairs, counters, offsets and lists), at
+//!   the resolution the build will choose for the whole scene ([`grid_footprint`]). A grid's
+//!   bytes per link are not those of a sample: its cells and references per link depend on the
+//!   link count, the box and the rays per build, so a sample's grid (built at the sample's own,
+//!   coarser, resolution) said 0.49 GB where `render --accel grid` at 10⁶ links peaked at
+//!   0.61 GB;
 //! - **`render`'s primitive list** (every path but the compact tree's exact one, which takes
 //!   the bounds from the scene one primitive at a time and builds from the scene alone):
 //!   `render` computes one [`crate::scene::Prim`] per link ([`PRIM_BYTES`]) for the scene's
 //!   bounds and after the clamp, beside `scene'`: `links × (scene' + PRIM_BYTES)`.
 
+use crate::accel::grid::{Footprint, GridParams, SceneSums};
 use crate::io::stream::{open, Selection};
 use crate::io::{self, IoError};
 use std::fmt;
@@ -65,11 +73,21 @@ pub const THIN_BYTES_PER_NODE: f64 = 12.0;
 /// primitives).
 pub const PRIM_BYTES: f64 = std::mem::size_of::<crate::scene::Prim>() as f64;
 
-/// Bytes per link a tracer built whole over its primitive list (obvhs's binary BVH, the voxel
-/// grid) holds during its build beyond its finished size (builder arrays, item boxes): fitted
-/// to the peaks of `tubecast intersect` and `render` with `--accel bvh2` and `--accel grid` at
-/// 10⁶ links (see the tests: the grid needs 267 B, the binary BVH 185 B), rounded up.
+/// Bytes per link a tracer built whole over its primitive list (obvhs's binary BVH) holds
+/// during its build beyond its finished size (builder arrays, item boxes): fitted to the peaks
+/// of `tubecast intersect` and `render` with `--accel bvh2` at 10⁶ links (see the tests: 185 B;
+/// the former λ = 2 grid needed 267 B), rounded up. The grid has its own model
+/// ([`Work::grid`]).
 pub const WHOLE_BUILD_BYTES: f64 = 280.0;
+
+/// Bytes of one ray `intersect` holds (a [`tubecast::Ray`] in `f64`).
+pub const RAY_BYTES: u64 = std::mem::size_of::<tubecast::Ray<f64>>() as u64;
+
+/// The references a grid lists over Steiner's expectation ([`grid_footprint`]): the voxelizer is
+/// conservative (it lists every voxel the padded solid may meet) and grows the radii by the
+/// margin; `tubecast-lab voxel` measured 0.96–1.08× the expectation over its sweep (issue 11),
+/// and `generate bundle` at 10⁶ links lists 1.05× (512² rays per build) and 1.02× (10⁵).
+pub const GRID_REFERENCE_MARGIN: f64 = 1.08;
 
 /// Bytes per pixel of `render`'s image: linear RGB, alpha and depth (24 B, [`crate::render::
 /// Image`]) and the 8-bit RGB(A) copy written to the PNG (3–4 B), rounded up.
@@ -100,11 +118,59 @@ pub struct Work {
     pub thin_nodes: f32,
     /// Pixels of the image (0: no image).
     pub pixels: u64,
+    /// The voxel grid the command builds over the whole scene (`--accel grid`,
+    /// [`grid_footprint`]), whose build's peak replaces the tracer's bytes per link
+    /// (`compact` is then `false`).
+    pub grid: Option<Footprint>,
+    /// Rays the command holds ([`RAY_BYTES`] each; `intersect`'s table of rays).
+    pub rays: u64,
 }
 
 impl Work {
     /// `info`: the compact tree, nothing else.
-    pub const INFO: Work = Work { compact: true, prim_list: false, thin_nodes: 0.0, pixels: 0 };
+    pub const INFO: Work = Work { compact: true, prim_list: false, thin_nodes: 0.0, pixels: 0, grid: None, rays: 0 };
+}
+
+/// The grid that `--accel grid` will build over `links` links, from a sample of the file: the
+/// sample's primitive sums `sample` ([`SceneSums::of`]) over its `sample_links` links, scaled to
+/// `links`, in the sample's padded box `ext` ([`crate::accel::grid::padded_extent`]), at the
+/// resolution `params` (the command's rays per build) chooses for them
+/// ([`GridParams::footprint`], the build's own resolution code), with
+/// [`GRID_REFERENCE_MARGIN`] times Steiner's expected references.
+///
+/// The whole scene's box is not known before it is loaded; the sample's stands in. A sample
+/// whose box is smaller than the scene's over-estimates: at a fixed link count a smaller box
+/// packs the same links denser, and the cost models choose more cells and references per link
+/// there (`the_grid_model_takes_more_in_a_smaller_box` checks it on the bundle's statistics).
+///
+/// ```
+/// use tubecast_render::accel::grid::{padded_extent, GridParams, SceneSums};
+/// use tubecast_render::estimate::grid_footprint;
+/// use tubecast_render::scene::{generate, Scene};
+/// let prims = Scene::from_polylines(&generate::bundle(200, 84, 1), 0.12, "sample").unwrap().primitives();
+/// let (sums, ext) = (SceneSums::of(&prims), padded_extent(&prims));
+/// let params = GridParams { rays_per_build: Some(512.0 * 512.0), ..GridParams::default() };
+/// let big = grid_footprint(&sums, 16_800, ext, 1_000_020, &params);
+/// assert_eq!(big.prims, 1_000_020);
+/// assert!(big.cells() > params.footprint(ext, &sums).cells()); // finer than the sample's grid
+/// ```
+pub fn grid_footprint(
+    sample: &SceneSums,
+    sample_links: u64,
+    ext: [f64; 3],
+    links: u64,
+    params: &GridParams,
+) -> Footprint {
+    let k = links as f64 / sample_links.max(1) as f64;
+    let sums = SceneSums {
+        count: (sample.count as f64 * k).round() as usize,
+        length: sample.length * k,
+        radius: sample.radius * k,
+        cross: sample.cross * k,
+        solid: sample.solid * k,
+    };
+    let f = params.footprint(ext, &sums);
+    Footprint { references: f.references * GRID_REFERENCE_MARGIN, ..f }
 }
 
 /// What a file holds, from its header and size, without reading its body.
@@ -226,15 +292,16 @@ impl PerLink {
     pub fn needed_for(&self, links: u64, work: &Work) -> f64 {
         let n = links as f64;
         let scene = self.scene + THIN_BYTES_PER_NODE * work.thin_nodes as f64;
-        let build = match work.compact {
-            true => {
+        let build = match (work.compact, work.grid) {
+            (true, _) => {
                 n * (scene + self.tracer * (1.0 + BUILD_OVERHEAD))
                     + links.min(BUILD_ITEMS) as f64 * BUILD_BYTES_PER_ITEM
             }
-            false => n * (scene + self.tracer + WHOLE_BUILD_BYTES),
+            (false, Some(g)) => n * scene + g.build_bytes(),
+            (false, None) => n * (scene + self.tracer + WHOLE_BUILD_BYTES),
         };
         let list = if work.prim_list { n * (scene + PRIM_BYTES) } else { 0.0 };
-        build.max(list) + (work.pixels * PIXEL_BYTES) as f64
+        build.max(list) + (work.pixels * PIXEL_BYTES + work.rays * RAY_BYTES) as f64
     }
 }
 
@@ -250,7 +317,7 @@ pub struct TooLarge {
     /// Bytes per link (scene, tracer).
     pub per_link: PerLink,
     /// What the command builds besides the scene.
-    pub work: Work,
+    pub work: Box<Work>,
     /// Estimated peak bytes.
     pub needed: u64,
     /// The bytes there are, and where that figure comes from.
@@ -260,7 +327,7 @@ pub struct TooLarge {
 impl TooLarge {
     /// How the peak is made up, in words, and the options of the command that lower it.
     fn parts(&self) -> (String, String) {
-        let (w, p) = (&self.work, &self.per_link);
+        let (w, p) = (&*self.work, &self.per_link);
         let mut how = format!("scene {:.1} B + primitives and tree {:.1} B", p.scene, p.tracer);
         let mut help = String::new();
         if w.thin_nodes > 0.0 {
@@ -275,6 +342,10 @@ impl TooLarge {
                 100.0 * BUILD_OVERHEAD,
                 BUILD_BYTES_PER_ITEM
             );
+        } else if let Some(g) = w.grid {
+            let more = (g.build_bytes() - g.finished_bytes()) / n.max(1.0);
+            how += &format!(", a grid of {} voxels built whole with {more:.0} B more per link", g.cells());
+            help += ", --accel bvh (built in chunks)";
         } else {
             how += &format!(", built whole with {WHOLE_BUILD_BYTES:.0} B more per link");
             help += ", --accel bvh (built in chunks)";
@@ -341,7 +412,15 @@ pub fn check_with(
 ) -> Result<u64, TooLarge> {
     let needed = per_link.needed_for(links, &work) as u64 + BASE_BYTES;
     if needed > available.0 {
-        return Err(TooLarge { file: file.to_string(), links, streamlines, per_link, work, needed, available });
+        return Err(TooLarge {
+            file: file.to_string(),
+            links,
+            streamlines,
+            per_link,
+            work: Box::new(work),
+            needed,
+            available,
+        });
     }
     Ok(needed)
 }
@@ -364,84 +443,4 @@ pub fn available() -> Option<(u64, String)> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Peaks at 10⁸ links (`VmHWM`, kB) of `info` and of `render` opaque (see the tests).
-    const E8_INFO_KB: f64 = 6_546_832.0;
-    const E8_RENDER_KB: f64 = 7_537_328.0;
-
-    /// The estimate must not be under a measured peak (a refusal is better than running out of
-    /// memory), nor more than 30 % over it (a needless refusal).
-    fn assert_covers(what: &str, links: u64, per_link: PerLink, work: &Work, kb: f64) {
-        let measured = kb * 1024.0;
-        let est = per_link.needed_for(links, work) + BASE_BYTES as f64;
-        let ratio = est / measured;
-        assert!((1.0..=1.3).contains(&ratio), "{what}, {links} links: {est:e} against {measured:e} ({ratio:.3}×)");
-    }
-
-    #[test]
-    fn the_estimate_covers_measured_chunked_builds() {
-        // `generate bundle --segments 84` scenes, `TUBECAST_PEAK_RSS=1 tubecast info --radius
-        // 0.12` (release build, chunked compact tree with the clusters stored once, 24.43 B
-        // scene + 33.2/32.8/32.9 B tracer per link, peak `VmHWM` in kB), one run each: 10⁶
-        // links 300 656 kB, 10⁷ links 1 123 208 kB, 10⁸ links 6 546 832 kB. With the clusters
-        // stored twice (the copy into leaf order) the same scenes peaked at 318 080, about
-        // 1.4·10⁶ (render) and 8 180 000 kB; main's model before the chunked build, scene +
-        // 4.5 × tracer, said 198 B per link at 10⁶: 42 % under the peak of its time. The
-        // builder's term is what keeps small scenes above their peak.
-        for (links, tracer, kb) in
-            [(1_000_020u64, 33.2, 300_656.0), (10_000_032, 32.8, 1_123_208.0), (99_999_984, 32.9, E8_INFO_KB)]
-        {
-            assert_covers("info, 24.43 B scene", links, PerLink { scene: 24.43, tracer }, &Work::INFO, kb);
-            let est = PerLink { scene: 24.43, tracer }.needed(links);
-            assert_eq!(est, PerLink { scene: 24.43, tracer }.needed_for(links, &Work::INFO));
-        }
-    }
-
-    /// Each command's phases ([module docs](self)) against its measured peak, on `generate
-    /// bundle --segments 84` scenes (24.43 B scene per link: 85 nodes of 24 B and a 12-byte
-    /// run per 84 links; 85/84 nodes per link): `TUBECAST_PEAK_RSS=1 /usr/bin/time -v
-    /// tubecast CMD --radius 0.12 FILE` (release build, `VmHWM` = `Maximum resident set size`
-    /// in kB; render `--width 512 --height 512 --ao off`, its thin-tube clamp on as `auto` is
-    /// for `.tck`; intersect: 10⁵ rays). The tracer's bytes per link are what the CLI's
-    /// sample of 200 streamlines measures: compact tree 35.3, obvhs Bvh2 over the primitives
-    /// 183.2, grid 104.1.
-    #[test]
-    fn the_estimate_covers_each_command() {
-        let thin = 85.0 / 84.0;
-        let render = Work { thin_nodes: thin, pixels: 512 * 512, ..Work::INFO };
-        let listed = Work { prim_list: true, ..render };
-        let whole = |w: Work| Work { compact: false, ..w };
-        let (compact, bvh2, grid) = (35.3, 183.2, 104.1);
-        let per = |tracer: f64| PerLink { scene: 24.43, tracer };
-        // 10⁶ links (1 000 020; `generate bundle --count 11905`), one run each: the compact
-        // rows with the clusters stored once (before: info 318 080, intersect 324 892, render
-        // 330 328 / 330 288 / 318 128 kB); `render --accel bvh2|grid` after it stopped holding
-        // two primitive lists at once (483 476 and 486 072 kB before).
-        let e6 = 1_000_020;
-        assert_covers("info", e6, per(compact), &Work::INFO, 300_656.0);
-        assert_covers("intersect", e6, per(compact), &Work::INFO, 307_268.0);
-        assert_covers("render opaque", e6, per(compact), &render, 313_080.0);
-        assert_covers("render --opacity 0.3", e6, per(compact), &render, 312_968.0);
-        assert_covers("render --thin off", e6, per(compact), &Work { thin_nodes: 0.0, ..render }, 300_612.0);
-        assert_covers("intersect --accel bvh2", e6, per(bvh2), &whole(Work::INFO), 399_964.0);
-        assert_covers("intersect --accel grid", e6, per(grid), &whole(Work::INFO), 402_112.0);
-        assert_covers("render --accel bvh2", e6, per(bvh2), &whole(listed), 404_988.0);
-        assert_covers("render --accel grid", e6, per(grid), &whole(listed), 408_208.0);
-        // 10⁷ links (10 000 032; `--count 119048`), once, niced beside builds (1 402 832 kB
-        // with the primitive list and the clusters stored twice).
-        assert_covers("render opaque", 10_000_032, per(compact), &render, 1_239_460.0);
-        // 10⁸ links (99 999 984; one `generate bundle --count 1190476`), once each, niced. With
-        // the primitive list and the clusters stored twice they were: info 8.18·10⁶ kB,
-        // intersect 8.12·10⁶ kB, render opaque and transparent 11.39·10⁶ kB (the list of
-        // 80-byte primitives beside the clamped scene: (24.4 + 12.1 + 80) B × 10⁸).
-        let e8 = 99_999_984;
-        let per8 = PerLink { scene: 24.43, tracer: compact };
-        assert_covers("info", e8, per8, &Work::INFO, E8_INFO_KB);
-        assert_covers("intersect", e8, per8, &Work::INFO, 6_353_876.0);
-        assert_covers("render opaque", e8, per8, &render, E8_RENDER_KB);
-        // The list would not fit the 8 GB target beside the clamped scene.
-        assert!(per8.needed_for(e8, &listed) > 8e9);
-    }
-}
+mod tests;

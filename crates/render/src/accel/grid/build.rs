@@ -9,6 +9,22 @@ use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 use tubecast::voxel;
 use tubecast::{RoundCone, V3};
 
+/// The extents of the box the grid over `prims` covers, padded as [`Grid::build_with`] pads
+/// it (module docs, "Margin"): what [`GridParams::footprint`] takes.
+///
+/// ```
+/// use tubecast_render::accel::grid::padded_extent;
+/// use tubecast_render::io::Polyline;
+/// use tubecast_render::scene::Scene;
+/// let line = Polyline { points: vec![[0.0; 3], [4.0, 0.0, 0.0]], radii: vec![] };
+/// let e = padded_extent(&Scene::from_polylines(&[line], 0.5, "tube").unwrap().primitives());
+/// assert!(e[0] > 5.0 && e[1] > 1.0 && e[1] < 1.001);
+/// ```
+pub fn padded_extent(prims: &[Prim]) -> [f64; 3] {
+    let (lo, hi, _) = scene_box(prims);
+    std::array::from_fn(|i| hi[i] - lo[i])
+}
+
 /// The padded bounding box of `prims` and the padding `pad = max(D·2⁻¹⁶, 64·ε·|x|max)`
 /// (module docs, "Margin").
 fn scene_box(prims: &[Prim]) -> ([f64; 3], [f64; 3], f64) {
@@ -25,6 +41,22 @@ fn scene_box(prims: &[Prim]) -> ([f64; 3], [f64; 3], f64) {
     let far = (0..3).fold(0.0f64, |m, i| m.max(lo[i].abs()).max(hi[i].abs()));
     let pad = (diag.max(f64::MIN_POSITIVE) * 2f64.powi(-16)).max(64.0 * f64::EPSILON * far);
     (lo.map(|x| x - 2.0 * pad), hi.map(|x| x + 2.0 * pad), pad)
+}
+
+/// The cells along x, y, z of each of up to `most` coarse occupancy levels over a grid of
+/// `dims` voxels, finest first (module docs, "Empty-space skipping"): each level has a cell per
+/// [`BLOCK`]³ cells of the one below; the levels stop once one is at most `BLOCK` cells along
+/// every axis.
+pub(super) fn skip_dims(dims: [u32; 3], most: u32) -> Vec<[u32; 3]> {
+    let mut levels: Vec<[u32; 3]> = Vec::new();
+    while (levels.len() as u32) < most {
+        let fine = levels.last().copied().unwrap_or(dims);
+        if !levels.is_empty() && fine.iter().all(|&d| d <= BLOCK) {
+            break;
+        }
+        levels.push(fine.map(|d| d.div_ceil(BLOCK)));
+    }
+    levels
 }
 
 /// The world round cone of a link or sphere primitive with radii grown by `pad`; `None` for a
@@ -135,12 +167,8 @@ impl Grid {
     /// cells of the level below (voxels for the first) that hold a reference.
     fn build_skip(&self, most: u32) -> Vec<Skip> {
         let mut levels: Vec<Skip> = Vec::new();
-        while (levels.len() as u32) < most {
+        for dims in skip_dims(self.dims, most) {
             let (fine_dims, side) = levels.last().map_or((self.dims, 1), |l| (l.dims, l.side));
-            if !levels.is_empty() && fine_dims.iter().all(|&d| d <= BLOCK) {
-                break;
-            }
-            let dims = fine_dims.map(|d| d.div_ceil(BLOCK));
             let mut next =
                 Skip { dims, side: side * BLOCK, occupied: vec![false; dims.iter().map(|&d| d as usize).product()] };
             for z in 0..fine_dims[2] {

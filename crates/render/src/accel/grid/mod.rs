@@ -107,13 +107,22 @@
 //!
 //! With `cells_per_prim: Some(λ)`: `h = ∛(V/(λ·N))`, the Cleary–Wyvill/Wald rule "cells ≈ λ·N"
 //! (λ = 2 was the default before the cost model).
+//!
+//! # Memory
+//! [`GridParams::footprint`] tells, before building, the bytes of the finished grid and of its
+//! build's peak (`80N + 12E + 8M` and the pairs' growth in one pass: every buffer of `build.rs`
+//! is counted in [`Footprint`]'s source) from the same resolution code and the expected
+//! references `E(h)` above; the CLI's memory estimate asks it for `--accel grid`.
 
 mod build;
+mod footprint;
 mod frame;
 mod pyramid;
 mod resolution;
 mod walk;
 
+pub use build::padded_extent;
+pub use footprint::{Footprint, GROWTH_SLACK_CAP};
 pub use frame::{expected_references, frame_voxel_size_for, BuildCost, BUILD_COST};
 pub use pyramid::{Level, Pyramid};
 pub use resolution::{voxel_size_for, SceneSums, STEP_COST};

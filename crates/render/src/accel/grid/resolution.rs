@@ -100,17 +100,29 @@ pub fn voxel_size_for(s: &SceneSums, volume: f64, rho: f64) -> Option<f64> {
 /// power-of-two `D`, and free of under- and overflow for scenes 10⁻³⁰ or 10³⁰ across); a box
 /// without extent (no primitives) gets one voxel of side 1.
 pub(super) fn resolution(ext: [f64; 3], prims: &[Prim], p: &GridParams) -> (f64, [u32; 3]) {
+    resolution_for(ext, prims.len(), || SceneSums::of(prims), p)
+}
+
+/// [`resolution`] for `count` primitives whose sums `sums` gives (asked only by the cost
+/// models): what the build would choose, known from the scene's statistics alone (the memory
+/// estimate's [`GridParams::footprint`]).
+pub(super) fn resolution_for(
+    ext: [f64; 3],
+    count: usize,
+    sums: impl FnOnce() -> SceneSums,
+    p: &GridParams,
+) -> (f64, [u32; 3]) {
     let diag = (ext[0] * ext[0] + ext[1] * ext[1] + ext[2] * ext[2]).sqrt();
-    if prims.is_empty() || !diag.is_normal() {
+    if count == 0 || !diag.is_normal() {
         return (1.0, [1, 1, 1]);
     }
     let e = ext.map(|x| (x / diag).max(1e-3));
     let volume = e[0] * e[1] * e[2];
     let max_cells = p.max_cells.max(1) as f64;
-    let fixed = |lambda: f64| (volume / (lambda * prims.len() as f64).clamp(1.0, max_cells)).cbrt();
+    let fixed = |lambda: f64| (volume / (lambda * count as f64).clamp(1.0, max_cells)).cbrt();
     let area = 2.0 * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]);
     let auto = || {
-        let s = SceneSums::of(prims);
+        let s = sums();
         let (l, r, x, w) = (s.length / diag, s.radius / diag, s.cross / diag / diag, s.solid / diag / diag / diag);
         let unit = SceneSums { length: l, radius: r, cross: x, solid: w, ..s };
         match p.rays_per_build {
