@@ -1,4 +1,4 @@
-//! The spline kernel's length/radius sweep (issue 10): `L/r = 10 … 10⁵` over the ten thin-tube
+//! The spline kernel's length/radius sweep (issue 10): `L/r = 10 … 10⁵` over the eleven thin-tube
 //! families of `tests/spline_conditioning.rs` ([`tubecast_oracle::thin_case`]), every solver in
 //! `f32` and `f64`, judged against the independent thin-tube oracle
 //! ([`tubecast_oracle::quad_crossing_offset`]) with the kernel's derived backward-error band
@@ -145,8 +145,9 @@ pub fn run_thin(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, ReportE
     );
     let _ = write!(
         md,
-        "The ten thin-tube families of `tests/spline_conditioning.rs` (unit, bulge, cusp, taper, grazing, far \
-         origin, inside, pinched, scale 2^±50, direction ratio 2⁴⁰), {seeds} seeds each per ratio, every solver \
+        "The eleven thin-tube families of `tests/spline_conditioning.rs` (unit, bulge, cusp, taper, grazing, far \
+         origin, inside, inside beside an end crossed at right angles, pinched, scale 2^±50, direction ratio \
+         2⁴⁰), {seeds} seeds each per ratio, every solver \
          in `f32` and `f64`, against the independent thin-tube oracle. Band `E = 1024·ε·R + 8·ε·|o − p(½)|` \
          (derived in `src/kernel/spline.rs`). must-hit: the tube deflated by `E` is hit; must-miss: the tube \
          inflated by `E` is missed; outside E: entry or exit outside the inflated/deflated tubes' ± `E`. \
