@@ -17,7 +17,7 @@
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Solver {
-    /// Russig's cascade (real intervals of `g` by `g''` analytic → `g'` → `g`; minima of `f`
+    /// Russig's cascade (real intervals of `g` by `g'''` analytic → `g''` → `g'` → `g`; minima of `f`
     /// by `f'''` → `f''` → `f'` on each real interval) with fixed-iteration bisection in every
     /// bracket. `iters = 10` is Salm's setting; the `t` error is `2^-iters` of the bracket.
     /// The cascade relies on Russig's empirical claim (at most one root of `f'''` per real
@@ -34,12 +34,14 @@ pub enum Solver {
     },
     /// Russig's cascade with the ITP method in every bracket, to a `t` tolerance of a few ulps.
     Itp,
-    /// Russig's cascade with safeguarded Newton on the polynomial levels (`g'`, `g`) and on
-    /// `f'`, ITP on `f'''` and `f''` (whose derivatives are not worth forming).
+    /// Russig's cascade with `g''`'s roots in closed form, safeguarded Newton on the
+    /// polynomial levels (`g'`, `g`) and on `f'`, ITP on `f'''` and `f''` (whose derivatives
+    /// are not worth forming).
     Newton,
     /// The polynomial form: critical points of `f = h − √g` and of the exit `e = h + √g` are
     /// the roots of `P = 4h′²g − g′²` (degree 6; `h′g′ ≥ 0` at those of `f`); all roots of `P`
-    /// in `[0, 1]` by the derivative cascade (`P⁗` analytic) with safeguarded Newton. Relies on
+    /// in `[0, 1]` by the derivative cascade (`P⁗` analytic) with safeguarded Newton, and the
+    /// roots and maxima of `g` (`g''` analytic), as candidates, the best polished. Relies on
     /// no empirical claim about the number of roots of `f'`.
     Polynomial,
 }

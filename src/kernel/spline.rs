@@ -29,10 +29,10 @@
 //!   these solvers report a point inside the tube instead of the entry.
 //! * [`Solver::Polynomial`]: the critical points of `f` **and** `e` are exactly the roots of
 //!   `P = 4h'²g − g'² = (2h'√g − g')(2h'√g + g')` where `g > 0`; all roots of `P` in `[0, 1]`
-//!   by the derivative cascade (the union of the roots of `P` formed in powers of `t` and in
-//!   powers of `t − t_v`, `t_v` the vertex of the centre line, where a slow curve makes `P`
-//!   tiny), then `f` and `e` at every root with `g ≥ 0` (to rounding; `g(1)` formed from the
-//!   end itself, exactly 0 for a zero-radius end on the line) and at `t = 0, 1`.
+//!   by the derivative cascade (`P` formed in powers of `t − t_v`, `t_v` the vertex of the
+//!   centre line, where a slow curve makes `P` tiny), then `f` and `e` at every root with
+//!   `g ≥ 0` (to rounding; `g(1)` formed from the end itself, exactly 0 for a zero-radius end
+//!   on the line) and at `t = 0, 1`.
 //!   Needs no real intervals and no claim.
 //!
 //! # Conditioning (issue 10)
@@ -87,8 +87,7 @@
 //! farther than the largest control radius from the control triangle (`ray_space::hull_misses`,
 //! exact: its proof is there), and the Polynomial solver forms `P` only when one of `g`'s
 //! breakpoints is real (they hold `g`'s maxima, so otherwise the line misses the tube deflated
-//! by `E`: a miss is right). At `t_v = 0` the two expansions of `P` coincide bit for bit and
-//! one cascade serves both. Before all this a chord-capsule filter (`capsule.rs`, exact, proof
+//! by `E`: a miss is right). Before all this a chord-capsule filter (`capsule.rs`, exact, proof
 //! there) rejects lines farther than `max rᵢ + ½|b₁ − (b₀+b₂)/2|` (plus a margin over `E`)
 //! from the chord `[b₀, b₂]` with a dozen dot products. Lanes take an exit only when every lane does, and mask the same
 //! lanes otherwise, so a lane still equals the scalar call.
@@ -273,9 +272,10 @@ impl<T: Real> QuadTube<T> {
                 // ≥ −τ): the line misses the tube deflated by the band (see "Conditioning"), a
                 // miss is a right answer and P's cascade is skipped.
                 let gb = rs.dg.g_breakpoints(Bracket::Newton);
-                let mut z = [T::zero(); 11];
-                z[..6].copy_from_slice(&gb.roots);
-                z[6..].copy_from_slice(&gb.extrema);
+                // The ends 0 and 1 once (they open and close every breakpoint list).
+                let mut z = [T::zero(); 9];
+                z[..4].copy_from_slice(&gb.roots[1..5]);
+                z[4..].copy_from_slice(&gb.extrema);
                 let mut real = T::Mask::splat(false);
                 for &t in &gb.extrema {
                     real = real | rs.dg.gap_g(t).0.ge(-rs.dg.tau);
@@ -284,7 +284,7 @@ impl<T: Real> QuadTube<T> {
                     return Interval::miss();
                 }
                 let (bp, n) = rs.p_breakpoints();
-                let (x, any) = rs.polished_candidates(&bp[..n], &z, T::zero(), T::one(), false);
+                let (x, any) = rs.polished_candidates(&bp[1..n - 1], &z, T::zero(), T::one(), false);
                 // `& real`: a lane decides as the scalar call does (which returned above).
                 rs.interval(ray, x, any & real, false)
             }
@@ -353,7 +353,7 @@ impl<T: Real> QuadTube<T> {
             let x = match ppoly {
                 // g's maxima as well as P's roots: in f32 a thin tube's P can lose them all
                 // (see `Direct::g_breakpoints`); outside [lo, hi] they clamp to its ends.
-                Some((bp, n)) => rs.polished_candidates(&bp[..n], &gb.extrema, lo, hi, true).0,
+                Some((bp, n)) => rs.polished_candidates(&bp[1..n - 1], &gb.extrema, lo, hi, true).0,
                 None => rs.russig(lo, hi, method),
             };
             out[k] = rs.interval(ray, x, first, clip);

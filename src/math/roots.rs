@@ -160,7 +160,8 @@ pub fn itp<T: Real>(f: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask
 
 /// Safeguarded Newton (`rtsafe`) on a valid bracket: a Newton step of `f/df` where it falls
 /// strictly inside the current bracket, bisection otherwise; stops when a step is at most
-/// `tol` or the bracket is at most `tol` wide.
+/// `tol`, the bracket is at most `tol` wide, or a Newton step lands within `tol` beyond an end
+/// whose value is within `2·tol·|f'|` of zero (the root is then that end, to first order).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub fn newton<T: Real>(f: impl Fn(T) -> T, df: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask, tol: T) -> T {
@@ -169,7 +170,7 @@ pub fn newton<T: Real>(f: impl Fn(T) -> T, df: impl Fn(T) -> T, a: T, b: T, fa: 
     let one = T::one();
     let s = T::select(fa.gt(zero), -one, one);
     let (mut a, mut b) = (a, b);
-    let (ya, yb) = (fa * s, fb * s);
+    let (mut ya, mut yb) = (fa * s, fb * s);
     // Start at the regula-falsi point (inside the bracket for a valid one).
     let den = yb - ya;
     let x0 = a - ya * (b - a) / T::select(den.gt(zero), den, one);
@@ -185,12 +186,23 @@ pub fn newton<T: Real>(f: impl Fn(T) -> T, df: impl Fn(T) -> T, a: T, b: T, fa: 
         let hi = act & y.gt(zero);
         a = T::select(lo, x, a);
         b = T::select(hi, x, b);
+        ya = T::select(lo, y, ya);
+        yb = T::select(hi, y, yb);
         let xn = x - y / dy;
         let inside = xn.gt(a) & xn.lt(b); // false for NaN / ±∞
         let xm = (a + b) * half;
-        let xnew = T::select(inside, xn, xm);
+        // A root within rounding of a bracket end (a root of `f` at a breakpoint of the
+        // cascade's level below, where `f` is flat) makes every Newton step overshoot that
+        // end, and bisection then crept towards it for up to ~40 steps (issue 10's cost: 8% of
+        // the spline cascade's solves took 16 or more). Newton landing within `tol` beyond an
+        // end whose value is within `tol·|f'|` of zero puts the root within `2·tol` of that
+        // end to first order: take the end.
+        let reach = (dy * tol).abs() * T::cst(2.0);
+        let at_a = !inside & xn.le(a) & xn.ge(a - tol) & ya.abs().le(reach);
+        let at_b = !inside & xn.ge(b) & xn.le(b + tol) & yb.abs().le(reach);
+        let xnew = T::select(inside, xn, T::select(at_a, a, T::select(at_b, b, xm)));
         let step = (xnew - x).abs();
-        let conv = y.eq(zero) | step.le(tol) | (b - a).le(tol);
+        let conv = y.eq(zero) | step.le(tol) | (b - a).le(tol) | at_a | at_b;
         x = T::select(act & !y.eq(zero), xnew, x);
         done = done | (act & conv);
     }

@@ -3,6 +3,7 @@
 //! coefficients, whose rounding (`ε` of terms of size 1 in units of the bounding radius) is
 //! `ε·(L/r)²` of the values `≈ (r/L)²` that decide a thin tube's hits.
 
+use crate::math::quadric::quadratic_roots_in;
 use crate::math::roots::{cascade_level, Bracket};
 use crate::real::Real;
 use crate::vec::V3;
@@ -89,7 +90,8 @@ impl<T: Real> Direct<T> {
         T::cst(2.0) * (r * r1 - w.dot(w1))
     }
 
-    /// `g''(t) = 2(r'² + r r'' − |w'|² − w·w'')`.
+    /// `g''(t) = 2(r'² + r r'' − |w'|² − w·w'') = 2(6A t² + 6B t + C)` with `A = ra² − |wa|²`,
+    /// `B = ra rb − wa·wb`, `C = rb² + 2ra rc − |wb|² − 2wa·wc`.
     #[inline(always)]
     pub(super) fn g2(&self, t: T) -> T {
         let two = T::cst(2.0);
@@ -109,9 +111,10 @@ impl<T: Real> Direct<T> {
         (self.ra * self.rb - self.wa.dot(self.wb), self.ra * self.ra - self.wa.dot(self.wa))
     }
 
-    /// The roots of `g` and of `g'` on `[0, 1]`, by the derivative cascade `g'''` (linear,
-    /// solved) → `g''` → `g'` → `g`, every level evaluated from the vectors ([`Self::g2`],
-    /// [`Self::g1`], [`Self::g`]):
+    /// The roots of `g` and of `g'` on `[0, 1]`, by the derivative cascade `g''` (quadratic,
+    /// solved in closed form with [`Bracket::Newton`]; else `g'''` → `g''` as a cascade level)
+    /// → `g'` → `g`, every level evaluated from the vectors ([`Self::g2`], [`Self::g1`],
+    /// [`Self::g`]):
     /// * `roots`: `0 = z₀ ≤ … ≤ z₅ = 1` with `g` of one sign between them (its real intervals
     ///   are unions of pieces);
     /// * `extrema`: `0 = y₀ ≤ … ≤ y₄ = 1` with `g` monotone between them, so every maximum of
@@ -125,15 +128,35 @@ impl<T: Real> Direct<T> {
     #[inline(always)]
     pub(super) fn g_breakpoints(&self, m: Bracket) -> GBreaks<T> {
         let (zero, one) = (T::zero(), T::one());
-        let (c0, c1) = self.g3_coeffs();
-        let den = T::cst(2.0) * c1;
-        let ok = !den.eq(zero) & den.is_finite();
-        let t3 = -c0 / T::select(ok, den, one);
-        let t3 = T::select(ok & t3.gt(zero) & t3.lt(one), t3, one);
-        let mut bp = [one; 8];
-        bp[0] = zero;
-        bp[1] = t3;
-        let bp = cascade_level(&bp, 3, |t| self.g2(t), |t| self.g3(t), m);
+        // g'' is the quadratic 2(6A t² + 6B t + C) (module docs of `g2`): its roots in closed
+        // form (no cancellation in the formula, `quadratic_roots_in`) replace a Newton level
+        // of the cascade (issue 10's cost). Its coefficients are dot products of the vectors,
+        // rounded like g'' evaluated from them.
+        // With a fixed-step bracket method (Bisection) the cascade from g''''s vertex is
+        // kept: the vertex stays a breakpoint, narrowing g''s pieces, and its false-miss rates
+        // (tests/spline_approximate.rs) are those measured.
+        let (b, a) = self.g3_coeffs();
+        let bp = if m == Bracket::Newton {
+            let c = self.rb * self.rb + T::cst(2.0) * self.ra * self.rc
+                - self.wb.dot(self.wb)
+                - T::cst(2.0) * self.wa.dot(self.wc);
+            let six = T::cst(6.0);
+            let (x1, x2) = quadratic_roots_in(&[c, six * b, six * a], zero, one);
+            let mut bp = [one; 8];
+            bp[0] = zero;
+            bp[1] = x1;
+            bp[2] = x2;
+            bp
+        } else {
+            let den = T::cst(2.0) * a;
+            let ok = !den.eq(zero) & den.is_finite();
+            let t3 = -b / T::select(ok, den, one);
+            let t3 = T::select(ok & t3.gt(zero) & t3.lt(one), t3, one);
+            let mut bp = [one; 8];
+            bp[0] = zero;
+            bp[1] = t3;
+            cascade_level(&bp, 3, |t| self.g2(t), |t| self.g3(t), m)
+        };
         let ext = cascade_level(&bp, 4, |t| self.g1(t), |t| self.g2(t), m);
         let bp = cascade_level(&ext, 5, |t| self.g(t), |t| self.g1(t), m);
         GBreaks { roots: [bp[0], bp[1], bp[2], bp[3], bp[4], bp[5]], extrema: [ext[0], ext[1], ext[2], ext[3], ext[4]] }

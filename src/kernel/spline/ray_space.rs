@@ -39,8 +39,6 @@ struct Candidates<T: Real> {
 pub(super) struct RaySpace<T: Real> {
     /// `h` coefficients, ascending powers of `t`.
     h: [T; 3],
-    /// `g` coefficients.
-    pub(super) g: [T; 5],
     /// Power-basis position relative to the re-centred origin, in units of the bounding
     /// radius: `q = qa t² + qb t + qc`.
     qa: V3<T>,
@@ -58,8 +56,8 @@ pub(super) struct RaySpace<T: Real> {
     gv: [T; 5],
     /// Expansion point of `hv`, `gv`: the vertex of the centre line (least `|p'|`), in `[0, 1]`.
     tv: T,
-    /// `g` and its derivatives from the vectors (the decisions and the values; `g` above
-    /// only feeds `P`'s coefficients).
+    /// `g` and its derivatives from the vectors (the decisions and the values; the expanded
+    /// coefficients `gv` only feed `P`'s).
     pub(super) dg: Direct<T>,
 }
 
@@ -188,7 +186,7 @@ impl<T: Real> RaySpace<T> {
             return None;
         }
         let (ra, rb, rc) = (r0 - r1 * two + r2, (r1 - r0) * two, r0);
-        let (h, g) = ray_polys([qa, qb, qc], [ra, rb, rc], dhat);
+        let (h, _) = ray_polys([qa, qb, qc], [ra, rb, rc], dhat);
         // The same about the vertex tv of the centre line (|p'|² = |qb + 2qa·t|² least), from
         // the control points (de Casteljau: each coefficient to ε of the local sizes). Where
         // the curve is slow (p' ≈ 0, e.g. b₁ = b₂) the ray meets the tube over a wide range
@@ -211,7 +209,7 @@ impl<T: Real> RaySpace<T> {
         // entry — was dropped). At t = 0 Horner gives wc, rc exactly.
         let dg = Direct::new([qa, qb, qc], [ra, rb, rc], dhat, (c2, r2));
         // Ray-space distances are in units of `big`: t = tc + s·big/|d|.
-        Some(Self { h, g, qa, qb, qc, dhat, tc, inv_dlen: inv_dlen * big_s, near, hv, gv, tv, dg })
+        Some(Self { h, qa, qb, qc, dhat, tc, inv_dlen: inv_dlen * big_s, near, hv, gv, tv, dg })
     }
 
     #[inline(always)]
@@ -305,50 +303,25 @@ impl<T: Real> RaySpace<T> {
         (T::select(better, vx, v), T::select(better, x, t))
     }
 
-    /// All roots of `P` in `[0, 1]` as sorted breakpoints (`buf[0] = 0`, `buf[n−1] = 1`):
-    /// the union of those found in powers of `t` and in powers of `t − tv` (shifted back),
-    /// merged by a fixed compare-exchange network (`select` on `<`: every lane bit-equal to
-    /// the scalar). Each expansion can be the noisy one: about `tv` for a slow end
-    /// (regression-pinched-slow-end), in powers of `t` elsewhere; a spare candidate costs
-    /// nothing (every candidate is a point of the sweep), a lost one can lose the entry.
+    /// All roots of `P` in `[0, 1]` as sorted breakpoints (`buf[0] = 0`, `buf[n−1] = 1`),
+    /// isolated in powers of `t − tv` (shifted back). About the vertex `tv` of the centre line
+    /// the coefficients carry no cancellation where the curve is slow (`p' ≈ 0`:
+    /// regression-pinched-slow-end, where the roots in powers of `t` near the slow end were
+    /// noise). Until issue 10's cost work the roots in powers of `t` were added as well, for
+    /// the zero-radius tip on the ray (regression-tip-on-ray); that case is covered since by
+    /// `g(1)` formed from the end and by `g`'s breakpoints, which are candidates too (both ends
+    /// always among them), and the second isolation cost 27% of a hit.
     #[inline(always)]
-    pub(super) fn p_breakpoints(&self) -> ([T; 16], usize) {
+    pub(super) fn p_breakpoints(&self) -> ([T; 8], usize) {
         let (lo, hi) = (-self.tv, T::one() - self.tv);
-        let (bt, nt) = poly_breakpoints(&self.p_poly_t(), T::zero(), T::one(), Bracket::Newton);
-        // At tv = 0 both expansions are the same numbers (hv = h, gv = g bit for bit: the
-        // Bernstein weights at 0 are exactly 1, 0, 0), so their roots are too: reuse them.
-        let (bv, nv) = if self.tv.eq(T::zero()).all() {
-            (bt, nt)
-        } else {
-            poly_breakpoints(&self.p_poly(), lo, hi, Bracket::Newton)
-        };
-        debug_assert!(nv == 8 && nt == 8);
-        let mut out = [T::one(); 16];
-        // out = bt ascending, then the shifted bv descending: a bitonic sequence.
-        out[..8].copy_from_slice(&bt);
+        let (bv, nv) = poly_breakpoints(&self.p_poly(), lo, hi, Bracket::Newton);
+        debug_assert!(nv == 8);
+        let mut out = [T::one(); 8];
         for i in 0..8 {
             let t = (self.tv + bv[i]).clamp(T::zero(), T::one());
-            out[15 - i] = T::select(bv[i].le(lo), T::zero(), T::select(bv[i].ge(hi), T::one(), t));
+            out[i] = T::select(bv[i].le(lo), T::zero(), T::select(bv[i].ge(hi), T::one(), t));
         }
-        let mut stride = 8;
-        while stride > 0 {
-            for i in 0..16 {
-                if i & stride == 0 {
-                    let (a, b) = (out[i], out[i + stride]);
-                    let sw = b.lt(a);
-                    out[i] = T::select(sw, b, a);
-                    out[i + stride] = T::select(sw, a, b);
-                }
-            }
-            stride /= 2;
-        }
-        (out, 16)
-    }
-
-    /// `P = 4h'²g − g'²` (degree 6) in powers of `t`.
-    #[inline(always)]
-    fn p_poly_t(&self) -> [T; 7] {
-        p_of(&self.h, &self.g)
+        (out, 8)
     }
 
     /// `P = 4h'²g − g'²` (degree 6) in powers of `t − tv`.
