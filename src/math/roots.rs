@@ -165,15 +165,35 @@ pub fn itp<T: Real>(f: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub fn newton<T: Real>(f: impl Fn(T) -> T, df: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask, tol: T) -> T {
+    let (zero, one) = (T::zero(), T::one());
+    let s = T::select(fa.gt(zero), -one, one);
+    // Start at the regula-falsi point (inside the bracket for a valid one).
+    let den = (fb - fa) * s;
+    let x0 = a - fa * s * (b - a) / T::select(den.gt(zero), den, one);
+    newton_from(f, df, a, b, fa, fb, x0, valid, tol)
+}
+
+/// [`newton`] started at `x0 ∈ [a, b]` instead of the regula-falsi point (a start already
+/// near the root, e.g. a candidate being polished, converges in a step or two).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn newton_from<T: Real>(
+    f: impl Fn(T) -> T,
+    df: impl Fn(T) -> T,
+    a: T,
+    b: T,
+    fa: T,
+    fb: T,
+    x0: T,
+    valid: T::Mask,
+    tol: T,
+) -> T {
     let zero = T::zero();
     let half = T::cst(0.5);
     let one = T::one();
     let s = T::select(fa.gt(zero), -one, one);
     let (mut a, mut b) = (a, b);
     let (mut ya, mut yb) = (fa * s, fb * s);
-    // Start at the regula-falsi point (inside the bracket for a valid one).
-    let den = yb - ya;
-    let x0 = a - ya * (b - a) / T::select(den.gt(zero), den, one);
     let mut x = T::select(valid, x0.clamp(a, b), (a + b) * half);
     let mut done = !valid | (b - a).le(tol);
     let mut it = 0;
@@ -299,35 +319,40 @@ pub fn poly_breakpoints<T: Real, const N: usize>(c: &[T; N], lo: T, hi: T, metho
     let mut k = top;
     while k > 0 {
         k -= 1;
-        let p = ders[k];
-        let deg = N - 1 - k;
-        let f = move |x: T| eval_padded(&p, deg, x);
-        let df = move |x: T| eval_deriv_padded(&p, deg, x);
-        bp = cascade_level(&bp, n, f, df, method);
+        // Level k's derivative is level k + 1 (the same products `c_i·i`, so the same values
+        // as differentiating on the fly); a constant degree per arm unrolls Horner (issue 10's
+        // cost: a runtime-length loop over coefficients kept on the stack).
+        let (p, dp) = (&ders[k], &ders[k + 1]);
+        bp = match N - 1 - k {
+            3 => poly_level::<T, 3>(&bp, n, p, dp, method),
+            4 => poly_level::<T, 4>(&bp, n, p, dp, method),
+            5 => poly_level::<T, 5>(&bp, n, p, dp, method),
+            _ => poly_level::<T, 6>(&bp, n, p, dp, method),
+        };
         n += 1;
     }
     (bp, n)
 }
 
-/// The polynomial `p[..=deg]` (padded to 7 coefficients) at `x`.
+/// One cascade level ([`cascade_level`]) on the polynomial `p[..=D]` with derivative
+/// `dp[..D]` (both padded to 7 coefficients).
 #[inline(always)]
-fn eval_padded<T: Real>(p: &[T; 7], deg: usize, x: T) -> T {
-    horner_slice(&p[..=deg], x)
-}
-
-/// The derivative of the polynomial `p[..=deg]` (padded to 7 coefficients) at `x`.
-#[inline(always)]
-fn eval_deriv_padded<T: Real>(p: &[T; 7], deg: usize, x: T) -> T {
-    if deg == 0 {
-        return T::zero();
-    }
-    let mut acc = p[deg] * T::cst(deg as f64);
-    let mut i = deg - 1;
-    while i > 0 {
-        acc = acc * x + p[i] * T::cst(i as f64);
-        i -= 1;
-    }
-    acc
+fn poly_level<T: Real, const D: usize>(bp: &[T; 8], n: usize, p: &[T; 7], dp: &[T; 7], method: Bracket) -> [T; 8] {
+    let f = move |x: T| {
+        let mut acc = p[D];
+        for i in (0..D).rev() {
+            acc = acc * x + p[i];
+        }
+        acc
+    };
+    let df = move |x: T| {
+        let mut acc = dp[D - 1];
+        for i in (0..D - 1).rev() {
+            acc = acc * x + dp[i];
+        }
+        acc
+    };
+    cascade_level(bp, n, f, df, method)
 }
 
 #[cfg(test)]
