@@ -165,35 +165,15 @@ pub fn itp<T: Real>(f: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub fn newton<T: Real>(f: impl Fn(T) -> T, df: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask, tol: T) -> T {
-    let (zero, one) = (T::zero(), T::one());
-    let s = T::select(fa.gt(zero), -one, one);
-    // Start at the regula-falsi point (inside the bracket for a valid one).
-    let den = (fb - fa) * s;
-    let x0 = a - fa * s * (b - a) / T::select(den.gt(zero), den, one);
-    newton_from(f, df, a, b, fa, fb, x0, valid, tol)
-}
-
-/// [`newton`] started at `x0 ∈ [a, b]` instead of the regula-falsi point (a start already
-/// near the root, e.g. a candidate being polished, converges in a step or two).
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-pub fn newton_from<T: Real>(
-    f: impl Fn(T) -> T,
-    df: impl Fn(T) -> T,
-    a: T,
-    b: T,
-    fa: T,
-    fb: T,
-    x0: T,
-    valid: T::Mask,
-    tol: T,
-) -> T {
     let zero = T::zero();
     let half = T::cst(0.5);
     let one = T::one();
     let s = T::select(fa.gt(zero), -one, one);
     let (mut a, mut b) = (a, b);
     let (mut ya, mut yb) = (fa * s, fb * s);
+    // Start at the regula-falsi point (inside the bracket for a valid one).
+    let den = yb - ya;
+    let x0 = a - ya * (b - a) / T::select(den.gt(zero), den, one);
     let mut x = T::select(valid, x0.clamp(a, b), (a + b) * half);
     let mut done = !valid | (b - a).le(tol);
     let mut it = 0;

@@ -4,9 +4,7 @@
 use super::direct::Direct;
 use super::QuadTube;
 use crate::math::bezier::bernstein2;
-use crate::math::roots::{
-    cascade_level, default_tol, horner, newton_from, opposite, poly_breakpoints, poly_mul, Bracket,
-};
+use crate::math::roots::{cascade_level, default_tol, horner, itp, opposite, poly_breakpoints, poly_mul, Bracket};
 use crate::ray::{in_range, Interval, Ray};
 use crate::real::{Mask, Real, Scalar};
 use crate::vec::V3;
@@ -281,23 +279,16 @@ impl<T: Real> RaySpace<T> {
     /// Polishes a candidate `t` (value `v`) for a minimum of `σh − √g` — `P`'s roots carry
     /// the cancellation of `4h'²g − g'²`'s coefficients and can be far off or missing for thin,
     /// long tubes: the sign of `F₁ = 2σh'√g − g'` (from the vectors, [`Direct`]) at `t` says on
-    /// which side the minimum lies; safeguarded Newton on `F₁` from `t`, bracketed by `t` and
-    /// that side's neighbouring candidate (`left`, `right`), kept where the bracket is valid,
-    /// the point is real (gap `≥ −τ`) and it lowers the value. A real interval's ends are candidates, where
+    /// which side the minimum lies; ITP on `F₁` between `t` and that side's neighbouring
+    /// candidate (`left`, `right`), kept where the bracket is valid, the point is real (gap
+    /// `≥ −τ`) and it lowers the value. A real interval's ends are candidates, where
     /// `F₁ = −g'` has the sign that makes the bracket valid. Returns `(value, t)`.
     #[inline(always)]
     fn polish(&self, t: T, v: T, sigma: T, left: T, right: T) -> (T, T) {
         let two = T::cst(2.0);
         let dg = self.dg;
         let h1 = [self.h[1] * sigma, two * self.h[2] * sigma];
-        let h2 = two * self.h[2] * sigma;
         let f1 = move |x: T| two * horner(&h1, x) * dg.g(x).max(T::zero()).sqrt() - dg.g1(x);
-        // F₁' = 2σh''√g + σh'g'/√g − g'' (∞ where g = 0: the step then falls outside the
-        // bracket and the solver bisects).
-        let df1 = move |x: T| {
-            let sg = dg.g(x).max(T::zero()).sqrt();
-            two * h2 * sg + horner(&h1, x) * dg.g1(x) / sg - dg.g2(x)
-        };
         let ft = f1(t);
         let go_right = ft.lt(T::zero());
         let (a, b) = (T::select(go_right, t, left), T::select(go_right, right, t));
@@ -306,10 +297,12 @@ impl<T: Real> RaySpace<T> {
         if valid.none() {
             return (v, t);
         }
-        // Safeguarded Newton from the candidate itself: a root of `P` is a critical point to
-        // its rounding, so one or two steps finish it (ITP from the bracket's interpolation
-        // point took ~12 steps; issue 10's cost).
-        let x = newton_from(f1, df1, a, b, fa, fb, t, valid, default_tol::<T>());
+        // ITP, not Newton from `t`: Newton was 8% cheaper per hit (one or two steps from a
+        // root of `P`) but stops on a step ≤ tol, which a thin tube's steep `F₁'` (its
+        // `h'g'/√g` term) makes tiny before `F₁` is near zero: in f32 on long thin links the
+        // p99 entry error rose from 8.8e-3 to 0.34 radii (docs/report/stability.md,
+        // `long-thin`, `as-spline-polynomial/f32`). ITP stops on the bracket.
+        let x = itp(f1, a, b, fa, fb, valid, default_tol::<T>());
         let vx = self.val(x, sigma);
         let better = valid & vx.lt(v) & dg.gap_g(x).0.ge(-dg.tau);
         (T::select(better, vx, v), T::select(better, x, t))
