@@ -195,7 +195,7 @@ pub fn newton<T: Real>(f: impl Fn(T) -> T, df: impl Fn(T) -> T, a: T, b: T, fa: 
         // cascade's level below, where `f` is flat) makes every Newton step overshoot that
         // end, and bisection then crept towards it for up to ~40 steps (issue 10's cost: 8% of
         // the spline cascade's solves took 16 or more). Newton landing within `tol` beyond an
-        // end whose value is within `tol·|f'|` of zero puts the root within `2·tol` of that
+        // end whose value is within `2·tol·|f'|` of zero puts the root within `2·tol` of that
         // end to first order: take the end.
         let reach = (dy * tol).abs() * T::cst(2.0);
         let at_a = !inside & xn.le(a) & xn.ge(a - tol) & ya.abs().le(reach);
@@ -299,40 +299,16 @@ pub fn poly_breakpoints<T: Real, const N: usize>(c: &[T; N], lo: T, hi: T, metho
     let mut k = top;
     while k > 0 {
         k -= 1;
-        // Level k's derivative is level k + 1 (the same products `c_i·i`, so the same values
-        // as differentiating on the fly); a constant degree per arm unrolls Horner (issue 10's
-        // cost: a runtime-length loop over coefficients kept on the stack).
-        let (p, dp) = (&ders[k], &ders[k + 1]);
-        bp = match N - 1 - k {
-            3 => poly_level::<T, 3>(&bp, n, p, dp, method),
-            4 => poly_level::<T, 4>(&bp, n, p, dp, method),
-            5 => poly_level::<T, 5>(&bp, n, p, dp, method),
-            _ => poly_level::<T, 6>(&bp, n, p, dp, method),
-        };
+        // Level k's derivative is level k + 1: the same products `c_i·i` as differentiating
+        // on the fly, so the same values.
+        let (p, dp) = (ders[k], ders[k + 1]);
+        let deg = N - 1 - k;
+        let f = move |x: T| horner_slice(&p[..=deg], x);
+        let df = move |x: T| horner_slice(&dp[..deg], x);
+        bp = cascade_level(&bp, n, f, df, method);
         n += 1;
     }
     (bp, n)
-}
-
-/// One cascade level ([`cascade_level`]) on the polynomial `p[..=D]` with derivative
-/// `dp[..D]` (both padded to 7 coefficients).
-#[inline(always)]
-fn poly_level<T: Real, const D: usize>(bp: &[T; 8], n: usize, p: &[T; 7], dp: &[T; 7], method: Bracket) -> [T; 8] {
-    let f = move |x: T| {
-        let mut acc = p[D];
-        for i in (0..D).rev() {
-            acc = acc * x + p[i];
-        }
-        acc
-    };
-    let df = move |x: T| {
-        let mut acc = dp[D - 1];
-        for i in (0..D - 1).rev() {
-            acc = acc * x + dp[i];
-        }
-        acc
-    };
-    cascade_level(bp, n, f, df, method)
 }
 
 #[cfg(test)]

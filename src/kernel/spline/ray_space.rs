@@ -65,14 +65,21 @@ pub(super) struct RaySpace<T: Real> {
 /// `q = qa x² + qb x + qc` and radius `ra x² + rb x + rc` (`q = [qa, qb, qc]`, `r = [ra, rb, rc]`).
 #[inline(always)]
 fn ray_polys<T: Real>(q: [V3<T>; 3], r: [T; 3], dhat: V3<T>) -> ([T; 3], [T; 5]) {
+    let h = ray_h(q, dhat);
     let ([qa, qb, qc], [ra, rb, rc]) = (q, r);
     let two = T::cst(2.0);
-    let h = [qc.dot(dhat), qb.dot(dhat), qa.dot(dhat)];
     let (wa, wb, wc) = (qa.cross(dhat), qb.cross(dhat), qc.cross(dhat));
     let w2 = [wc.dot(wc), two * wc.dot(wb), wb.dot(wb) + two * wc.dot(wa), two * wb.dot(wa), wa.dot(wa)];
     let r2 = [rc * rc, two * rc * rb, rb * rb + two * rc * ra, two * rb * ra, ra * ra];
     let g = [r2[0] - w2[0], r2[1] - w2[1], r2[2] - w2[2], r2[3] - w2[3], r2[4] - w2[4]];
     (h, g)
+}
+
+/// `h = q·d̂` (ascending powers) from the power-basis position `q = [qa, qb, qc]`.
+#[inline(always)]
+fn ray_h<T: Real>(q: [V3<T>; 3], dhat: V3<T>) -> [T; 3] {
+    let [qa, qb, qc] = q;
+    [qc.dot(dhat), qb.dot(dhat), qa.dot(dhat)]
 }
 
 /// Lanes whose line surely misses the sweep (an exact early rejection, issue 10's cost): the
@@ -186,7 +193,8 @@ impl<T: Real> RaySpace<T> {
             return None;
         }
         let (ra, rb, rc) = (r0 - r1 * two + r2, (r1 - r0) * two, r0);
-        let (h, _) = ray_polys([qa, qb, qc], [ra, rb, rc], dhat);
+        // `h` in powers of `t` (the values); `g`'s coefficients only about `tv`, for `P`.
+        let h = ray_h([qa, qb, qc], dhat);
         // The same about the vertex tv of the centre line (|p'|² = |qb + 2qa·t|² least), from
         // the control points (de Casteljau: each coefficient to ε of the local sizes). Where
         // the curve is slow (p' ≈ 0, e.g. b₁ = b₂) the ray meets the tube over a wide range
