@@ -101,6 +101,8 @@ mod capsule;
 mod direct;
 mod ray_space;
 mod sdf;
+#[cfg(test)]
+mod tests;
 
 pub use sdf::quadratic_tube;
 
@@ -266,28 +268,7 @@ impl<T: Real> QuadTube<T> {
             return Interval::miss();
         };
         match solver {
-            Solver::Polynomial => {
-                // g's breakpoints hold its maxima: a candidate in every real interval, whatever
-                // the rounding of P's coefficients does to P's roots. None of them real (gap
-                // ≥ −τ): the line misses the tube deflated by the band (see "Conditioning"), a
-                // miss is a right answer and P's cascade is skipped.
-                let gb = rs.dg.g_breakpoints(Bracket::Newton);
-                // The ends 0 and 1 once (they open and close every breakpoint list).
-                let mut z = [T::zero(); 9];
-                z[..4].copy_from_slice(&gb.roots[1..5]);
-                z[4..].copy_from_slice(&gb.extrema);
-                let mut real = T::Mask::splat(false);
-                for &t in &gb.extrema {
-                    real = real | rs.dg.gap_g(t).0.ge(-rs.dg.tau);
-                }
-                if (real & rs.near).none() {
-                    return Interval::miss();
-                }
-                let (bp, n) = rs.p_breakpoints();
-                let (x, any) = rs.polished_candidates(&bp[1..n - 1], &z, T::zero(), T::one(), false);
-                // `& real`: a lane decides as the scalar call does (which returned above).
-                rs.interval(ray, x, any & real, false)
-            }
+            Solver::Polynomial => self.polynomial_line(&rs, ray, Path::Auto).0,
             _ => {
                 // Hull of the line pieces (a piece behind the origin still belongs to the line
                 // interval).
@@ -299,6 +280,47 @@ impl<T: Real> QuadTube<T> {
                 iv
             }
         }
+    }
+
+    /// [`Solver::Polynomial`]'s line interval, and the lanes answered by the certified count
+    /// (`RaySpace::certified`); `Path::Cascade` forces `P`'s cascade for every lane (tests).
+    #[inline(always)]
+    fn polynomial_line(&self, rs: &RaySpace<T>, ray: &Ray<T>, path: Path) -> (Interval<T>, T::Mask) {
+        // g's breakpoints hold its maxima: a candidate in every real interval, whatever
+        // the rounding of P's coefficients does to P's roots. None of them real (gap
+        // ≥ −τ): the line misses the tube deflated by the band (see "Conditioning"), a
+        // miss is a right answer and P's cascade is skipped.
+        let gb = rs.dg.g_breakpoints(Bracket::Newton);
+        let mut real = T::Mask::splat(false);
+        for &t in &gb.extrema {
+            real = real | rs.dg.gap_g(t).0.ge(-rs.dg.tau);
+        }
+        let none = T::Mask::splat(false);
+        if (real & rs.near).none() {
+            return (Interval::miss(), none);
+        }
+        // The certified count on g's real pieces first; P's cascade only for lanes it
+        // cannot certify (`RaySpace::certified`). A lane with a candidate real within
+        // the gap's rounding but no piece with g > 0 (a graze within τ) is not certified.
+        let (fast, cert) = if path == Path::Auto {
+            let (xc, pieces, cert) = rs.certified(&gb.roots);
+            let cert = cert & ((pieces & real) | (!pieces & !real));
+            let fast = rs.interval(ray, xc, pieces & real, false);
+            if cert.all() {
+                return (fast, cert);
+            }
+            (fast, cert)
+        } else {
+            (Interval::miss(), none)
+        };
+        // The ends 0 and 1 once (they open and close every breakpoint list).
+        let mut z = [T::zero(); 9];
+        z[..4].copy_from_slice(&gb.roots[1..5]);
+        z[4..].copy_from_slice(&gb.extrema);
+        let (bp, n) = rs.p_breakpoints();
+        let (x, any) = rs.polished_candidates(&bp[1..n - 1], &z, T::zero(), T::one(), false);
+        // `& real`: a lane decides as the scalar call does (which returned above).
+        (Interval::select(cert, fast, rs.interval(ray, x, any & real, false)), cert)
     }
 
     /// One interval per real interval of `g` (at most three non-empty, in slots `0..5`; the
@@ -360,4 +382,13 @@ impl<T: Real> QuadTube<T> {
         }
         out
     }
+}
+
+/// Which way [`QuadTube::polynomial_line`] goes: the certified count where it certifies
+/// (`Auto`, what [`Solver::Polynomial`] does) or `P`'s cascade everywhere (`Cascade`, tests).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Path {
+    Auto,
+    #[cfg_attr(not(test), allow(dead_code))]
+    Cascade,
 }

@@ -111,51 +111,129 @@ pub const MAX_ITER: u32 = 64;
 /// converges superlinearly while one bracket end may stay put, as in regula falsi).
 #[inline(always)]
 pub fn itp<T: Real>(f: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask, tol: T) -> T {
-    let zero = T::zero();
-    let half = T::cst(0.5);
-    let one = T::one();
-    // Orient: y = s·f with y(a) < 0 < y(b).
-    let s = T::select(fa.gt(zero), -one, one);
-    let (mut a, mut b, mut ya, mut yb) = (a, b, fa * s, fb * s);
-    let w0 = b - a;
-    let k1 = T::cst(0.2) / T::select(w0.gt(zero), w0, one);
-    // ε·2^(n_max − j) with n_max = log2(w0/2ε) + n₀ (real-valued): starts at w0.
-    let mut rmax = w0;
-    let two_tol = tol * T::cst(2.0);
-    let mut done = !valid | w0.le(two_tol);
-    let mut stepped = T::Mask::splat(false);
-    let mut xprev = (a + b) * half;
-    let mut xlast = xprev;
+    let mut s = Itp::new(a, b, fa, fb, valid, tol);
     let mut it = 0;
-    while !done.all() && it < MAX_ITER {
+    while !s.done.all() && it < MAX_ITER {
         it += 1;
+        let x = s.point();
+        s.update(x, f(x), it);
+    }
+    s.result()
+}
+
+/// Two independent [`itp`] solves in lock step: each result is bit for bit the one [`itp`]
+/// returns (the same operations; a solve that has converged is frozen while the other runs).
+/// A solve is a chain of dependent steps (function, interpolation, division); interleaving
+/// two lets the processor overlap them (issue 10's cost: the spline's entry and exit).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn itp_pair<T: Real, F: Fn(T) -> T>(
+    f: &[F; 2],
+    a: [T; 2],
+    b: [T; 2],
+    fa: [T; 2],
+    fb: [T; 2],
+    valid: [T::Mask; 2],
+    tol: T,
+) -> [T; 2] {
+    let mut s = [Itp::new(a[0], b[0], fa[0], fb[0], valid[0], tol), Itp::new(a[1], b[1], fa[1], fb[1], valid[1], tol)];
+    let mut it = 0;
+    while !(s[0].done.all() && s[1].done.all()) && it < MAX_ITER {
+        it += 1;
+        let (x0, x1) = (s[0].point(), s[1].point());
+        let (y0, y1) = (f[0](x0), f[1](x1));
+        s[0].update(x0, y0, it);
+        s[1].update(x1, y1, it);
+    }
+    [s[0].result(), s[1].result()]
+}
+
+/// The state of one [`itp`] solve.
+#[derive(Clone, Copy)]
+struct Itp<T: Real> {
+    /// `f`'s sign flip making `y(a) < 0 < y(b)`.
+    s: T,
+    a: T,
+    b: T,
+    ya: T,
+    yb: T,
+    k1: T,
+    rmax: T,
+    tol: T,
+    done: T::Mask,
+    stepped: T::Mask,
+    xprev: T,
+    xlast: T,
+}
+
+impl<T: Real> Itp<T> {
+    #[inline(always)]
+    fn new(a: T, b: T, fa: T, fb: T, valid: T::Mask, tol: T) -> Self {
+        let (zero, one, half) = (T::zero(), T::one(), T::cst(0.5));
+        // Orient: y = s·f with y(a) < 0 < y(b).
+        let s = T::select(fa.gt(zero), -one, one);
+        let w0 = b - a;
+        let k1 = T::cst(0.2) / T::select(w0.gt(zero), w0, one);
+        let xprev = (a + b) * half;
+        Self {
+            s,
+            a,
+            b,
+            ya: fa * s,
+            yb: fb * s,
+            k1,
+            // ε·2^(n_max − j) with n_max = log2(w0/2ε) + n₀ (real-valued): starts at w0.
+            rmax: w0,
+            tol,
+            done: !valid | w0.le(tol * T::cst(2.0)),
+            stepped: T::Mask::splat(false),
+            xprev,
+            xlast: xprev,
+        }
+    }
+
+    /// The next ITP point.
+    #[inline(always)]
+    fn point(&self) -> T {
+        let (zero, one, half) = (T::zero(), T::one(), T::cst(0.5));
+        let (a, b, ya, yb) = (self.a, self.b, self.ya, self.yb);
         let w = b - a;
         let xh = (a + b) * half;
-        let r = rmax - w * half;
-        let delta = k1 * w * w;
+        let r = self.rmax - w * half;
+        let delta = self.k1 * w * w;
         let den = yb - ya;
         let xf = (yb * a - ya * b) / T::select(den.gt(zero), den, one);
         let sigma = T::select(xh.ge(xf), one, -one);
         let xt = T::select(delta.le((xh - xf).abs()), xf + sigma * delta, xh);
         let x = T::select((xt - xh).abs().le(r), xt, xh - sigma * r);
-        let x = x.clamp(a, b);
-        let y = f(x) * s;
-        let act = !done;
+        x.clamp(a, b)
+    }
+
+    /// Take `f(x) = fx` (iteration `it`, from 1).
+    #[inline(always)]
+    fn update(&mut self, x: T, fx: T, it: u32) {
+        let zero = T::zero();
+        let y = fx * self.s;
+        let act = !self.done;
         let lo = act & y.lt(zero);
         let hi = act & y.gt(zero);
         let ex = act & y.eq(zero);
-        a = T::select(lo | ex, x, a);
-        ya = T::select(lo, y, ya);
-        b = T::select(hi | ex, x, b);
-        yb = T::select(hi, y, yb);
-        rmax = T::select(act, rmax * half, rmax);
-        let st = act & (x - xprev).abs().le(tol) & T::Mask::splat(it > 1);
-        stepped = stepped | st | (act & ex);
-        xlast = T::select(act, x, xlast);
-        xprev = T::select(act, x, xprev);
-        done = done | (b - a).le(two_tol) | ex | st;
+        self.a = T::select(lo | ex, x, self.a);
+        self.ya = T::select(lo, y, self.ya);
+        self.b = T::select(hi | ex, x, self.b);
+        self.yb = T::select(hi, y, self.yb);
+        self.rmax = T::select(act, self.rmax * T::cst(0.5), self.rmax);
+        let st = act & (x - self.xprev).abs().le(self.tol) & T::Mask::splat(it > 1);
+        self.stepped = self.stepped | st | (act & ex);
+        self.xlast = T::select(act, x, self.xlast);
+        self.xprev = T::select(act, x, self.xprev);
+        self.done = self.done | (self.b - self.a).le(self.tol * T::cst(2.0)) | ex | st;
     }
-    T::select(stepped, xlast, (a + b) * half)
+
+    #[inline(always)]
+    fn result(&self) -> T {
+        T::select(self.stepped, self.xlast, (self.a + self.b) * T::cst(0.5))
+    }
 }
 
 /// Safeguarded Newton (`rtsafe`) on a valid bracket: a Newton step of `f/df` where it falls
