@@ -35,6 +35,15 @@
 //!   on the line) and at `t = 0, 1`.
 //!   Needs no real intervals and no claim.
 //!
+//!   Where it can, it skips `P`'s cascade (issue 10's cost): on each real piece of `g`, the
+//!   Bernstein coefficients of `P` with a bound on their rounding count its roots from above
+//!   (Descartes' rule, `crate::math::descartes`); when that count equals the number of the
+//!   entry's and exit's sign functions that change sign between the piece's ends (halving the
+//!   piece up to four times), each has at most one root there, the entry is that root if `F₁`
+//!   rises through it and an end otherwise, likewise the exit (`RaySpace::certified`). Rays it
+//!   cannot certify — chiefly thin tubes in `f32`, whose `P` is within its rounding — take the
+//!   cascade. On the spline bench's f32 rays it certifies all but 4 of 64 hits.
+//!
 //! # Conditioning (issue 10)
 //! In units of the bounding radius `R` (≈ `L/2 + r`) the coefficients of `g` are of size 1
 //! while the values that decide a thin tube's hits are `≈ (r/R)²`; `g` formed from its
@@ -62,7 +71,8 @@
 //! `E = 1024·ε·R + 8·ε·|o − m|`,
 //!
 //! **provided** the entry's critical point is among the polished candidates (the one
-//! assumption, tested, not proven: below). `E/r ≈ 1024ε·L/(2r)` is linear in `L/r`, like the
+//! assumption, tested, not proven: below; on the certified path, that the root count of `P`
+//! as formed holds for `F₁`, `F̄₁` from the vectors — the same assumption in another form). `E/r ≈ 1024ε·L/(2r)` is linear in `L/r`, like the
 //! stable link's; the old formulation's was quadratic. What `E` excludes is exact: a phantom
 //! hit needs the tube inflated by `E` to be hit, a false miss the tube deflated by `E` to be
 //! missed. `tests/spline_conditioning.rs` asserts both, and the interval between the inflated
