@@ -243,29 +243,87 @@ impl<T: Real> Itp<T> {
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub fn newton<T: Real>(f: impl Fn(T) -> T, df: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask, tol: T) -> T {
-    let zero = T::zero();
-    let half = T::cst(0.5);
-    let one = T::one();
-    let s = T::select(fa.gt(zero), -one, one);
-    let (mut a, mut b) = (a, b);
-    let (mut ya, mut yb) = (fa * s, fb * s);
-    // Start at the regula-falsi point (inside the bracket for a valid one).
-    let den = yb - ya;
-    let x0 = a - ya * (b - a) / T::select(den.gt(zero), den, one);
-    let mut x = T::select(valid, x0.clamp(a, b), (a + b) * half);
-    let mut done = !valid | (b - a).le(tol);
+    let mut s = Newton::new(a, b, fa, fb, valid, tol);
     let mut it = 0;
-    while !done.all() && it < MAX_ITER {
+    while !s.done.all() && it < MAX_ITER {
         it += 1;
-        let act = !done;
-        let y = f(x) * s;
-        let dy = df(x) * s;
+        s.step(f(s.x), df(s.x));
+    }
+    s.x
+}
+
+/// Two independent [`newton`] solves of one function in lock step: each result is bit for bit
+/// the one [`newton`] returns (the same operations; a solve that has converged is frozen while
+/// the other runs). Like [`itp_pair`], it lets the processor overlap two chains of dependent
+/// steps (issue 10's cost: the two roots of `g` about its maximum).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn newton_pair<T: Real>(
+    f: impl Fn(T) -> T,
+    df: impl Fn(T) -> T,
+    a: [T; 2],
+    b: [T; 2],
+    fa: [T; 2],
+    fb: [T; 2],
+    valid: [T::Mask; 2],
+    tol: T,
+) -> [T; 2] {
+    let mut s =
+        [Newton::new(a[0], b[0], fa[0], fb[0], valid[0], tol), Newton::new(a[1], b[1], fa[1], fb[1], valid[1], tol)];
+    let mut it = 0;
+    while !(s[0].done.all() && s[1].done.all()) && it < MAX_ITER {
+        it += 1;
+        let (x0, x1) = (s[0].x, s[1].x);
+        let (y0, y1) = (f(x0), f(x1));
+        let (d0, d1) = (df(x0), df(x1));
+        s[0].step(y0, d0);
+        s[1].step(y1, d1);
+    }
+    [s[0].x, s[1].x]
+}
+
+/// The state of one [`newton`] solve.
+#[derive(Clone, Copy)]
+struct Newton<T: Real> {
+    /// `f`'s sign flip making `y(a) < 0 < y(b)`.
+    s: T,
+    a: T,
+    b: T,
+    ya: T,
+    yb: T,
+    x: T,
+    tol: T,
+    done: T::Mask,
+}
+
+impl<T: Real> Newton<T> {
+    #[inline(always)]
+    fn new(a: T, b: T, fa: T, fb: T, valid: T::Mask, tol: T) -> Self {
+        let (zero, one, half) = (T::zero(), T::one(), T::cst(0.5));
+        let s = T::select(fa.gt(zero), -one, one);
+        let (ya, yb) = (fa * s, fb * s);
+        // Start at the regula-falsi point (inside the bracket for a valid one).
+        let den = yb - ya;
+        let x0 = a - ya * (b - a) / T::select(den.gt(zero), den, one);
+        let x = T::select(valid, x0.clamp(a, b), (a + b) * half);
+        Self { s, a, b, ya, yb, x, tol, done: !valid | (b - a).le(tol) }
+    }
+
+    /// One step from `f(x) = fx`, `f'(x) = dfx`.
+    #[inline(always)]
+    fn step(&mut self, fx: T, dfx: T) {
+        let (zero, half, tol) = (T::zero(), T::cst(0.5), self.tol);
+        let (x, s) = (self.x, self.s);
+        let act = !self.done;
+        let y = fx * s;
+        let dy = dfx * s;
         let lo = act & y.lt(zero);
         let hi = act & y.gt(zero);
-        a = T::select(lo, x, a);
-        b = T::select(hi, x, b);
-        ya = T::select(lo, y, ya);
-        yb = T::select(hi, y, yb);
+        self.a = T::select(lo, x, self.a);
+        self.b = T::select(hi, x, self.b);
+        self.ya = T::select(lo, y, self.ya);
+        self.yb = T::select(hi, y, self.yb);
+        let (a, b) = (self.a, self.b);
         let xn = x - y / dy;
         let inside = xn.gt(a) & xn.lt(b); // false for NaN / ±∞
         let xm = (a + b) * half;
@@ -276,15 +334,14 @@ pub fn newton<T: Real>(f: impl Fn(T) -> T, df: impl Fn(T) -> T, a: T, b: T, fa: 
         // end whose value is within `2·tol·|f'|` of zero puts the root within `2·tol` of that
         // end to first order: take the end.
         let reach = (dy * tol).abs() * T::cst(2.0);
-        let at_a = !inside & xn.le(a) & xn.ge(a - tol) & ya.abs().le(reach);
-        let at_b = !inside & xn.ge(b) & xn.le(b + tol) & yb.abs().le(reach);
+        let at_a = !inside & xn.le(a) & xn.ge(a - tol) & self.ya.abs().le(reach);
+        let at_b = !inside & xn.ge(b) & xn.le(b + tol) & self.yb.abs().le(reach);
         let xnew = T::select(inside, xn, T::select(at_a, a, T::select(at_b, b, xm)));
         let step = (xnew - x).abs();
         let conv = y.eq(zero) | step.le(tol) | (b - a).le(tol) | at_a | at_b;
-        x = T::select(act & !y.eq(zero), xnew, x);
-        done = done | (act & conv);
+        self.x = T::select(act & !y.eq(zero), xnew, x);
+        self.done = self.done | (act & conv);
     }
-    x
 }
 
 /// One level of the derivative cascade on fixed-size buffers.
@@ -314,6 +371,9 @@ pub fn cascade_level<T: Real>(
     // g = 0 while f' ≠ 0, so the sign is taken a little inside, at √ε of the piece width
     // (a root closer than that to the end is represented by the end, a candidate anyway).
     let nudge = T::epsilon().sqrt();
+    // Newton's pieces with a sign change somewhere: (piece, bracket, lanes).
+    let mut pend = [(0usize, [T::zero(); 4], T::Mask::splat(false)); 7];
+    let mut np = 0;
     for i in 0..n - 1 {
         let (mut a, mut b, mut fa, mut fb) = (bp[i], bp[i + 1], fv[i], fv[i + 1]);
         let (za, zb) = (fa.eq(T::zero()), fb.eq(T::zero()));
@@ -334,17 +394,37 @@ pub fn cascade_level<T: Real>(
         let valid = opposite(fa, fb);
         // Placeholder: the left end if f is exactly 0 there, else the right end.
         let ph = T::select(fv[i].eq(T::zero()), bp[i], bp[i + 1]);
-        let x = if valid.none() {
-            ph
-        } else {
-            let r = match method {
-                Bracket::Bisection(k) => bisection(f, a, b, fa, k),
-                Bracket::Itp => itp(f, a, b, fa, fb, valid, tol),
-                Bracket::Newton => newton(f, df, a, b, fa, fb, valid, tol),
-            };
-            T::select(valid, r, ph)
+        out[i + 1] = ph;
+        if valid.none() {
+            continue;
+        }
+        if method == Bracket::Newton {
+            // Solved below, two pieces at a time.
+            pend[np] = (i, [a, b, fa, fb], valid);
+            np += 1;
+            continue;
+        }
+        let r = match method {
+            Bracket::Bisection(k) => bisection(f, a, b, fa, k),
+            _ => itp(f, a, b, fa, fb, valid, tol),
         };
-        out[i + 1] = x;
+        out[i + 1] = T::select(valid, r, ph);
+    }
+    // Newton's solves in pairs ([`newton_pair`]: the same roots as one at a time).
+    let mut k = 0;
+    while k < np {
+        let (i, [a, b, fa, fb], valid) = pend[k];
+        if k + 1 < np {
+            let (j, [a2, b2, fa2, fb2], valid2) = pend[k + 1];
+            let [r, r2] = newton_pair(f, df, [a, a2], [b, b2], [fa, fa2], [fb, fb2], [valid, valid2], tol);
+            out[i + 1] = T::select(valid, r, out[i + 1]);
+            out[j + 1] = T::select(valid2, r2, out[j + 1]);
+            k += 2;
+        } else {
+            let r = newton(f, df, a, b, fa, fb, valid, tol);
+            out[i + 1] = T::select(valid, r, out[i + 1]);
+            k += 1;
+        }
     }
     out
 }
@@ -390,34 +470,4 @@ pub fn poly_breakpoints<T: Real, const N: usize>(c: &[T; N], lo: T, hi: T, metho
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn sextic_roots_found_by_every_method() {
-        // ∏ (x − k/7), k = 1..6: six simple roots in (0, 1).
-        let mut c = [1.0f64, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
-        for k in 1..=6 {
-            let r = k as f64 / 7.0;
-            let mut nc = [0.0; 7];
-            for i in 0..7 {
-                nc[i] -= r * c[i];
-                if i > 0 {
-                    nc[i] += c[i - 1];
-                }
-            }
-            c = nc;
-        }
-        for (m, tol) in [(Bracket::Bisection(40), 1e-11), (Bracket::Itp, 1e-13), (Bracket::Newton, 1e-13)] {
-            let (bp, n) = poly_breakpoints(&c, 0.0, 1.0, m);
-            assert_eq!(n, 8);
-            for k in 1..=6 {
-                let r = k as f64 / 7.0;
-                let best = bp[..n].iter().map(|x| (x - r).abs()).fold(f64::INFINITY, f64::min);
-                // Bisection(40) on a bracket ≤ 1 wide: ≤ 2⁻⁴¹ ≈ 4.5e-13; ITP/Newton: 4 ulps of 1
-                // plus the root's condition (|c'(r)| ≈ 1e-3, |c| rounding ≈ 1e-16 → 1e-13).
-                assert!(best < tol, "{m:?}: root {r} missed, best {best}");
-            }
-        }
-    }
-}
+mod tests;
