@@ -108,3 +108,52 @@ fn line_beside_a_generator_offset_at_both_ends() {
         }
     }
 }
+
+/// The differential campaign of 2026-12-01 (seed 2402, 9.7e6 runs on 86502c9) found, kept as
+/// fuzz/corpus/differential/regression-generator-parallel-f32 (decoded as that check decodes:
+/// f64s at byte 8i, rounded to f32): a tip a = (0, Y, Y), ra = 0, and b = (bₓ, Y, 0), rb = Y
+/// (Y = 32.50196…), so the cone's top generator is the line y = z = Y, along x; the ray runs
+/// along x at (y₀, z₀) = (Y − 0.219, Y − 1.6e-4).
+///
+/// *The exact answer is a miss.* The line is parallel to x, so it meets the hull iff its
+/// projection (y₀, z₀) onto the yz-plane lies in the hull's projection, the convex hull of
+/// A = (Y, Y) and the disc of radius rb = Y about B = (Y, 0). A is on that disc's circle
+/// (|A − B| = Y = rb), so the projection is the disc itself, and the line misses by
+/// `√((y₀ − Y)² + z₀²) − rb` = 5.8e-4, beyond the f32 bound E = 5.7e-4 (tests/link_props.rs,
+/// from the oracle crate): a hit is a false one.
+///
+/// Before the fix the f32 stable kernel returned a hit (t = 0.53 … 0.66): the line is parallel
+/// to a generator, so the stump's A = c²|Q|² − s²zd² is noise (−8.9e-8), one root of F is
+/// noise, and the a-posteriori test accepted it since g = 5.8e-4 (the line's true distance) was
+/// within 64ε·scale = 7.9e-4 — a tolerance 50 times g's own rounding there.
+#[test]
+fn f32_line_parallel_to_a_generator_outside() {
+    const PARALLEL: &[u8] = include_bytes!("../fuzz/corpus/differential/regression-generator-parallel-f32");
+    let f = |i: usize| {
+        let mut b = [0u8; 8];
+        for (k, x) in b.iter_mut().enumerate() {
+            *x = *PARALLEL.get(8 * i + k).unwrap_or(&0);
+        }
+        f64::from_le_bytes(b) as f32 as f64
+    };
+    let v = |i| V3::new(f(i), f(i + 1), f(i + 2));
+    let link = RoundCone::new(v(0), f(3), v(4), f(7)).expect("valid link");
+    let ray = Ray::new(v(8), v(11));
+    let (a, b, rb, o, d) = (link.a, link.b, link.rb, ray.o, ray.d);
+    // The configuration of the derivation: a on sphere b's circle in the yz-plane, d along x.
+    assert_eq!((a.x, link.ra, a.y, a.z, b.y, b.z, d.y, d.z), (0.0, 0.0, rb, rb, rb, 0.0, 0.0, 0.0));
+    let miss_by = ((o.y - b.y).powi(2) + o.z.powi(2)).sqrt() - rb;
+    let ov = |v: V3<f64>| tubecast_oracle::Vec3::new(v.x, v.y, v.z);
+    let ol = tubecast_oracle::Link { a: ov(a), ra: 0.0, b: ov(b), rb };
+    let size = (b - a).length().max(rb);
+    let e32 = tubecast_oracle::link_error_bound(&ol, ov(o), size, f32::EPSILON as f64);
+    let e64 = tubecast_oracle::link_error_bound(&ol, ov(o), size, f64::EPSILON);
+    assert!(miss_by > e32 + e64, "the line misses by {miss_by:e}, within E = {e32:e}");
+    // And the oracle agrees on the gap (its own, independent minimisation).
+    let gap = tubecast_oracle::line_gap(&ol, &tubecast_oracle::Line { o: ov(o), d: ov(d) }).0;
+    assert!((gap - miss_by).abs() < 1e-9, "oracle gap {gap:e} against {miss_by:e}");
+    let l32: RoundCone<f32> = link.cast();
+    let r32 = Ray::new(o.cast::<f32>(), d.cast::<f32>());
+    assert!(!l32.intersect(&r32).hit, "f32: a hit where the line misses by {miss_by:e} > E = {e32:e}");
+    assert!(!link.intersect(&ray).hit, "f64: a hit where the line misses by {miss_by:e}");
+}

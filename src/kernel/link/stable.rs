@@ -261,8 +261,15 @@ impl<T: Real> StumpSide<T> {
         // error (fuzz finding regression-generator-tangent: a line 4.6e-36 = 1.4e-8·L beside a
         // generator through a zero-radius tip; the step from the cap at the tip left g at
         // 1.35e-36, accepted by the √ε-sized `lim` of 6.7e-35, far above E = 1.2e-41).
-        let tight = T::epsilon() * T::cst(64.0) * scale;
-        let (kp, gp) = self.settle(kp, root | cap_out, tight);
+        //
+        // The ε-sized error is that of evaluating g at the settled point, `tight` there
+        // ([`Self::settle`]): 16ε·M, `M` the magnitudes g is formed from, never above the
+        // 64ε·scale this was until a differential fuzz finding (regression-generator-parallel-f32:
+        // an f32 line parallel to a generator 5.8e-4 outside a 46-long link, where A is noise
+        // and g = 5.8e-4 passed 64ε·scale = 7.9e-4, above the link's bound E = 5.7e-4; g's own
+        // rounding there is ~1e-5).
+        let cap = T::epsilon() * T::cst(64.0) * scale;
+        let (kp, gp, tight) = self.settle(kp, root | cap_out, cap);
         // A root is a crossing only if it lies on the side to the kernel's own ε-sized error as
         // well: the √ε window alone let a root of F's noise stand 4.8e-41 off the side where
         // E = 1.2e-41 (fuzz finding regression-generator-offset: the same line beside a
@@ -273,8 +280,18 @@ impl<T: Real> StumpSide<T> {
     }
 
     /// `g` at `k`, and then Newton steps on `g` for the lanes in `todo` whose `|g|` is still
-    /// above `tight`, at most three, each clamped into the slab. Returns the settled `k` and
-    /// its `g`.
+    /// above `tight`, at most three, each clamped into the slab. Returns the settled `k`, its
+    /// `g` and its `tight`.
+    ///
+    /// *Tolerance.* `tight(k) = min(cap, 16ε·M)` with `M = c·(|p| + 2|q||k| + ρ) + |e| +
+    /// 2|s·zd·k|`, `ρ = |p + qk|`: the magnitudes `g = c·ρ − (e − s·zd·k)` is formed from. Each
+    /// component of `p + qk` rounds by `≤ ε(|p| + 2|q||k|)`, its length adds `≤ 3ερ`, the
+    /// product with `c` `ερ c`, `e − s·zd·k` `≤ ε(|e| + 2|s·zd·k|)` and the difference `ε|g|`:
+    /// the computed `g` is within `≤ 6ε·M` of the exact `g` of the kernel's (rounded) frame, whose
+    /// rounding is the input perturbation inside the bound `E`. So a real crossing of that
+    /// frame settles within `16ε·M` (a margin of 2.7 over its rounding), and a point it accepts
+    /// is within `16ε·M` (`|∇g| = 1`) of its side. (`M ≤ 12·S` at a crossing, `S` the link's
+    /// size; on the finding's line `M = 1.5·S`: `16ε·M = 1.4e-4` against `g = 5.8e-4`.)
     ///
     /// g is convex along the line, so from a point outside the cone (g > 0) Newton steps
     /// move monotonically toward the nearer crossing without passing it, and from a point
@@ -284,11 +301,18 @@ impl<T: Real> StumpSide<T> {
     /// run only while some lane still needs them (none, when the first polish settled every
     /// lane: the common case, which then costs one evaluation of g as before).
     #[inline(always)]
-    fn settle(&self, mut k: T, todo: T::Mask, tight: T) -> (T, T) {
-        let (zero, one) = (T::zero(), T::one());
+    fn settle(&self, mut k: T, todo: T::Mask, cap: T) -> (T, T, T) {
+        let (zero, one, two) = (T::zero(), T::one(), T::cst(2.0));
         let (p, q, cc, szd) = (self.p, self.q, self.cc, self.szd);
-        let g_at = |k: T| cc * (p + q * k).length() - (self.e - szd * k);
-        let mut g = g_at(k);
+        let (pn, qn, ea) = (p.length(), q.length(), self.e.abs());
+        let sixteen_eps = T::epsilon() * T::cst(16.0);
+        // (g, tight) at k.
+        let g_at = |k: T| {
+            let rho = (p + q * k).length();
+            let m = cc * (pn + two * qn * k.abs() + rho) + ea + two * (szd * k).abs();
+            (cc * rho - (self.e - szd * k), (sixteen_eps * m).min(cap))
+        };
+        let (mut g, mut tight) = g_at(k);
         for _ in 0..3 {
             let open = todo & g.abs().gt(tight);
             if open.none() {
@@ -303,9 +327,11 @@ impl<T: Real> StumpSide<T> {
             }
             let next = (k - g / T::select(open, dg, one)).clamp(self.lo, self.hi);
             k = T::select(open, next, k);
-            g = T::select(open, g_at(k), g);
+            let (gn, tn) = g_at(k);
+            g = T::select(open, gn, g);
+            tight = T::select(open, tn, tight);
         }
-        (k, g)
+        (k, g, tight)
     }
 }
 
