@@ -157,3 +157,59 @@ fn f32_line_parallel_to_a_generator_outside() {
     assert!(!l32.intersect(&r32).hit, "f32: a hit where the line misses by {miss_by:e} > E = {e32:e}");
     assert!(!link.intersect(&ray).hit, "f64: a hit where the line misses by {miss_by:e}");
 }
+
+/// The differential campaign on a first, tighter form of that fix (seed 2403) found, kept as
+/// fuzz/corpus/differential/regression-apex-line-f32: a tip a = (A, 0, 0), A = 174.6, ra = 0,
+/// and b = (0, 0, 2), rb = 2.0238; the ray runs along x at y₀ = 2.7e-23, z = 0, i.e. within y₀
+/// of the tip, and inside ball b at x = 0 (|(0, y₀, 0) − b| = 2 < rb).
+///
+/// *The exit is near the tip.* The hull is convex and holds a and ball b, so for λ ∈ (0, 1] it
+/// holds the ball `a + λ(ball b − a)`. The line's point P(x) = (x, y₀, 0), with λ = 1 − x/A,
+/// is `a + λ(p′ − a)` for p′ = (0, y₀/λ, 0), which lies `rb − √(4 + y₀²/λ²)` deep in ball b;
+/// so P(x) lies at least `λ·(rb − √(4 + y₀²/λ²))` deep in the hull. A kernel exit at x must be
+/// within the check's band E₃₂ + E₆₄ of the surface, so that depth must not exceed it: an exit
+/// at x ≈ 0 (0.0237 deep) is false, the exit is beyond x = A(1 − 0.09).
+///
+/// That tighter tolerance (16ε times the magnitudes g is formed from) rejected the real exit at
+/// the tip, where g has a kink (the line passes through the apex) and Newton cannot settle
+/// below it: g = 7.8e-25 against 1.5e-27. The fix's tolerance is 64ε·min(scale, S + D).
+#[test]
+fn f32_line_through_an_apex_exits_at_the_tip() {
+    const APEX: &[u8] = include_bytes!("../fuzz/corpus/differential/regression-apex-line-f32");
+    let f = |i: usize| {
+        let mut b = [0u8; 8];
+        for (k, x) in b.iter_mut().enumerate() {
+            *x = *APEX.get(8 * i + k).unwrap_or(&0);
+        }
+        f64::from_le_bytes(b) as f32 as f64
+    };
+    let v = |i| V3::new(f(i), f(i + 1), f(i + 2));
+    let link = RoundCone::new(v(0), f(3), v(4), f(7)).expect("valid link");
+    let ray = Ray::new(v(8), v(11));
+    let (a, b, rb, o, d) = (link.a, link.b, link.rb, ray.o, ray.d);
+    // The configuration of the derivation.
+    assert_eq!((a.y, a.z, link.ra, b.x, b.y, b.z, o.z, d.y, d.z), (0.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0));
+    assert!(o.x.abs() < 1e-20 && o.y.abs() < 1e-20 && rb > 2.0 && d.x > 0.0);
+    let (big_a, y0) = (a.x, o.y);
+    let depth = |x: f64| {
+        let lam = 1.0 - x / big_a;
+        if lam <= 0.0 {
+            return 0.0;
+        }
+        lam * (rb - (4.0 + (y0 / lam).powi(2)).sqrt())
+    };
+    let ov = |v: V3<f64>| tubecast_oracle::Vec3::new(v.x, v.y, v.z);
+    let ol = tubecast_oracle::Link { a: ov(a), ra: 0.0, b: ov(b), rb };
+    let size = (b - a).length().max(rb);
+    let e = tubecast_oracle::link_error_bound(&ol, ov(o), size, f32::EPSILON as f64)
+        + tubecast_oracle::link_error_bound(&ol, ov(o), size, f64::EPSILON);
+    assert!(depth(0.0) > 10.0 * e, "the line is deep inside at x = 0: {:e} against E {e:e}", depth(0.0));
+    let l32: RoundCone<f32> = link.cast();
+    let iv = l32.intersect(&Ray::new(o.cast::<f32>(), d.cast::<f32>()));
+    assert!(iv.hit);
+    let x_out = o.x + iv.t_out as f64 * d.x;
+    assert!(depth(x_out) <= e, "f32 exit at x = {x_out}, {:e} deep > E {e:e}", depth(x_out));
+    let iv = link.intersect(&ray);
+    let x_out = o.x + iv.t_out * d.x;
+    assert!(iv.hit && depth(x_out) <= e, "f64 exit at x = {x_out}, {:e} deep", depth(x_out));
+}

@@ -82,6 +82,9 @@ struct StableFrame<T: Real> {
     /// End-sphere centres relative to c0.
     ca: V3<T>,
     cb: V3<T>,
+    /// `S + D`: the link's size `max(L, ra, rb)` plus the ray origin's distance to the
+    /// midpoint, the scale of the kernel's error bound `E = 64ε(S + D) + …` (`tests/link_props.rs`).
+    sd: T,
 }
 
 impl<T: Real> StableFrame<T> {
@@ -133,7 +136,8 @@ impl<T: Real> StableFrame<T> {
         // End-sphere centres in the local frame.
         let ca = axis * (-hl - z0);
         let cb = axis * (hl - z0);
-        Self { len_s, hl, axis, s, c2, has_cone, dl, dn, zd, q, q2, z0, tc, o, ca, cb }
+        let sd = len.max(l.ra).max(l.rb) + w.length();
+        Self { len_s, hl, axis, s, c2, has_cone, dl, dn, zd, q, q2, z0, tc, o, ca, cb, sd }
     }
 
     /// The stump's crossings `[k0, k1]` (ray-space τ about the new origin), each polished
@@ -163,7 +167,19 @@ impl<T: Real> StableFrame<T> {
         let eq = q * e + p * (s * zd);
         let disc = c2 * (eq.length2() - c2 * p.cross(q).length2());
         let hits = quadric_in_slab_disc(qa, qb, qc, disc, lo, hi);
-        let side = StumpSide { p, q, e, cc: c2.sqrt(), szd: s * zd, hl, r_big: l.ra.max(l.rb), lo, hi, ok: hits.ok };
+        let side = StumpSide {
+            p,
+            q,
+            e,
+            cc: c2.sqrt(),
+            szd: s * zd,
+            hl,
+            r_big: l.ra.max(l.rb),
+            sd: self.sd,
+            lo,
+            hi,
+            ok: hits.ok,
+        };
         let (k0, real0, q0) = side.polish(hits.t0, hits.root0 & hits.ok);
         let (k1, real1, q1) = side.polish(hits.t1, hits.root1 & hits.ok);
         let ok = hits.ok & real0 & real1;
@@ -218,6 +234,8 @@ struct StumpSide<T: Real> {
     /// `L/2` and `max(ra, rb)`: the size of the link about its midpoint is their sum.
     hl: T,
     r_big: T,
+    /// [`StableFrame`]'s `S + D`.
+    sd: T,
     /// The slab `[lo, hi]` of τ between the tangent circles.
     lo: T,
     hi: T,
@@ -262,14 +280,14 @@ impl<T: Real> StumpSide<T> {
         // generator through a zero-radius tip; the step from the cap at the tip left g at
         // 1.35e-36, accepted by the √ε-sized `lim` of 6.7e-35, far above E = 1.2e-41).
         //
-        // The ε-sized error is that of evaluating g at the settled point, `tight` there
-        // ([`Self::settle`]): 16ε·M, `M` the magnitudes g is formed from, never above the
-        // 64ε·scale this was until a differential fuzz finding (regression-generator-parallel-f32:
-        // an f32 line parallel to a generator 5.8e-4 outside a 46-long link, where A is noise
-        // and g = 5.8e-4 passed 64ε·scale = 7.9e-4, above the link's bound E = 5.7e-4; g's own
-        // rounding there is ~1e-5).
-        let cap = T::epsilon() * T::cst(64.0) * scale;
-        let (kp, gp, tight) = self.settle(kp, root | cap_out, cap);
+        // That error is at most the kernel's bound `E = 64ε(S + D)`, so the tolerance is
+        // `64ε·min(scale, S + D)`: `scale` alone reaches ~3(S + D) (`|k|` counts from the new
+        // origin), and accepted points off the side by more than E (differential fuzz finding
+        // regression-generator-parallel-f32: an f32 line parallel to a generator 5.8e-4 outside
+        // a 46-long link, where A is noise and g = 5.8e-4 passed 64ε·scale = 7.9e-4; E = 5.7e-4,
+        // 64ε(S + D) = 4.8e-4). g's rounding at a real crossing is a few ε·scale, well inside.
+        let tight = T::epsilon() * T::cst(64.0) * scale.min(self.sd);
+        let (kp, gp) = self.settle(kp, root | cap_out, tight);
         // A root is a crossing only if it lies on the side to the kernel's own ε-sized error as
         // well: the √ε window alone let a root of F's noise stand 4.8e-41 off the side where
         // E = 1.2e-41 (fuzz finding regression-generator-offset: the same line beside a
@@ -280,18 +298,8 @@ impl<T: Real> StumpSide<T> {
     }
 
     /// `g` at `k`, and then Newton steps on `g` for the lanes in `todo` whose `|g|` is still
-    /// above `tight`, at most three, each clamped into the slab. Returns the settled `k`, its
-    /// `g` and its `tight`.
-    ///
-    /// *Tolerance.* `tight(k) = min(cap, 16ε·M)` with `M = c·(|p| + 2|q||k| + ρ) + |e| +
-    /// 2|s·zd·k|`, `ρ = |p + qk|`: the magnitudes `g = c·ρ − (e − s·zd·k)` is formed from. Each
-    /// component of `p + qk` rounds by `≤ ε(|p| + 2|q||k|)`, its length adds `≤ 3ερ`, the
-    /// product with `c` `ερ c`, `e − s·zd·k` `≤ ε(|e| + 2|s·zd·k|)` and the difference `ε|g|`:
-    /// the computed `g` is within `≤ 6ε·M` of the exact `g` of the kernel's (rounded) frame, whose
-    /// rounding is the input perturbation inside the bound `E`. So a real crossing of that
-    /// frame settles within `16ε·M` (a margin of 2.7 over its rounding), and a point it accepts
-    /// is within `16ε·M` (`|∇g| = 1`) of its side. (`M ≤ 12·S` at a crossing, `S` the link's
-    /// size; on the finding's line `M = 1.5·S`: `16ε·M = 1.4e-4` against `g = 5.8e-4`.)
+    /// above `tight`, at most three, each clamped into the slab. Returns the settled `k` and
+    /// its `g`.
     ///
     /// g is convex along the line, so from a point outside the cone (g > 0) Newton steps
     /// move monotonically toward the nearer crossing without passing it, and from a point
@@ -301,18 +309,11 @@ impl<T: Real> StumpSide<T> {
     /// run only while some lane still needs them (none, when the first polish settled every
     /// lane: the common case, which then costs one evaluation of g as before).
     #[inline(always)]
-    fn settle(&self, mut k: T, todo: T::Mask, cap: T) -> (T, T, T) {
-        let (zero, one, two) = (T::zero(), T::one(), T::cst(2.0));
+    fn settle(&self, mut k: T, todo: T::Mask, tight: T) -> (T, T) {
+        let (zero, one) = (T::zero(), T::one());
         let (p, q, cc, szd) = (self.p, self.q, self.cc, self.szd);
-        let (pn, qn, ea) = (p.length(), q.length(), self.e.abs());
-        let sixteen_eps = T::epsilon() * T::cst(16.0);
-        // (g, tight) at k.
-        let g_at = |k: T| {
-            let rho = (p + q * k).length();
-            let m = cc * (pn + two * qn * k.abs() + rho) + ea + two * (szd * k).abs();
-            (cc * rho - (self.e - szd * k), (sixteen_eps * m).min(cap))
-        };
-        let (mut g, mut tight) = g_at(k);
+        let g_at = |k: T| cc * (p + q * k).length() - (self.e - szd * k);
+        let mut g = g_at(k);
         for _ in 0..3 {
             let open = todo & g.abs().gt(tight);
             if open.none() {
@@ -327,11 +328,9 @@ impl<T: Real> StumpSide<T> {
             }
             let next = (k - g / T::select(open, dg, one)).clamp(self.lo, self.hi);
             k = T::select(open, next, k);
-            let (gn, tn) = g_at(k);
-            g = T::select(open, gn, g);
-            tight = T::select(open, tn, tight);
+            g = T::select(open, g_at(k), g);
         }
-        (k, g, tight)
+        (k, g)
     }
 }
 
