@@ -129,16 +129,7 @@ fn line_beside_a_generator_offset_at_both_ends() {
 #[test]
 fn f32_line_parallel_to_a_generator_outside() {
     const PARALLEL: &[u8] = include_bytes!("../fuzz/corpus/differential/regression-generator-parallel-f32");
-    let f = |i: usize| {
-        let mut b = [0u8; 8];
-        for (k, x) in b.iter_mut().enumerate() {
-            *x = *PARALLEL.get(8 * i + k).unwrap_or(&0);
-        }
-        f64::from_le_bytes(b) as f32 as f64
-    };
-    let v = |i| V3::new(f(i), f(i + 1), f(i + 2));
-    let link = RoundCone::new(v(0), f(3), v(4), f(7)).expect("valid link");
-    let ray = Ray::new(v(8), v(11));
+    let (link, ray) = differential_input(PARALLEL);
     let (a, b, rb, o, d) = (link.a, link.b, link.rb, ray.o, ray.d);
     // The configuration of the derivation: a on sphere b's circle in the yz-plane, d along x.
     assert_eq!((a.x, link.ra, a.y, a.z, b.y, b.z, d.y, d.z), (0.0, 0.0, rb, rb, rb, 0.0, 0.0, 0.0));
@@ -176,16 +167,7 @@ fn f32_line_parallel_to_a_generator_outside() {
 #[test]
 fn f32_line_through_an_apex_exits_at_the_tip() {
     const APEX: &[u8] = include_bytes!("../fuzz/corpus/differential/regression-apex-line-f32");
-    let f = |i: usize| {
-        let mut b = [0u8; 8];
-        for (k, x) in b.iter_mut().enumerate() {
-            *x = *APEX.get(8 * i + k).unwrap_or(&0);
-        }
-        f64::from_le_bytes(b) as f32 as f64
-    };
-    let v = |i| V3::new(f(i), f(i + 1), f(i + 2));
-    let link = RoundCone::new(v(0), f(3), v(4), f(7)).expect("valid link");
-    let ray = Ray::new(v(8), v(11));
+    let (link, ray) = differential_input(APEX);
     let (a, b, rb, o, d) = (link.a, link.b, link.rb, ray.o, ray.d);
     // The configuration of the derivation.
     assert_eq!((a.y, a.z, link.ra, b.x, b.y, b.z, o.z, d.y, d.z), (0.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0));
@@ -212,4 +194,19 @@ fn f32_line_through_an_apex_exits_at_the_tip() {
     let iv = link.intersect(&ray);
     let x_out = o.x + iv.t_out * d.x;
     assert!(iv.hit && depth(x_out) <= e, "f64 exit at x = {x_out}, {:e} deep", depth(x_out));
+}
+
+/// A differential corpus input decoded as fuzz/checks/differential.rs decodes it: f64s at byte
+/// 8i (bytes past the end read as 0), each rounded to f32; the link from the first eight, the
+/// ray from the next six.
+fn differential_input(bytes: &[u8]) -> (RoundCone<f64>, Ray<f64>) {
+    let f = |i: usize| {
+        let mut b = [0u8; 8];
+        for (k, x) in b.iter_mut().enumerate() {
+            *x = *bytes.get(8 * i + k).unwrap_or(&0);
+        }
+        f64::from_le_bytes(b) as f32 as f64
+    };
+    let v = |i| V3::new(f(i), f(i + 1), f(i + 2));
+    (RoundCone::new(v(0), f(3), v(4), f(7)).expect("valid link"), Ray::new(v(8), v(11)))
 }

@@ -67,28 +67,12 @@ pub(super) fn capsule_misses<T: Real>(tube: &QuadTube<T>, ray: &Ray<T>) -> T::Ma
 
 #[cfg(test)]
 mod tests {
+    use super::super::tests::Rng;
     use crate::kernel::spline::QuadTube;
     use crate::ray::Ray;
-    use crate::vec::V3;
     use crate::Solver;
     use rand::rngs::StdRng;
-    use rand::{Rng as _, SeedableRng};
-
-    /// Seeded uniform draws (rand's `StdRng`, a dev-dependency).
-    struct Rng(StdRng);
-    impl Rng {
-        fn range(&mut self, a: f64, b: f64) -> f64 {
-            self.0.gen_range(a..b)
-        }
-        fn unit(&mut self) -> V3<f64> {
-            loop {
-                let v = V3::new(self.range(-1.0, 1.0), self.range(-1.0, 1.0), self.range(-1.0, 1.0));
-                if v.length2() > 1e-3 && v.length2() <= 1.0 {
-                    return v.normalize_or_zero();
-                }
-            }
-        }
-    }
+    use rand::SeedableRng;
 
     /// Where the filter rejects, the kernel misses: filtered and unfiltered answers are equal
     /// bit for bit in `f32` and `f64`, over thin and long tubes (L/r 1…10⁵), bent and

@@ -8,13 +8,13 @@ use crate::Primitive;
 use rand::rngs::StdRng;
 use rand::{Rng as _, SeedableRng};
 
-/// Seeded uniform draws (rand's `StdRng`, a dev-dependency).
-struct Rng(StdRng);
+/// Seeded uniform draws (rand's `StdRng`, a dev-dependency; also the capsule filter's tests).
+pub(super) struct Rng(pub(super) StdRng);
 impl Rng {
-    fn range(&mut self, a: f64, b: f64) -> f64 {
+    pub(super) fn range(&mut self, a: f64, b: f64) -> f64 {
         self.0.gen_range(a..b)
     }
-    fn unit(&mut self) -> V3<f64> {
+    pub(super) fn unit(&mut self) -> V3<f64> {
         loop {
             let v = V3::new(self.range(-1.0, 1.0), self.range(-1.0, 1.0), self.range(-1.0, 1.0));
             if v.length2() > 1e-3 && v.length2() <= 1.0 {
