@@ -398,19 +398,21 @@ pub fn cascade_level<T: Real>(
         if valid.none() {
             continue;
         }
-        if method == Bracket::Newton {
-            // Solved below, two pieces at a time.
+        if method == Bracket::Newton && T::LANES == 1 {
+            // Solved below, two pieces at a time (scalars only: in lanes a pair runs until
+            // both solves have converged in every lane, which measured ~6% slower).
             pend[np] = (i, [a, b, fa, fb], valid);
             np += 1;
             continue;
         }
         let r = match method {
             Bracket::Bisection(k) => bisection(f, a, b, fa, k),
-            _ => itp(f, a, b, fa, fb, valid, tol),
+            Bracket::Itp => itp(f, a, b, fa, fb, valid, tol),
+            Bracket::Newton => newton(f, df, a, b, fa, fb, valid, tol),
         };
         out[i + 1] = T::select(valid, r, ph);
     }
-    // Newton's solves in pairs ([`newton_pair`]: the same roots as one at a time).
+    // Scalar Newton solves in pairs ([`newton_pair`]: the same roots as one at a time).
     let mut k = 0;
     while k < np {
         let (i, [a, b, fa, fb], valid) = pend[k];
