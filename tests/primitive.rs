@@ -149,22 +149,26 @@ fn bit_identical_to_the_replaced_functions() {
     // tests/spline_conditioning.rs). Slot 3 (not the distance) re-recorded once more for the
     // certified count (`RaySpace::certified`: the entry and exit solved on certified brackets
     // instead of polished from P's roots; answers within E, tests/spline_conditioning.rs and
-    // the unit test against the cascade). Slots 0 and 2 (sphere, Han) are unchanged.
+    // the unit test against the cascade). Slot 3 (not the distance) re-recorded for the next
+    // cost step: Halley's step in g's extrema and roots, the certified roots by Halley on P
+    // from the vectors, and g's Bernstein hull as an early rejection (roots placed differently
+    // within the tolerance, rejected lines miss exactly; answers within E, same tests).
+    // Slots 0 and 2 (sphere, Han) are unchanged.
     assert_eq!(
         fingerprint::<f64>(&cs),
-        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0x1010251c42bb57d8]
+        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0x26daf3f7d90ea48b]
     );
     assert_eq!(
         fingerprint::<f32>(&cs),
-        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0xce92482045fdac64]
+        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x1d469943e7f2799e]
     );
     assert_eq!(
         fingerprint::<WideF32x8>(&cs),
-        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x65ccf8d1db51ee2c]
+        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0xc3f07421ab96aeea]
     );
     assert_eq!(
         fingerprint::<WideF64x4>(&cs),
-        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0x0d9f049fbd46a4e4]
+        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0x84afc5c687b65b57]
     );
     assert_eq!(
         fingerprint_scalar::<f64>(&cs),

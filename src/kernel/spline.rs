@@ -300,9 +300,9 @@ impl<T: Real> QuadTube<T> {
         // the rounding of P's coefficients does to P's roots. None of them real (gap
         // ≥ −τ): the line misses the tube deflated by the band (see "Conditioning"), a
         // miss is a right answer and P's cascade is skipped.
-        let gb = rs.dg.g_breakpoints(Bracket::Newton);
+        let extrema = rs.dg.g_extrema(Bracket::Newton);
         let mut real = T::Mask::splat(false);
-        for &t in &gb.extrema {
+        for &t in &extrema {
             real = real | rs.dg.gap_g(t).0.ge(-rs.dg.tau);
         }
         let none = T::Mask::splat(false);
@@ -312,8 +312,9 @@ impl<T: Real> QuadTube<T> {
         // The certified count on g's real pieces first; P's cascade only for lanes it
         // cannot certify (`RaySpace::certified`). A lane with a candidate real within
         // the gap's rounding but no piece with g > 0 (a graze within τ) is not certified.
+        let roots = rs.dg.g_roots(extrema, Bracket::Newton);
         let (fast, cert) = if path == Path::Auto {
-            let (xc, pieces, cert) = rs.certified(&gb.roots);
+            let (xc, pieces, cert) = rs.certified(&roots);
             let cert = cert & ((pieces & real) | (!pieces & !real));
             let fast = rs.interval(ray, xc, pieces & real, false);
             if cert.all() {
@@ -325,8 +326,8 @@ impl<T: Real> QuadTube<T> {
         };
         // The ends 0 and 1 once (they open and close every breakpoint list).
         let mut z = [T::zero(); 9];
-        z[..4].copy_from_slice(&gb.roots[1..5]);
-        z[4..].copy_from_slice(&gb.extrema);
+        z[..4].copy_from_slice(&roots[1..5]);
+        z[4..].copy_from_slice(&extrema);
         let (bp, n) = rs.p_breakpoints();
         let (x, any) = rs.polished_candidates(&bp[1..n - 1], &z, T::zero(), T::one(), false);
         // `& real`: a lane decides as the scalar call does (which returned above).

@@ -20,8 +20,9 @@
 //! * [`bisection`]: fixed iteration count (Russig and Salm use 10 on the GPU).
 //! * [`itp`]: Oliveira & Takahashi's ITP method (interpolate, truncate, project) — never
 //!   slower than bisection in the worst case, superlinear on smooth roots.
-//! * [`newton`]: safeguarded Newton (`rtsafe`): a Newton step where it stays inside the
-//!   bracket and shrinks fast enough, bisection otherwise.
+//! * [`halley_or_newton`]: safeguarded Newton (`rtsafe`): a Newton step where it stays
+//!   inside the bracket, bisection otherwise; with Halley's step where it is safe ([`halley`],
+//!   [`cascade_level_halley`]).
 
 use super::quadric::quadratic_roots_in;
 use crate::real::{Mask, Real};
@@ -121,33 +122,6 @@ pub fn itp<T: Real>(f: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask
     s.result()
 }
 
-/// Two independent [`itp`] solves in lock step: each result is bit for bit the one [`itp`]
-/// returns (the same operations; a solve that has converged is frozen while the other runs).
-/// A solve is a chain of dependent steps (function, interpolation, division); interleaving
-/// two lets the processor overlap them (issue 10's cost: the spline's entry and exit).
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-pub fn itp_pair<T: Real, F: Fn(T) -> T>(
-    f: &[F; 2],
-    a: [T; 2],
-    b: [T; 2],
-    fa: [T; 2],
-    fb: [T; 2],
-    valid: [T::Mask; 2],
-    tol: T,
-) -> [T; 2] {
-    let mut s = [Itp::new(a[0], b[0], fa[0], fb[0], valid[0], tol), Itp::new(a[1], b[1], fa[1], fb[1], valid[1], tol)];
-    let mut it = 0;
-    while !(s[0].done.all() && s[1].done.all()) && it < MAX_ITER {
-        it += 1;
-        let (x0, x1) = (s[0].point(), s[1].point());
-        let (y0, y1) = (f[0](x0), f[1](x1));
-        s[0].update(x0, y0, it);
-        s[1].update(x1, y1, it);
-    }
-    [s[0].result(), s[1].result()]
-}
-
 /// The state of one [`itp`] solve.
 #[derive(Clone, Copy)]
 struct Itp<T: Real> {
@@ -236,35 +210,77 @@ impl<T: Real> Itp<T> {
     }
 }
 
-/// Safeguarded Newton (`rtsafe`) on a valid bracket: a Newton step of `f/df` where it falls
-/// strictly inside the current bracket, bisection otherwise; stops when a step is at most
-/// `tol`, the bracket is at most `tol` wide, or a Newton step lands within `tol` beyond an end
-/// whose value is within `2·tol·|f'|` of zero (the root is then that end, to first order).
+/// Safeguarded Newton (`rtsafe`, [`halley_or_newton`]) taking Halley's step `x − 2ff'/(2f'² − ff'')`
+/// where that falls strictly inside the bracket and is within `[⅔, 2]` times Newton's (cubic
+/// convergence near a simple root: a solve from the regula-falsi start takes fewer dependent
+/// steps — issue 10's cost, the spline's `g'`, `g` and `P` solves: 3.7–4.3 steps where Newton
+/// took 5.7–6.6 on the spline bench's f32 hits); Newton's step otherwise.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub fn newton<T: Real>(f: impl Fn(T) -> T, df: impl Fn(T) -> T, a: T, b: T, fa: T, fb: T, valid: T::Mask, tol: T) -> T {
+pub fn halley<T: Real>(
+    f: impl Fn(T) -> T,
+    df: impl Fn(T) -> T,
+    d2f: impl Fn(T) -> T,
+    a: T,
+    b: T,
+    fa: T,
+    fb: T,
+    valid: T::Mask,
+    tol: T,
+) -> T {
+    halley_or_newton(f, df, d2f, true, [a, b, fa, fb], valid, tol)
+}
+
+/// The safeguarded Newton solve on `[a, b, f(a), f(b)]`: Newton's steps, or Halley's (`use_d2`,
+/// [`halley`]) where they qualify.
+#[inline(always)]
+pub(crate) fn halley_or_newton<T: Real>(
+    f: impl Fn(T) -> T,
+    df: impl Fn(T) -> T,
+    d2f: impl Fn(T) -> T,
+    use_d2: bool,
+    [a, b, fa, fb]: [T; 4],
+    valid: T::Mask,
+    tol: T,
+) -> T {
     let mut s = Newton::new(a, b, fa, fb, valid, tol);
     let mut it = 0;
     while !s.done.all() && it < MAX_ITER {
         it += 1;
-        s.step(f(s.x), df(s.x));
+        let d2 = if use_d2 { d2f(s.x) } else { T::zero() };
+        s.step(f(s.x), df(s.x), d2, use_d2);
     }
     s.x
 }
 
-/// Two independent [`newton`] solves of one function in lock step: each result is bit for bit
-/// the one [`newton`] returns (the same operations; a solve that has converged is frozen while
-/// the other runs). Like [`itp_pair`], it lets the processor overlap two chains of dependent
-/// steps (issue 10's cost: the two roots of `g` about its maximum).
+/// Two independent [`halley`] solves of one function in lock step: each result is bit for bit
+/// the one [`halley`] returns (the same operations; a solve that has converged is frozen while
+/// the other runs). Lock step lets the processor overlap two chains of dependent steps (issue
+/// 10's cost: the spline's entry and exit).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub fn newton_pair<T: Real>(
+pub fn halley_pair<T: Real>(
     f: impl Fn(T) -> T,
     df: impl Fn(T) -> T,
+    d2f: impl Fn(T) -> T,
     a: [T; 2],
     b: [T; 2],
     fa: [T; 2],
     fb: [T; 2],
+    valid: [T::Mask; 2],
+    tol: T,
+) -> [T; 2] {
+    pair_of(f, df, d2f, true, [a, b, fa, fb], valid, tol)
+}
+
+/// Two [`halley_or_newton`] solves in lock step (as [`halley_pair`]).
+#[inline(always)]
+pub(crate) fn pair_of<T: Real>(
+    f: impl Fn(T) -> T,
+    df: impl Fn(T) -> T,
+    d2f: impl Fn(T) -> T,
+    use_d2: bool,
+    [a, b, fa, fb]: [[T; 2]; 4],
     valid: [T::Mask; 2],
     tol: T,
 ) -> [T; 2] {
@@ -276,13 +292,18 @@ pub fn newton_pair<T: Real>(
         let (x0, x1) = (s[0].x, s[1].x);
         let (y0, y1) = (f(x0), f(x1));
         let (d0, d1) = (df(x0), df(x1));
-        s[0].step(y0, d0);
-        s[1].step(y1, d1);
+        let (e0, e1) = if use_d2 { (d2f(x0), d2f(x1)) } else { (T::zero(), T::zero()) };
+        s[0].step(y0, d0, e0, use_d2);
+        s[1].step(y1, d1, e1, use_d2);
     }
     [s[0].x, s[1].x]
 }
 
-/// The state of one [`newton`] solve.
+/// The state of one safeguarded Newton solve ([`halley_or_newton`]): a Newton (or Halley)
+/// step of `f/df` where it falls strictly inside the current bracket, bisection otherwise;
+/// stops when a step is at most `tol`, the bracket is at most `tol` wide, or a Newton step
+/// lands within `tol` beyond an end whose value is within `2·tol·|f'|` of zero (the root is
+/// then that end, to first order).
 #[derive(Clone, Copy)]
 struct Newton<T: Real> {
     /// `f`'s sign flip making `y(a) < 0 < y(b)`.
@@ -309,9 +330,10 @@ impl<T: Real> Newton<T> {
         Self { s, a, b, ya, yb, x, tol, done: !valid | (b - a).le(tol) }
     }
 
-    /// One step from `f(x) = fx`, `f'(x) = dfx`.
+    /// One step from `f(x) = fx`, `f'(x) = dfx` (and `f''(x) = d2fx` where `use_d2`: Halley's
+    /// step where it falls strictly inside the bracket).
     #[inline(always)]
-    fn step(&mut self, fx: T, dfx: T) {
+    fn step(&mut self, fx: T, dfx: T, d2fx: T, use_d2: bool) {
         let (zero, half, tol) = (T::zero(), T::cst(0.5), self.tol);
         let (x, s) = (self.x, self.s);
         let act = !self.done;
@@ -336,7 +358,19 @@ impl<T: Real> Newton<T> {
         let reach = (dy * tol).abs() * T::cst(2.0);
         let at_a = !inside & xn.le(a) & xn.ge(a - tol) & self.ya.abs().le(reach);
         let at_b = !inside & xn.ge(b) & xn.le(b + tol) & self.yb.abs().le(reach);
-        let xnew = T::select(inside, xn, T::select(at_a, a, T::select(at_b, b, xm)));
+        let mut xnew = T::select(inside, xn, T::select(at_a, a, T::select(at_b, b, xm)));
+        if use_d2 {
+            // Halley's step is Newton's times 1/(1 − L/2), L = f f''/f'²; taken only where
+            // |L| ≤ 1, so that it is within [⅔, 2] times Newton's and a step ≤ tol means what
+            // it means for Newton. (Near a bracket end where f' → 0 — the cascade's pieces end
+            // at the roots of f' — Halley's step tends to −2f'/f'' → 0 while f ≠ 0: unguarded,
+            // it stopped there, far from the root.)
+            let (two, d2y) = (T::cst(2.0), d2fx * s);
+            let (dy2, yd2) = (dy * dy, y * d2y);
+            let xh = x - two * y * dy / (two * dy2 - yd2);
+            let take = yd2.abs().le(dy2) & xh.gt(a) & xh.lt(b); // false for NaN / ±∞
+            xnew = T::select(take, xh, xnew);
+        }
         let step = (xnew - x).abs();
         let conv = y.eq(zero) | step.le(tol) | (b - a).le(tol) | at_a | at_b;
         self.x = T::select(act & !y.eq(zero), xnew, x);
@@ -355,6 +389,32 @@ pub fn cascade_level<T: Real>(
     n: usize,
     f: impl Fn(T) -> T + Copy,
     df: impl Fn(T) -> T + Copy,
+    method: Bracket,
+) -> [T; 8] {
+    level_with(bp, n, f, df, |_| T::zero(), false, method)
+}
+
+/// [`cascade_level`] with [`Bracket::Newton`] solving by [`halley`] (`d2f` the second
+/// derivative).
+#[inline(always)]
+pub fn cascade_level_halley<T: Real>(
+    bp: &[T; 8],
+    n: usize,
+    f: impl Fn(T) -> T + Copy,
+    df: impl Fn(T) -> T + Copy,
+    d2f: impl Fn(T) -> T + Copy,
+) -> [T; 8] {
+    level_with(bp, n, f, df, d2f, true, Bracket::Newton)
+}
+
+#[inline(always)]
+fn level_with<T: Real>(
+    bp: &[T; 8],
+    n: usize,
+    f: impl Fn(T) -> T + Copy,
+    df: impl Fn(T) -> T + Copy,
+    d2f: impl Fn(T) -> T + Copy,
+    use_d2: bool,
     method: Bracket,
 ) -> [T; 8] {
     debug_assert!((2..8).contains(&n));
@@ -408,22 +468,22 @@ pub fn cascade_level<T: Real>(
         let r = match method {
             Bracket::Bisection(k) => bisection(f, a, b, fa, k),
             Bracket::Itp => itp(f, a, b, fa, fb, valid, tol),
-            Bracket::Newton => newton(f, df, a, b, fa, fb, valid, tol),
+            Bracket::Newton => halley_or_newton(f, df, d2f, use_d2, [a, b, fa, fb], valid, tol),
         };
         out[i + 1] = T::select(valid, r, ph);
     }
-    // Scalar Newton solves in pairs ([`newton_pair`]: the same roots as one at a time).
+    // Scalar Newton solves in pairs ([`pair_of`]: the same roots as one at a time).
     let mut k = 0;
     while k < np {
         let (i, [a, b, fa, fb], valid) = pend[k];
         if k + 1 < np {
             let (j, [a2, b2, fa2, fb2], valid2) = pend[k + 1];
-            let [r, r2] = newton_pair(f, df, [a, a2], [b, b2], [fa, fa2], [fb, fb2], [valid, valid2], tol);
+            let [r, r2] = pair_of(f, df, d2f, use_d2, [[a, a2], [b, b2], [fa, fa2], [fb, fb2]], [valid, valid2], tol);
             out[i + 1] = T::select(valid, r, out[i + 1]);
             out[j + 1] = T::select(valid2, r2, out[j + 1]);
             k += 2;
         } else {
-            let r = newton(f, df, a, b, fa, fb, valid, tol);
+            let r = halley_or_newton(f, df, d2f, use_d2, [a, b, fa, fb], valid, tol);
             out[i + 1] = T::select(valid, r, out[i + 1]);
             k += 1;
         }

@@ -4,7 +4,7 @@
 //! `ε·(L/r)²` of the values `≈ (r/L)²` that decide a thin tube's hits.
 
 use crate::math::quadric::quadratic_roots_in;
-use crate::math::roots::{cascade_level, Bracket};
+use crate::math::roots::{cascade_level, cascade_level_halley, Bracket};
 use crate::real::Real;
 use crate::vec::V3;
 
@@ -83,6 +83,31 @@ impl<T: Real> Direct<T> {
         (gap, gap * (r + lw), T::cst(2.0) * (r * r1 - w.dot(w1)))
     }
 
+    /// `P = 4h'²g − g'²`, `P'` and `P''` at `t` from the vectors, for `h' = h1[0] + h1[1]·t`
+    /// (`h''' = 0`): `P' = 8h'h''g + 4h'²g' − 2g'g''`,
+    /// `P'' = 8h''²g + 16h'h''g' + 4h'²g'' − 2g''² − 2g'g'''`. With `g = r² − |w|²` formed
+    /// without the square root of `|w|`: both forms carry the absolute rounding of `w` itself
+    /// (`~4ε·Σ|w_k|`, times `2|w|`), so this one is as accurate and cheaper. Only the certified
+    /// count's root solve uses it (`RaySpace::certified`), where `P` has one simple root in
+    /// the bracket.
+    #[inline(always)]
+    pub(super) fn p_jet(&self, t: T, h1: [T; 2]) -> [T; 3] {
+        let (two, four) = (T::cst(2.0), T::cst(4.0));
+        let (w, r, w1, r1) = self.jet(t);
+        let g = r * r - w.dot(w);
+        let g1 = two * (r * r1 - w.dot(w1));
+        let g2 = two * (r1 * r1 + r * (two * self.ra) - w1.dot(w1) - w.dot(self.wa * two));
+        let g3 = self.g3(t);
+        let (hp, hpp) = (h1[0] + h1[1] * t, h1[1]);
+        let hp2 = hp * hp;
+        let p = four * hp2 * g - g1 * g1;
+        let p1 = T::cst(8.0) * hp * hpp * g + four * hp2 * g1 - two * g1 * g2;
+        let p2 = T::cst(8.0) * hpp * hpp * g + T::cst(16.0) * hp * hpp * g1 + four * hp2 * g2
+            - two * g2 * g2
+            - two * g1 * g3;
+        [p, p1, p2]
+    }
+
     /// `g'(t) = 2(r r' − w·w')`.
     #[inline(always)]
     pub(super) fn g1(&self, t: T) -> T {
@@ -111,7 +136,8 @@ impl<T: Real> Direct<T> {
         (self.ra * self.rb - self.wa.dot(self.wb), self.ra * self.ra - self.wa.dot(self.wa))
     }
 
-    /// The roots of `g` and of `g'` on `[0, 1]`, by the derivative cascade `g''` (quadratic,
+    /// The roots of `g'` on `[0, 1]` (with both ends: `g` monotone between consecutive
+    /// entries), and in [`Self::g_breakpoints`] those of `g`, by the derivative cascade `g''` (quadratic,
     /// solved in closed form with [`Bracket::Newton`]; else `g'''` → `g''` as a cascade level)
     /// → `g'` → `g`, every level evaluated from the vectors ([`Self::g2`], [`Self::g1`],
     /// [`Self::g`]):
@@ -126,7 +152,7 @@ impl<T: Real> Direct<T> {
     /// lost to rounding, the exit was taken at the end `t = 1` of the real interval and its
     /// polish bracket held no root: 9.2·10⁻⁷ against 0.166).
     #[inline(always)]
-    pub(super) fn g_breakpoints(&self, m: Bracket) -> GBreaks<T> {
+    pub(super) fn g_extrema(&self, m: Bracket) -> [T; 5] {
         let (zero, one) = (T::zero(), T::one());
         // g'' is the quadratic 2(6A t² + 6B t + C) (module docs of `g2`): its roots in closed
         // form (no cancellation in the formula, `quadratic_roots_in`) replace a Newton level
@@ -157,9 +183,33 @@ impl<T: Real> Direct<T> {
             bp[1] = t3;
             cascade_level(&bp, 3, |t| self.g2(t), |t| self.g3(t), m)
         };
-        let ext = cascade_level(&bp, 4, |t| self.g1(t), |t| self.g2(t), m);
-        let bp = cascade_level(&ext, 5, |t| self.g(t), |t| self.g1(t), m);
-        GBreaks { roots: [bp[0], bp[1], bp[2], bp[3], bp[4], bp[5]], extrema: [ext[0], ext[1], ext[2], ext[3], ext[4]] }
+        let ext = if m == Bracket::Newton {
+            cascade_level_halley(&bp, 4, |t| self.g1(t), |t| self.g2(t), |t| self.g3(t))
+        } else {
+            cascade_level(&bp, 4, |t| self.g1(t), |t| self.g2(t), m)
+        };
+        [ext[0], ext[1], ext[2], ext[3], ext[4]]
+    }
+
+    /// The roots of `g` on `[0, 1]` from its extrema ([`Self::g_extrema`]): the last level of
+    /// [`Self::g_breakpoints`].
+    #[inline(always)]
+    pub(super) fn g_roots(&self, extrema: [T; 5], m: Bracket) -> [T; 6] {
+        let e = extrema;
+        let ext = [e[0], e[1], e[2], e[3], e[4], e[4], e[4], e[4]];
+        let bp = if m == Bracket::Newton {
+            cascade_level_halley(&ext, 5, |t| self.g(t), |t| self.g1(t), |t| self.g2(t))
+        } else {
+            cascade_level(&ext, 5, |t| self.g(t), |t| self.g1(t), m)
+        };
+        [bp[0], bp[1], bp[2], bp[3], bp[4], bp[5]]
+    }
+
+    /// [`Self::g_extrema`] and [`Self::g_roots`].
+    #[inline(always)]
+    pub(super) fn g_breakpoints(&self, m: Bracket) -> GBreaks<T> {
+        let extrema = self.g_extrema(m);
+        GBreaks { roots: self.g_roots(extrema, m), extrema }
     }
 }
 

@@ -10,6 +10,9 @@ use crate::real::{Mask, Real, Scalar};
 use crate::vec::V3;
 
 mod certified;
+mod reject;
+
+use reject::{g_hull_misses, hull_misses};
 
 /// Entry and exit of the sweep in ray space: distances along `d̂` from the re-centred origin
 /// (in units of the bounding radius) and the curve parameters where they are attained.
@@ -90,45 +93,6 @@ fn ray_h<T: Real>(q: [V3<T>; 3], dhat: V3<T>) -> [T; 3] {
     [qc.dot(dhat), qb.dot(dhat), qa.dot(dhat)]
 }
 
-/// Lanes whose line surely misses the sweep (an exact early rejection, issue 10's cost): the
-/// centre curve lies in the triangle of its control points `cᵢ` (Bernstein weights are a
-/// convex combination) and `r(t) ≤ ρ = max rᵢ` (likewise), so the sweep lies in the triangle
-/// dilated by `ρ`, and a line farther than `ρ` from the triangle misses it. Viewed along the
-/// line (`d̂`) the line is the origin (the re-centred origin is on it) and the triangle that of
-/// `Wᵢ = cᵢ × d̂` (the projection onto the plane ⊥ `d̂`, turned by 90°: an isometry there).
-///
-/// *Exactness.* Everything is in units of the bounding radius, `|cᵢ| ≤ 2`, `|Wᵢ| ≤ 2`. A lane
-/// is rejected only if the origin is **outside** the projected triangle — every edge's
-/// orientation `(Wᵢ × Wᵢ₊₁)·d̂` beyond its rounding `16ε(|Wᵢ|² + |Wᵢ₊₁|²)` ≥ `32ε|Wᵢ||Wᵢ₊₁|` on
-/// both sides, so a truly inside origin always passes — and its distance to every edge
-/// segment exceeds `ρ + 128ε`. Outside a triangle the distance to it is the least distance to
-/// its edge segments; each computed distance is within `28ε` (the rounding of `a + e·s`,
-/// `|W| ≤ 2`) plus `16ε` (a parameter `s` off by `4ε`: `|e|·δs`, the distance being flat at
-/// the optimum) of the true one. So a rejected line is more than `ρ + 84ε > ρ` from the
-/// triangle of the (rounded, re-centred) control points: it misses the tube the kernel
-/// models (the rounding of `cᵢ`, `rᵢ` is the input perturbation inside the band `E`), and
-/// the exact answer is a miss.
-#[inline(always)]
-fn hull_misses<T: Real>(c: [V3<T>; 3], rho: T, dhat: V3<T>) -> T::Mask {
-    let (zero, one, eps) = (T::zero(), T::one(), T::epsilon());
-    let w = [c[0].cross(dhat), c[1].cross(dhat), c[2].cross(dhat)];
-    let lim = rho + T::cst(128.0) * eps;
-    let lim2 = lim * lim;
-    let (mut far, mut pos, mut neg) = (T::Mask::splat(true), T::Mask::splat(true), T::Mask::splat(true));
-    for i in 0..3 {
-        let (a, b) = (w[i], w[(i + 1) % 3]);
-        let e = b - a;
-        let ee = e.length2();
-        let s = (-a.dot(e) / T::select(ee.gt(zero), ee, one)).clamp(zero, one);
-        far = far & (a + e * s).length2().gt(lim2);
-        let o = a.cross(b).dot(dhat);
-        let k = T::cst(16.0) * eps * (a.length2() + b.length2());
-        pos = pos & o.ge(-k);
-        neg = neg & o.le(k);
-    }
-    far & !(pos | neg) & lim.gt(zero)
-}
-
 /// `P = 4h'²g − g'²` from `h`, `g` in powers of one variable.
 #[inline(always)]
 fn p_of<T: Real>(h: &[T; 3], g: &[T; 5]) -> [T; 7] {
@@ -197,6 +161,10 @@ impl<T: Real> RaySpace<T> {
         let qc = c0;
         let [r0, r1, r2] = [(tube.r[0] * up) * inv, (tube.r[1] * up) * inv, (tube.r[2] * up) * inv];
         let near = near & !hull_misses([c0, c1, c2], r0.max(r1).max(r2), dhat);
+        if near.none() {
+            return None;
+        }
+        let near = near & !g_hull_misses([c0, c1, c2], [r0, r1, r2], dhat);
         if near.none() {
             return None;
         }

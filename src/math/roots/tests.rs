@@ -30,10 +30,10 @@ fn sextic_roots_found_by_every_method() {
     }
 }
 
-/// `newton_pair` and `itp_pair` return, bit for bit, what one `newton` / `itp` call per
-/// bracket returns: on cubics with roots anywhere (near the bracket ends, double, none), valid
-/// and invalid brackets, in f32 and f64. (A solve frozen too early or stepped once too often
-/// changes the last bits, which this compares exactly.)
+/// `pair_of` returns, bit for bit, what one `halley_or_newton` call per bracket returns, with
+/// Newton's and with Halley's steps: on cubics with roots anywhere (near the bracket ends,
+/// double, none), valid and invalid brackets, in f32 and f64. (A solve frozen too early or
+/// stepped once too often changes the last bits, which this compares exactly.)
 #[test]
 fn paired_solves_equal_single_solves() {
     fn check<T: crate::real::Scalar>(seed: u64) {
@@ -47,7 +47,7 @@ fn paired_solves_equal_single_solves() {
             ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
         };
         let tol = default_tol::<T>();
-        for _ in 0..2000 {
+        for k in 0..4000 {
             // (x − r₁)(x − r₂)(x − r₃) with roots in [−0.2, 1.2], one of them doubled at times.
             let mut r = [next() * 1.4 - 0.2, next() * 1.4 - 0.2, next() * 1.4 - 0.2];
             if next() < 0.2 {
@@ -56,23 +56,40 @@ fn paired_solves_equal_single_solves() {
             let c = [-r[0] * r[1] * r[2], r[0] * r[1] + r[0] * r[2] + r[1] * r[2], -(r[0] + r[1] + r[2]), 1.0];
             let c: [T; 4] = c.map(T::from_f64);
             let d = [c[1], c[2] * T::from_f64(2.0), c[3] * T::from_f64(3.0)];
+            let e = [d[1], d[2] * T::from_f64(2.0)];
             let f = move |x: T| horner(&c, x);
             let df = move |x: T| horner(&d, x);
+            let d2f = move |x: T| horner(&e, x);
             let mut br = || {
                 let (a, b) = (next(), next());
                 let (a, b) = (T::from_f64(a.min(b)), T::from_f64(a.max(b)));
-                (a, b, f(a), f(b))
+                [a, b, f(a), f(b)]
             };
             let (p, q) = (br(), br());
-            let (vp, vq) = (opposite(p.2, p.3), opposite(q.2, q.3));
-            let single = [newton(f, df, p.0, p.1, p.2, p.3, vp, tol), newton(f, df, q.0, q.1, q.2, q.3, vq, tol)];
-            let pair = newton_pair(f, df, [p.0, q.0], [p.1, q.1], [p.2, q.2], [p.3, q.3], [vp, vq], tol);
-            assert_eq!(single.map(|x| x.to_f64().to_bits()), pair.map(|x| x.to_f64().to_bits()), "newton {r:?}");
-            let single = [itp(f, p.0, p.1, p.2, p.3, vp, tol), itp(f, q.0, q.1, q.2, q.3, vq, tol)];
-            let pair = itp_pair(&[f, f], [p.0, q.0], [p.1, q.1], [p.2, q.2], [p.3, q.3], [vp, vq], tol);
-            assert_eq!(single.map(|x| x.to_f64().to_bits()), pair.map(|x| x.to_f64().to_bits()), "itp {r:?}");
+            let (vp, vq) = (opposite(p[2], p[3]), opposite(q[2], q[3]));
+            let h = k % 2 == 1;
+            let single = [halley_or_newton(f, df, d2f, h, p, vp, tol), halley_or_newton(f, df, d2f, h, q, vq, tol)];
+            let br2 = [[p[0], q[0]], [p[1], q[1]], [p[2], q[2]], [p[3], q[3]]];
+            let pair = pair_of(f, df, d2f, h, br2, [vp, vq], tol);
+            assert_eq!(single.map(|x| x.to_f64().to_bits()), pair.map(|x| x.to_f64().to_bits()), "halley {h} {r:?}");
         }
     }
     check::<f32>(1);
     check::<f64>(2);
+}
+
+/// Halley's step is taken only where it is within [⅔, 2] times Newton's: on `x⁴ − c` over
+/// `[0, 1]` with `c = 10⁻¹⁶` the regula-falsi start is `≈ c`, next to the end where `f' = 0`,
+/// and there Halley's step is `≈ −2f'/f'' = 2x/3`, below `tol` (f64: 8.9e-16) — an unguarded
+/// solve stops at `≈ 1.7·10⁻¹⁶`, 10⁻⁴ from the root `c^¼`. Guarded, it must find the root to
+/// the tolerance (Newton's own error bound there: a few `tol`).
+#[test]
+fn halley_is_not_fooled_by_a_flat_end() {
+    let c = 1e-16f64;
+    let f = |x: f64| x * x * x * x - c;
+    let df = |x: f64| 4.0 * x * x * x;
+    let d2f = |x: f64| 12.0 * x * x;
+    let tol = default_tol::<f64>();
+    let x = halley(f, df, d2f, 0.0, 1.0, f(0.0), f(1.0), true, tol);
+    assert!((x - 1e-4).abs() <= 4.0 * tol, "{x:e}");
 }

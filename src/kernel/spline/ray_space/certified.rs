@@ -6,7 +6,7 @@
 
 use super::{Crossings, RaySpace};
 use crate::math::descartes::{bernstein_on, max_sign_variations};
-use crate::math::roots::{default_tol, horner, itp, itp_pair, opposite, poly_mul};
+use crate::math::roots::{default_tol, halley, halley_pair, horner, itp, opposite, poly_mul};
 use crate::real::{Mask, Real};
 use crate::vec::V3;
 
@@ -130,15 +130,23 @@ impl<T: Real> RaySpace<T> {
     /// exactly where their end values differ in sign. A rising sign function's root is the
     /// minimum; otherwise the least end value is.
     ///
-    /// The roots are found by ITP on `F₁`, `F̄₁` from the vectors (the same solve as
-    /// [`Self::polish`]). Where both functions have their root here, the interval is first
-    /// halved on the signs of both at its midpoint (one evaluation serves the two) until the
-    /// roots lie in different halves, at most [`CERTIFY_DEPTH`] times: each solve then starts
-    /// on a narrower bracket. The entry's and the exit's solves run in lock step
-    /// ([`itp_pair`]: the same result as two [`itp`] calls; two chains of dependent steps
-    /// overlap). Measured on the spline bench's f32 hits (`tests`, issue 10's cost), the
-    /// halving and the lock step took a hit from 2.4 to 1.9 µs. Narrowing the bracket further
-    /// around a Newton root of `P` (no square roots) cost more than the ITP steps it saved.
+    /// Where both functions have their root here, the interval is first halved on the signs of
+    /// both at its midpoint (one evaluation serves the two) until the roots lie in different
+    /// halves, at most [`CERTIFY_DEPTH`] times. On a bracket of one side's root that holds no
+    /// root of the other side's function, that root is the only root of `P = −F₁·F̄₁` there,
+    /// and `P` changes sign across it; it is found by Newton on `P` formed from the vectors
+    /// ([`Direct::p_jet`]: a polynomial, with no square root and no `√g` singularity at a
+    /// real piece's ends, so Newton converges quadratically from the start; a step `≤ tol`
+    /// puts the root within about `tol`). The entry's and the exit's solves run in lock step
+    /// ([`newton_pair`]). Where the halving did not separate the roots (both still in one
+    /// bracket, where `P` has the same sign at both ends) the side's root is found by ITP on
+    /// its own sign function instead, as before this change.
+    ///
+    /// Measured on the spline bench's f32 hits (`cargo bench --bench spline`, issue 10's cost):
+    /// ITP on `F₁`, `F̄₁` took 7.3 lock-step iterations per hit, Newton on `P` takes fewer, each
+    /// without the two square roots and ITP's division.
+    ///
+    /// [`Direct::p_jet`]: super::super::direct::Direct::p_jet
     #[inline(always)]
     fn certified_crossings(&self, nd: &Node<T>, fin: T::Mask) -> [[T; 2]; 2] {
         let (zero, one, two, half) = (T::zero(), T::one(), T::cst(2.0), T::cst(0.5));
@@ -147,14 +155,15 @@ impl<T: Real> RaySpace<T> {
         let h1 = [self.h[1], two * self.h[2]];
         let rise = [fin & nd.ea[2].lt(zero) & nd.eb[2].gt(zero), fin & nd.ea[3].lt(zero) & nd.eb[3].gt(zero)];
         let has = [opposite(nd.ea[2], nd.eb[2]), opposite(nd.ea[3], nd.eb[3])];
-        // Brackets [a, b, F(a), F(b)] of each side's root.
-        let mut br = [[nd.a, nd.b, nd.ea[2], nd.eb[2]], [nd.a, nd.b, nd.ea[3], nd.eb[3]]];
+        // Brackets (a, b, [f, −e, F₁, F̄₁] at a, at b) of each side's root.
+        let mut br = [(nd.a, nd.b, nd.ea, nd.eb); 2];
         let both = (rise[0] | rise[1]) & has[0] & has[1];
+        // Lanes whose two roots are still in one bracket.
+        let mut open = both;
         if both.any() {
             // Halve [lo, hi] (holding both roots) on the signs of F₁, F̄₁ at its midpoint until
             // the roots lie in different halves.
-            let (mut lo, mut hi, mut elo) = (nd.a, nd.b, nd.ea);
-            let mut open = both;
+            let (mut lo, mut hi, mut elo, mut ehi) = (nd.a, nd.b, nd.ea, nd.eb);
             for _ in 0..CERTIFY_DEPTH {
                 if open.none() {
                     break;
@@ -167,76 +176,98 @@ impl<T: Real> RaySpace<T> {
                 let left = [opposite(elo[2], em[2]) | em[2].eq(zero), opposite(elo[3], em[3]) | em[3].eq(zero)];
                 let apart = open & ((left[0] & !left[1]) | (!left[0] & left[1]));
                 for k in 0..2 {
-                    let [a, b, fa, fb] = br[k];
-                    br[k] = [
-                        T::select(apart & !left[k], mid, a),
-                        T::select(apart & left[k], mid, b),
-                        T::select(apart & !left[k], em[k + 2], fa),
-                        T::select(apart & left[k], em[k + 2], fb),
-                    ];
-                }
-                let go_left = open & !apart & left[0];
-                let go_right = open & !apart & !left[0];
-                hi = T::select(go_left, mid, hi);
-                lo = T::select(go_right, mid, lo);
-                for k in 0..4 {
-                    elo[k] = T::select(go_right, em[k], elo[k]);
+                    let (l, r) = (apart & left[k], apart & !left[k]);
+                    let (a, b, ea, eb) = br[k];
+                    br[k] = (
+                        T::select(l, lo, T::select(r, mid, a)),
+                        T::select(l, mid, T::select(r, hi, b)),
+                        sel4(l, elo, sel4(r, em, ea)),
+                        sel4(l, em, sel4(r, ehi, eb)),
+                    );
                 }
                 open = open & !apart;
-                // Still together: both brackets are the common interval.
-                for k in 0..2 {
-                    let e_hi = T::select(go_left, em[k + 2], br[k][3]);
-                    br[k] = [
-                        T::select(open, lo, br[k][0]),
-                        T::select(open, hi, br[k][1]),
-                        T::select(open, elo[k + 2], br[k][2]),
-                        T::select(open, e_hi, br[k][3]),
-                    ];
-                }
+                let (go_left, go_right) = (open & left[0], open & !left[0]);
+                hi = T::select(go_left, mid, hi);
+                ehi = sel4(go_left, em, ehi);
+                lo = T::select(go_right, mid, lo);
+                elo = sel4(go_right, em, elo);
+            }
+            // Still together: both brackets are the common interval.
+            for b in &mut br {
+                *b = (T::select(open, lo, b.0), T::select(open, hi, b.1), sel4(open, elo, b.2), sel4(open, ehi, b.3));
             }
         }
-        let mk = |sigma: T| {
-            let hs1 = [h1[0] * sigma, h1[1] * sigma];
-            move |x: T| {
-                let (_, g, g1) = dg.gap_g_g1(x);
-                two * horner(&hs1, x) * g.max(zero).sqrt() - g1
-            }
-        };
-        let fs = [mk(one), mk(-one)];
+        // Per side: a valid bracket of its sign function, and of P (the other side's function
+        // keeps its sign there: P = −F₁F̄₁ changes sign with this side's).
         let mut valid = [T::Mask::splat(false); 2];
+        let mut on_p = [T::Mask::splat(false); 2];
+        let mut pv = [[zero; 2]; 2];
         for side in 0..2 {
             let r = rise[side];
             if r.none() {
                 continue;
             }
-            let [_, _, fa, fb] = br[side];
-            valid[side] = r & opposite(fa, fb);
+            let (_, _, ea, eb) = br[side];
+            valid[side] = r & opposite(ea[side + 2], eb[side + 2]);
+            pv[side] = [-(ea[2] * ea[3]), -(eb[2] * eb[3])];
+            on_p[side] = valid[side] & !open & opposite(pv[side][0], pv[side][1]);
         }
-        let xs = if valid[0].any() && valid[1].any() {
-            itp_pair(
-                &fs,
-                [br[0][0], br[1][0]],
-                [br[0][1], br[1][1]],
-                [br[0][2], br[1][2]],
-                [br[0][3], br[1][3]],
-                valid,
-                tol,
-            )
-        } else {
-            let k = if valid[0].any() { 0 } else { 1 };
-            let x = itp(fs[k], br[k][0], br[k][1], br[k][2], br[k][3], valid[k], tol);
-            [x, x]
-        };
-        let mut out = [[zero; 2]; 2];
+        let mut xs = [zero; 2];
+        if on_p[0].any() || on_p[1].any() {
+            let f = move |x: T| dg.p_jet(x, h1)[0];
+            let df = move |x: T| dg.p_jet(x, h1)[1];
+            let d2f = move |x: T| dg.p_jet(x, h1)[2];
+            let (a, b) = ([br[0].0, br[1].0], [br[0].1, br[1].1]);
+            xs = if on_p[0].any() && on_p[1].any() {
+                halley_pair(f, df, d2f, a, b, [pv[0][0], pv[1][0]], [pv[0][1], pv[1][1]], on_p, tol)
+            } else {
+                let k = if on_p[0].any() { 0 } else { 1 };
+                let x = halley(f, df, d2f, a[k], b[k], pv[k][0], pv[k][1], on_p[k], tol);
+                [x, x]
+            };
+        }
+        // Newton on P converges to a root of P: where the other side's root lies within
+        // rounding of the bracket's end, P's computed sign there can disagree with the sign
+        // functions' and the root found is the other side's (differential check against the
+        // cascade, a bent tube in f32: the exit 0.11 early). At this side's root its own sign
+        // function vanishes and the other's is `∓2g'`; at the other's root the reverse: kept
+        // only where this side's is the smaller in magnitude, else ITP on it below.
+        let mut at = [[zero; 4]; 2];
+        for side in 0..2 {
+            if on_p[side].any() {
+                at[side] = self.ends(xs[side]);
+                on_p[side] = on_p[side] & at[side][side + 2].abs().le(at[side][3 - side].abs());
+            }
+        }
+        // Sides left to ITP on their sign function (roots not separated, P's end signs not
+        // opposite through rounding, or Newton on P found the other side's root).
         for (side, sigma) in [(0, one), (1, -one)] {
+            let rest = valid[side] & !on_p[side];
+            if rest.none() {
+                continue;
+            }
+            let hs1 = [h1[0] * sigma, h1[1] * sigma];
+            let fs = move |x: T| {
+                let (_, g, g1) = dg.gap_g_g1(x);
+                two * horner(&hs1, x) * g.max(zero).sqrt() - g1
+            };
+            let (a, b, ea, eb) = br[side];
+            let x = itp(fs, a, b, ea[side + 2], eb[side + 2], rest, tol);
+            xs[side] = T::select(rest, x, xs[side]);
+            at[side] = sel4(rest, self.ends(x), at[side]);
+        }
+        let mut out = [[zero; 2]; 2];
+        for side in 0..2 {
             let (va, vb) = (nd.ea[side], nd.eb[side]);
             let left = va.le(vb);
             let (mut vm, mut tm) = (T::select(left, va, vb), T::select(left, nd.a, nd.b));
             let r = rise[side];
             if r.any() {
-                let [a, b, fa, fb] = br[side];
-                let x = T::select(fa.eq(zero), a, T::select(fb.eq(zero), b, xs[side]));
-                let vx = self.val(x, sigma);
+                let (a, b, ea, eb) = br[side];
+                let (za, zb) = (ea[side + 2].eq(zero), eb[side + 2].eq(zero));
+                let x = T::select(za, a, T::select(zb, b, xs[side]));
+                // `ends` gives +∞ off the tube.
+                let vx = T::select(za, ea[side], T::select(zb, eb[side], at[side][side]));
                 let better = r & vx.lt(vm);
                 vm = T::select(better, vx, vm);
                 tm = T::select(better, x, tm);
@@ -246,16 +277,26 @@ impl<T: Real> RaySpace<T> {
         out
     }
 
-    /// `[f, −e, F₁, F̄₁]` at `t` (entry and minus exit distances, and their sign functions).
+    /// `[f, −e, F₁, F̄₁]` at `t` (entry and minus exit distances, and their sign functions);
+    /// `f`, `−e` are `+∞` where `t`'s sphere is surely off the line (gap `< −τ`).
     #[inline(always)]
     fn ends(&self, t: T) -> [T; 4] {
         let two = T::cst(2.0);
-        let (_, g, g1) = self.dg.gap_g_g1(t);
+        let (gap, g, g1) = self.dg.gap_g_g1(t);
         let sq = g.max(T::zero()).sqrt();
         let hv = horner(&self.h, t);
         let hs = two * (self.h[1] + two * self.h[2] * t) * sq;
-        [hv - sq, -hv - sq, hs - g1, -hs - g1]
+        // Not a point of the tube (a run's outside end, or a midpoint near one): no candidate.
+        let real = gap.ge(-self.dg.tau);
+        let inf = T::infinity();
+        [T::select(real, hv - sq, inf), T::select(real, -hv - sq, inf), hs - g1, -hs - g1]
     }
+}
+
+/// `[f, −e, F₁, F̄₁]` values chosen per lane.
+#[inline(always)]
+fn sel4<T: Real>(m: T::Mask, a: [T; 4], b: [T; 4]) -> [T; 4] {
+    [T::select(m, a[0], b[0]), T::select(m, a[1], b[1]), T::select(m, a[2], b[2]), T::select(m, a[3], b[3])]
 }
 
 /// Halvings of a real piece before [`RaySpace::certified`] gives up (at most `2^depth`
