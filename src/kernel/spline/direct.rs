@@ -66,6 +66,16 @@ impl<T: Real> Direct<T> {
         self.gap_g(t).1
     }
 
+    /// `g(t) = r² − |w|²` formed without the square root of `|w|`: as accurate as
+    /// [`Self::g`] (both carry the absolute rounding of `w` itself, `~4ε·Σ|w_k|` times `2|w|`,
+    /// far above that of either product form) and a square root shorter on each step of the
+    /// Halley solves for `g`'s roots ([`Self::g_roots`]).
+    #[inline(always)]
+    fn g_sq(&self, t: T) -> T {
+        let (w, r) = self.wr(t);
+        r * r - w.dot(w)
+    }
+
     /// `(w, r, w', r')` at `t`.
     #[inline(always)]
     fn jet(&self, t: T) -> (V3<T>, T, V3<T>, T) {
@@ -198,7 +208,7 @@ impl<T: Real> Direct<T> {
         let e = extrema;
         let ext = [e[0], e[1], e[2], e[3], e[4], e[4], e[4], e[4]];
         let bp = if m == Bracket::Newton {
-            cascade_level_halley(&ext, 5, |t| self.g(t), |t| self.g1(t), |t| self.g2(t))
+            cascade_level_halley(&ext, 5, |t| self.g_sq(t), |t| self.g1(t), |t| self.g2(t))
         } else {
             cascade_level(&ext, 5, |t| self.g(t), |t| self.g1(t), m)
         };

@@ -231,12 +231,20 @@ impl<T: Real> RaySpace<T> {
         // functions' and the root found is the other side's (differential check against the
         // cascade, a bent tube in f32: the exit 0.11 early). At this side's root its own sign
         // function vanishes and the other's is `∓2g'`; at the other's root the reverse: kept
-        // only where this side's is the smaller in magnitude, else ITP on it below.
+        // only where this side's is the smaller in magnitude, else ITP on it below. Nor where
+        // it is within 2·tol of a bracket end: there P's root can be one at (or just beyond)
+        // that end, where both sign functions vanish — the slow end of a curve (p' = 0: h' and
+        // g' vanish there, P has a double root) drew Newton's step onto the end, whose value
+        // P ≈ 0 it then took (fuzz campaign 2501, regression-slow-end-double-root-{1,2}: the
+        // exit 0.18 of the extent early).
         let mut at = [[zero; 4]; 2];
         for side in 0..2 {
             if on_p[side].any() {
-                at[side] = self.ends(xs[side]);
-                on_p[side] = on_p[side] & at[side][side + 2].abs().le(at[side][3 - side].abs());
+                let x = xs[side];
+                at[side] = self.ends(x);
+                let (a, b) = (br[side].0, br[side].1);
+                let clear = (x - a).gt(two * tol) & (b - x).gt(two * tol);
+                on_p[side] = on_p[side] & clear & at[side][side + 2].abs().le(at[side][3 - side].abs());
             }
         }
         // Sides left to ITP on their sign function (roots not separated, P's end signs not
