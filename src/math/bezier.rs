@@ -35,6 +35,25 @@ pub(crate) fn bezier2_max<T: Real>(c: [T; 3]) -> T {
     -bezier2_min([-c[0], -c[1], -c[2]])
 }
 
+/// De Casteljau at ½ of Bernstein coefficients of any degree (`N − 1`): the left and right
+/// halves' coefficients. Each value is a chain of at most `N − 1` averages (the rounding the
+/// callers' bounds count: `crate::math::descartes`, the spline's `g` hull).
+#[inline(always)]
+pub(crate) fn split_half<T: Real, const N: usize>(b: &[T; N]) -> ([T; N], [T; N]) {
+    let half = T::cst(0.5);
+    let (mut l, mut r, mut w) = ([T::zero(); N], [T::zero(); N], *b);
+    l[0] = w[0];
+    r[N - 1] = w[N - 1];
+    for k in 1..N {
+        for i in 0..N - k {
+            w[i] = (w[i] + w[i + 1]) * half;
+        }
+        l[k] = w[0];
+        r[N - 1 - k] = w[N - 1 - k];
+    }
+    (l, r)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

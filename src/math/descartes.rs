@@ -16,7 +16,7 @@
 //! coefficients (the chain that formed them), and [`bernstein_on`] continues the chain: the
 //! Taylor shift has ≤ 12 operations on a path, the scaling ≤ 7 (the power `wᵏ` and the
 //! product), the basis change ≤ 14 (seven products and their sum); each halving by de Casteljau
-//! (the spline kernel's `split_half`, at most four) adds six averages. With the caller's chain
+//! (`crate::math::bezier::split_half`, at most four in the spline kernel) adds six averages. With the caller's chain
 //! below 25 operations (the spline's `P`), `k ≤ 25 + 12 + 7 + 14 + 24 = 82 < 100` and
 //! `γₖ < 101ε` in either precision (`kε ≤ 1.2e-5`), so a coefficient with `|bᵢ| > 128ε·mᵢ`
 //! ([`ROUNDING`]) has the sign of the exact one; halving `m` by the same averages keeps it a

@@ -5,6 +5,7 @@
 //! solve each, and `P`'s cascade is skipped (see the parent modules' docs).
 
 use super::{Crossings, RaySpace};
+use crate::math::bezier::split_half;
 use crate::math::descartes::{bernstein_on, max_sign_variations};
 use crate::math::roots::{default_tol, halley, halley_pair, horner, itp, opposite, poly_mul};
 use crate::real::{Mask, Real};
@@ -323,23 +324,4 @@ struct Node<T: Real> {
     eb: [T; 4],
     depth: usize,
     act: T::Mask,
-}
-
-/// De Casteljau at ½: the Bernstein coefficients of the left and right halves (each value a
-/// chain of six averages, which [`crate::math::descartes`]'s operation count includes for
-/// [`CERTIFY_DEPTH`] halvings).
-#[inline(always)]
-fn split_half<T: Real>(b: &[T; 7]) -> ([T; 7], [T; 7]) {
-    let half = T::cst(0.5);
-    let (mut l, mut r, mut w) = ([T::zero(); 7], [T::zero(); 7], *b);
-    l[0] = w[0];
-    r[6] = w[6];
-    for k in 1..7 {
-        for i in 0..7 - k {
-            w[i] = (w[i] + w[i + 1]) * half;
-        }
-        l[k] = w[0];
-        r[6 - k] = w[6 - k];
-    }
-    (l, r)
 }

@@ -2,6 +2,7 @@
 //! cost): the control triangle dilated by the largest radius ([`hull_misses`]), and `g`'s
 //! Bernstein coefficients on the four quarters of the segment ([`g_hull_misses`]).
 
+use crate::math::bezier::split_half;
 use crate::real::{Mask, Real};
 use crate::vec::V3;
 
@@ -82,9 +83,9 @@ pub(super) fn g_hull_misses<T: Real>(c: [V3<T>; 3], r: [T; 3], dhat: V3<T>) -> T
         r[2] * r[2] - w[2].dot(w[2]),
     ];
     let lim = -(T::cst(256.0) * T::epsilon());
-    let (l, rr) = halves(g);
+    let (l, rr) = split_half(&g);
     let mut miss = T::Mask::splat(true);
-    for q in [halves(l), halves(rr)] {
+    for q in [split_half(&l), split_half(&rr)] {
         for part in [q.0, q.1] {
             for v in part {
                 miss = miss & v.lt(lim);
@@ -92,23 +93,6 @@ pub(super) fn g_hull_misses<T: Real>(c: [V3<T>; 3], r: [T; 3], dhat: V3<T>) -> T
         }
     }
     miss
-}
-
-/// De Casteljau at ½ of degree-4 Bernstein coefficients: the left and right halves'.
-#[inline(always)]
-fn halves<T: Real>(b: [T; 5]) -> ([T; 5], [T; 5]) {
-    let half = T::cst(0.5);
-    let (mut l, mut r, mut w) = ([T::zero(); 5], [T::zero(); 5], b);
-    l[0] = w[0];
-    r[4] = w[4];
-    for k in 1..5 {
-        for i in 0..5 - k {
-            w[i] = (w[i] + w[i + 1]) * half;
-        }
-        l[k] = w[0];
-        r[4 - k] = w[4 - k];
-    }
-    (l, r)
 }
 
 #[cfg(test)]
