@@ -39,10 +39,13 @@
 //!   Bernstein coefficients of `P` with a bound on their rounding count its roots from above
 //!   (Descartes' rule, `crate::math::descartes`); when that count equals the number of the
 //!   entry's and exit's sign functions that change sign between the piece's ends (halving the
-//!   piece up to four times), each has at most one root there, the entry is that root if `F₁`
+//!   piece up to six times), each has at most one root there, the entry is that root if `F₁`
 //!   rises through it and an end otherwise, likewise the exit (`RaySpace::certified`). Rays it
 //!   cannot certify — chiefly thin tubes in `f32`, whose `P` is within its rounding — take the
-//!   cascade. On the spline bench's f32 rays it certifies all but 4 of 64 hits.
+//!   cascade. Where the count's rounding swamps `P` (a thin tube in `f32`, or next to a root of
+//!   `g` with a small `g'`), Taylor bounds from the vectors that prove `P` monotone or of one
+//!   sign on a node certify it instead (`Direct::p_monotone`). On the spline bench's f32 rays
+//!   it certifies all 64 hits (60 before the Taylor bounds).
 //!
 //! # Conditioning (issue 10)
 //! In units of the bounding radius `R` (≈ `L/2 + r`) the coefficients of `g` are of size 1

@@ -118,6 +118,103 @@ impl<T: Real> Direct<T> {
         [p, p1, p2]
     }
 
+    /// Whether `P = 4h'²g − g'²` as [`Self::p_jet`] forms it (from the stored vectors and
+    /// `h' = h1[0] + h1[1]·t`) is **strictly monotone** on `[a, b]`, proven by Taylor bounds
+    /// about the midpoint `m` (`ρ` = the larger half width): for `t ∈ [a, b]`
+    /// `|P'(t)| ≥ |P'(m)| − ρ·max|P''|`, `max|P''| ≤ |P''(m)| + ρ·max|P'''|`, and
+    /// `P''' = 24h''²g' + 24h'h''g'' + 4h'²g''' − 6g''g''' − 2g'g''''` (`h''' = 0`) is bounded
+    /// by the same chain for `g`'s derivatives (`max|g⁽ᵏ⁾| ≤ |g⁽ᵏ⁾(m)| + ρ·max|g⁽ᵏ⁺¹⁾|`, from
+    /// the constant `g''''`) and `max|h'| ≤ |h'(m)| + ρ|h''|`. A monotone `P` has at most one
+    /// root in `[a, b]`, and it is simple: the certificate `RaySpace::certified` needs where
+    /// its Bernstein count cannot give one. Close to a root of `g` where `g'` is small (a line
+    /// nearly tangent to the tube there) `P ≈ −g'²` lies below the rounding bound of its
+    /// coefficients on every small interval, while its derivative from the vectors is still
+    /// clearly non-zero (the spline bench's uncertified f32 hits, issue 10's cost).
+    ///
+    /// *Rounding.* Each value at `m` is a formula of at most ~12 roundings on the stored
+    /// coefficients: its error is below `32ε` times the same formula on their magnitudes (the
+    /// `…a` terms below, every difference made a sum); `P'(m)`, `P''(m)` add the propagation
+    /// of those errors and their own, bounded by `64ε` times their magnitude formulas. The
+    /// bounds are sums of non-negative terms (each rounding relative `≤ ε`), and the final
+    /// comparison takes a further factor `1 + 64ε` on the side that must be exceeded. The
+    /// statement is about the `P` of the stored coefficients: the polynomial whose root the
+    /// certified path then solves (`p_jet`), and the product of the sign functions evaluated
+    /// from the same vectors.
+    #[inline(always)]
+    pub(super) fn p_monotone(&self, a: T, b: T, h1: [T; 2]) -> (T::Mask, T::Mask) {
+        let (two, four, half) = (T::cst(2.0), T::cst(4.0), T::cst(0.5));
+        let eps = T::epsilon();
+        let m = (a + b) * half;
+        let rho = (b - m).max(m - a) * (T::one() + four * eps);
+        let (w, r, w1, r1) = self.jet(m);
+        let g = r * r - w.dot(w);
+        let g1 = two * (r * r1 - w.dot(w1));
+        let g2 = two * (r1 * r1 + r * (two * self.ra) - w1.dot(w1) - w.dot(self.wa * two));
+        let (c0, c1) = self.g3_coeffs();
+        let g3 = T::cst(12.0) * (c0 + two * m * c1);
+        let g4 = T::cst(24.0) * c1;
+        // The magnitude formulas (m ∈ [0, 1]).
+        let av = |v: V3<T>| V3::new(v.x.abs(), v.y.abs(), v.z.abs());
+        let (aa, ab, ac) = (av(self.wa), av(self.wb), av(self.wc));
+        let (ra, rb, rc) = (self.ra.abs(), self.rb.abs(), self.rc.abs());
+        let mm = m.abs();
+        let wa = (aa * mm + ab) * mm + ac;
+        let w1a = aa * (two * mm) + ab;
+        let r_a = (ra * mm + rb) * mm + rc;
+        let r1a = two * ra * mm + rb;
+        let ga = r_a * r_a + wa.dot(wa);
+        let g1a = two * (r_a * r1a + wa.dot(w1a));
+        let g2a = two * (r1a * r1a + r_a * (two * ra) + w1a.dot(w1a) + wa.dot(aa * two));
+        let g3a = T::cst(12.0) * (ra * rb + aa.dot(ab) + two * mm * (ra * ra + aa.dot(aa)));
+        let g4a = T::cst(24.0) * (ra * ra + aa.dot(aa));
+        let e = T::cst(32.0) * eps;
+        let big4 = g4.abs() + e * g4a;
+        let big3 = g3.abs() + e * g3a + big4 * rho;
+        let big2 = g2.abs() + e * g2a + big3 * rho;
+        let big1 = g1.abs() + e * g1a + big2 * rho;
+        let (hp, hpp) = (h1[0] + h1[1] * m, h1[1]);
+        let ha = h1[0].abs() + hpp.abs() * mm;
+        let h2a = hpp.abs();
+        let hmax = ha * (T::one() + four * eps) + h2a * rho;
+        let hp2 = hp * hp;
+        let p1 = T::cst(8.0) * hp * hpp * g + four * hp2 * g1 - two * g1 * g2;
+        let p2 = T::cst(8.0) * hpp * hpp * g + T::cst(16.0) * hp * hpp * g1 + four * hp2 * g2
+            - two * g2 * g2
+            - two * g1 * g3;
+        // Errors of P'(m), P''(m): each term c·x·y·z contributes c·(Π(|x| + δx) − Π|x|) from its
+        // factors' errors and 16ε·c·Π|x| from its own roundings (and the difference's).
+        let dh = four * eps * ha;
+        let (dg0, dg1, dg2, dg3) = (e * ga, e * g1a, e * g2a, e * g3a);
+        let (hu, hpa) = (hp.abs() + dh, hp.abs());
+        let (a0, a1, a2, a3) = (g.abs(), g1.abs(), g2.abs(), g3.abs());
+        let (u0, u1, u2, u3) = (a0 + dg0, a1 + dg1, a2 + dg2, a3 + dg3);
+        let e16 = T::cst(16.0) * eps;
+        let term = |c: f64, u: T, a: T| T::cst(c) * ((u - a) + e16 * a);
+        let d1 = term(8.0, hu * h2a * u0, hpa * h2a * a0)
+            + term(4.0, hu * hu * u1, hpa * hpa * a1)
+            + term(2.0, u1 * u2, a1 * a2);
+        let d2 = term(8.0, h2a * h2a * u0, h2a * h2a * a0)
+            + term(16.0, hu * h2a * u1, hpa * h2a * a1)
+            + term(4.0, hu * hu * u2, hpa * hpa * a2)
+            + term(2.0, u2 * u2, a2 * a2)
+            + term(2.0, u1 * u3, a1 * a3);
+        let e2 = T::cst(64.0) * eps;
+        let b3 = T::cst(24.0) * h2a * h2a * big1
+            + T::cst(24.0) * hmax * h2a * big2
+            + four * hmax * hmax * big3
+            + T::cst(6.0) * big2 * big3
+            + two * big1 * big4;
+        let b2 = p2.abs() + d2 + b3 * rho;
+        let need = (d1 + b2 * rho) * (T::one() + e2);
+        // P of one sign on [a, b]: |P(t) − P(m)| ≤ ρ|P'(m)| + ρ²/2·max|P''|.
+        let p0 = four * hp2 * g - g1 * g1;
+        let d0 = term(4.0, hu * hu * u0, hpa * hpa * a0) + term(1.0, u1 * u1, a1 * a1);
+        let reach = (d0 + (p1.abs() + d1) * rho + b2 * rho * rho * half) * (T::one() + e2);
+        let definite = p0.abs().gt(reach) & reach.is_finite();
+        // False for NaN (a NaN bound or value compares false).
+        (p1.abs().gt(need) & need.is_finite(), definite)
+    }
+
     /// `g'(t) = 2(r r' − w·w')`.
     #[inline(always)]
     pub(super) fn g1(&self, t: T) -> T {
@@ -230,4 +327,12 @@ pub(super) struct GBreaks<T> {
     pub(super) roots: [T; 6],
     /// `g` monotone between consecutive entries (its maxima are among them).
     pub(super) extrema: [T; 5],
+}
+
+#[cfg(test)]
+impl<T: crate::real::Scalar> Direct<T> {
+    /// The stored coefficients in f64 (exactly): `([wa, wb, wc], [ra, rb, rc])`.
+    pub(super) fn coeffs_f64(&self) -> ([V3<f64>; 3], [f64; 3]) {
+        ([self.wa.cast(), self.wb.cast(), self.wc.cast()], [self.ra.to_f64(), self.rb.to_f64(), self.rc.to_f64()])
+    }
 }

@@ -198,6 +198,12 @@ impl<T: Real> RaySpace<T> {
         Some(Self { h, qa, qb, qc, dhat, tc, inv_dlen: inv_dlen * big_s, near, hv, gv, tv, qn, rn, dn, dg })
     }
 
+    /// `h' = h1[0] + h1[1]·t` (tests of `Direct::p_monotone`).
+    #[cfg(test)]
+    pub(super) fn h1(&self) -> [T; 2] {
+        [self.h[1], T::cst(2.0) * self.h[2]]
+    }
+
     #[inline(always)]
     fn q(&self, t: T) -> V3<T> {
         self.qa * (t * t) + self.qb * t + self.qc

@@ -161,3 +161,97 @@ fn certified_count_agrees_with_the_cascade() {
         assert!(fallback > 0, "no query left to the cascade (precision {p})");
     }
 }
+
+/// `Direct::p_monotone`'s claims hold for the `P` of the stored coefficients: where it says
+/// monotone, `P` sampled on 1,001 points of `[a, b]` never moves both up and down, and where it
+/// says of one sign, the samples never take both signs — each beyond the f64 rounding of the
+/// oracle's `P` (`32ε₆₄` times its magnitude formula), which is independent code: `P =
+/// 4h'²g − g'²` from the stored power-basis vectors in f64 (exact: the f32 coefficients are
+/// f64 numbers). In f32 the oracle is 2²⁹ times finer than the claim; in f64 it is as fine
+/// as the claim, so there only gross errors can show. Intervals of width 10⁻⁵ … 1 about
+/// random points and about the roots of `g` (where the certificate is needed: a small `g'`
+/// there), on unit, thin (to `L/r = 10³`), tapered and bent tubes with rays that graze.
+/// Dropping the Taylor remainder (`ρ = 0` in the bounds) makes it fail.
+#[test]
+fn p_monotone_claims_hold() {
+    use crate::math::roots::Bracket;
+    fn run<T: Scalar>(rng: &mut Rng) -> [usize; 3] {
+        // [intervals, monotone claims, definite claims]
+        let mut tally = [0usize; 3];
+        for k in 0..3000 {
+            let len = 2.0;
+            let r = match k % 3 {
+                0 => 0.3,
+                1 => len / 10f64.powf(rng.range(1.0, 3.0)),
+                _ => len * rng.range(0.01, 0.2),
+            };
+            let axis = rng.unit();
+            let b0 = rng.unit() * rng.range(0.0, 2.0);
+            let b2 = b0 + axis * len;
+            let b1 = (b0 + b2) * 0.5 + rng.unit() * (len * rng.range(0.0, 1.5));
+            let radii = if k % 5 == 4 { [r, r * rng.range(0.2, 1.0), 0.0] } else { [r, r * rng.range(0.5, 1.5), r] };
+            let Ok(tube) = QuadTube::new([b0, b1, b2], radii) else { continue };
+            let u = rng.range(0.0, 1.0);
+            let aim = tube.point(u) + rng.unit() * (tube.radius(u).max(1e-3 * r) * rng.range(0.5, 1.2));
+            let dir = rng.unit();
+            let ray = Ray::new(aim - dir * rng.range(3.0, 8.0), dir);
+            let Ok(tt) = QuadTube::<T>::new(
+                [tube.b[0].cast(), tube.b[1].cast(), tube.b[2].cast()],
+                [T::from_f64(radii[0]), T::from_f64(radii[1]), T::from_f64(radii[2])],
+            ) else {
+                continue;
+            };
+            let rr = Ray::new(ray.o.cast::<T>(), ray.d.cast::<T>());
+            let Some(rs) = RaySpace::new(&tt, &rr) else { continue };
+            let h1 = rs.h1();
+            let hf = [h1[0].to_f64(), h1[1].to_f64()];
+            let ([wa, wb, wc], [ra, rb, rc]) = rs.dg.coeffs_f64();
+            // P and its magnitude formula at t, f64.
+            let p = |t: f64| {
+                let (w, w1) = (wa * (t * t) + wb * t + wc, wa * (2.0 * t) + wb);
+                let (r, r1) = (ra * t * t + rb * t + rc, 2.0 * ra * t + rb);
+                let (g, g1) = (r * r - w.dot(w), 2.0 * (r * r1 - w.dot(w1)));
+                let hp = hf[0] + hf[1] * t;
+                let ab = |v: V3<f64>| V3::new(v.x.abs(), v.y.abs(), v.z.abs());
+                let (wa_, w1a) = (ab(w), ab(w1));
+                let (ga, g1a) = (r * r + wa_.dot(wa_), 2.0 * ((r * r1).abs() + wa_.dot(w1a)));
+                (4.0 * hp * hp * g - g1 * g1, 4.0 * hp * hp * ga + g1a * g1a)
+            };
+            let roots = rs.dg.g_breakpoints(Bracket::Newton).roots;
+            for j in 0..8 {
+                let c = if j < 4 { roots[1 + j].to_f64() } else { rng.range(0.0, 1.0) };
+                let w = 10f64.powf(rng.range(-5.0, 0.0));
+                let (a, b) = (T::from_f64((c - w).max(0.0)), T::from_f64((c + w).min(1.0)));
+                if b <= a {
+                    continue;
+                }
+                tally[0] += 1;
+                let (mono, definite) = rs.dg.p_monotone(a, b, h1);
+                if !mono && !definite {
+                    continue;
+                }
+                let (af, bf) = (a.to_f64(), b.to_f64());
+                let s: Vec<(f64, f64)> = (0..=1000).map(|i| p(af + (bf - af) * i as f64 / 1000.0)).collect();
+                let slack = |x: (f64, f64), y: (f64, f64)| 32.0 * f64::EPSILON * (x.1 + y.1);
+                if mono {
+                    tally[1] += 1;
+                    let up = s.windows(2).any(|v| v[1].0 - v[0].0 > slack(v[0], v[1]));
+                    let down = s.windows(2).any(|v| v[0].0 - v[1].0 > slack(v[0], v[1]));
+                    assert!(!(up && down), "P not monotone on [{af}, {bf}]: {tube:?} {ray:?}");
+                }
+                if definite {
+                    tally[2] += 1;
+                    let pos = s.iter().any(|x| x.0 > slack(*x, *x));
+                    let neg = s.iter().any(|x| x.0 < -slack(*x, *x));
+                    assert!(!(pos && neg), "P changes sign on [{af}, {bf}]: {tube:?} {ray:?}");
+                }
+            }
+        }
+        tally
+    }
+    let mut rng = Rng(StdRng::seed_from_u64(23));
+    for (name, t) in [("f32", run::<f32>(&mut rng)), ("f64", run::<f64>(&mut rng))] {
+        println!("{name}: [intervals, monotone claims, definite claims] = {t:?}");
+        assert!(t[1] * 10 >= t[0] && t[2] * 10 >= t[0], "{name}: too few claims to test: {t:?}");
+    }
+}
