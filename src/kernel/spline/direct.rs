@@ -102,20 +102,19 @@ impl<T: Real> Direct<T> {
     /// the bracket.
     #[inline(always)]
     pub(super) fn p_jet(&self, t: T, h1: [T; 2]) -> [T; 3] {
-        let (two, four) = (T::cst(2.0), T::cst(4.0));
+        p_from(self.g_jet(t), h1[0] + h1[1] * t, h1[1])
+    }
+
+    /// `[g, g', g'', g''']` at `t` from one evaluation of the jet (`g` without the square root
+    /// of `|w|`, as [`Self::g_sq`]).
+    #[inline(always)]
+    fn g_jet(&self, t: T) -> [T; 4] {
+        let two = T::cst(2.0);
         let (w, r, w1, r1) = self.jet(t);
         let g = r * r - w.dot(w);
         let g1 = two * (r * r1 - w.dot(w1));
         let g2 = two * (r1 * r1 + r * (two * self.ra) - w1.dot(w1) - w.dot(self.wa * two));
-        let g3 = self.g3(t);
-        let (hp, hpp) = (h1[0] + h1[1] * t, h1[1]);
-        let hp2 = hp * hp;
-        let p = four * hp2 * g - g1 * g1;
-        let p1 = T::cst(8.0) * hp * hpp * g + four * hp2 * g1 - two * g1 * g2;
-        let p2 = T::cst(8.0) * hpp * hpp * g + T::cst(16.0) * hp * hpp * g1 + four * hp2 * g2
-            - two * g2 * g2
-            - two * g1 * g3;
-        [p, p1, p2]
+        [g, g1, g2, self.g3(t)]
     }
 
     /// Whether `P = 4h'²g − g'²` as [`Self::p_jet`] forms it (from the stored vectors and
@@ -146,13 +145,8 @@ impl<T: Real> Direct<T> {
         let eps = T::epsilon();
         let m = (a + b) * half;
         let rho = (b - m).max(m - a) * (T::one() + four * eps);
-        let (w, r, w1, r1) = self.jet(m);
-        let g = r * r - w.dot(w);
-        let g1 = two * (r * r1 - w.dot(w1));
-        let g2 = two * (r1 * r1 + r * (two * self.ra) - w1.dot(w1) - w.dot(self.wa * two));
-        let (c0, c1) = self.g3_coeffs();
-        let g3 = T::cst(12.0) * (c0 + two * m * c1);
-        let g4 = T::cst(24.0) * c1;
+        let [g, g1, g2, g3] = self.g_jet(m);
+        let g4 = T::cst(24.0) * self.g3_coeffs().1;
         // The magnitude formulas (m ∈ [0, 1]).
         let av = |v: V3<T>| V3::new(v.x.abs(), v.y.abs(), v.z.abs());
         let (aa, ab, ac) = (av(self.wa), av(self.wb), av(self.wc));
@@ -176,11 +170,7 @@ impl<T: Real> Direct<T> {
         let ha = h1[0].abs() + hpp.abs() * mm;
         let h2a = hpp.abs();
         let hmax = ha * (T::one() + four * eps) + h2a * rho;
-        let hp2 = hp * hp;
-        let p1 = T::cst(8.0) * hp * hpp * g + four * hp2 * g1 - two * g1 * g2;
-        let p2 = T::cst(8.0) * hpp * hpp * g + T::cst(16.0) * hp * hpp * g1 + four * hp2 * g2
-            - two * g2 * g2
-            - two * g1 * g3;
+        let [p0, p1, p2] = p_from([g, g1, g2, g3], hp, hpp);
         // Errors of P'(m), P''(m): each term c·x·y·z contributes c·(Π(|x| + δx) − Π|x|) from its
         // factors' errors and 16ε·c·Π|x| from its own roundings (and the difference's).
         let dh = four * eps * ha;
@@ -207,7 +197,6 @@ impl<T: Real> Direct<T> {
         let b2 = p2.abs() + d2 + b3 * rho;
         let need = (d1 + b2 * rho) * (T::one() + e2);
         // P of one sign on [a, b]: |P(t) − P(m)| ≤ ρ|P'(m)| + ρ²/2·max|P''|.
-        let p0 = four * hp2 * g - g1 * g1;
         let d0 = term(4.0, hu * hu * u0, hpa * hpa * a0) + term(1.0, u1 * u1, a1 * a1);
         let reach = (d0 + (p1.abs() + d1) * rho + b2 * rho * rho * half) * (T::one() + e2);
         let definite = p0.abs().gt(reach) & reach.is_finite();
@@ -318,6 +307,19 @@ impl<T: Real> Direct<T> {
         let extrema = self.g_extrema(m);
         GBreaks { roots: self.g_roots(extrema, m), extrema }
     }
+}
+
+/// `[P, P', P'']` of `P = 4h'²g − g'²` from `[g, g', g'', g''']`, `h'` and `h''` (`h''' = 0`):
+/// `P' = 8h'h''g + 4h'²g' − 2g'g''`, `P'' = 8h''²g + 16h'h''g' + 4h'²g'' − 2g''² − 2g'g'''`.
+#[inline(always)]
+fn p_from<T: Real>([g, g1, g2, g3]: [T; 4], hp: T, hpp: T) -> [T; 3] {
+    let (two, four) = (T::cst(2.0), T::cst(4.0));
+    let hp2 = hp * hp;
+    let p = four * hp2 * g - g1 * g1;
+    let p1 = T::cst(8.0) * hp * hpp * g + four * hp2 * g1 - two * g1 * g2;
+    let p2 =
+        T::cst(8.0) * hpp * hpp * g + T::cst(16.0) * hp * hpp * g1 + four * hp2 * g2 - two * g2 * g2 - two * g1 * g3;
+    [p, p1, p2]
 }
 
 /// [`Direct::g_breakpoints`]: the roots of `g` and of `g'` on `[0, 1]`, with both ends.

@@ -198,8 +198,8 @@ impl<T: Real> RaySpace<T> {
         Some(Self { h, qa, qb, qc, dhat, tc, inv_dlen: inv_dlen * big_s, near, hv, gv, tv, qn, rn, dn, dg })
     }
 
-    /// `h' = h1[0] + h1[1]·t` (tests of `Direct::p_monotone`).
-    #[cfg(test)]
+    /// `h' = h1[0] + h1[1]·t`.
+    #[inline(always)]
     pub(super) fn h1(&self) -> [T; 2] {
         [self.h[1], T::cst(2.0) * self.h[2]]
     }
@@ -355,7 +355,7 @@ impl<T: Real> RaySpace<T> {
     #[inline(always)]
     fn best_of_candidates(&self, c: &[T], extra: &[T], lo: T, hi: T, all_real: bool) -> Candidates<T> {
         let (inf, two) = (T::infinity(), T::cst(2.0));
-        let h1 = [self.h[1], two * self.h[2]];
+        let h1 = self.h1();
         let (mut bi, mut ti, mut bo, mut to) = (inf, lo, inf, lo);
         let mut any = T::Mask::splat(false);
         // Each candidate's t and its F₁ for the entry (σ = 1) and the exit (σ = −1).

@@ -78,7 +78,7 @@ impl<T: Real> RaySpace<T> {
         let (zero, one, half, inf) = (T::zero(), T::one(), T::cst(0.5), T::infinity());
         let dg = self.dg;
         let ends = |t: T| self.ends(t);
-        let h1 = [self.h[1], T::cst(2.0) * self.h[2]];
+        let h1 = self.h1();
         let (p, pa) = (self.p_poly(), self.p_poly_abs());
         // Least f and least −e: [value, t] for σ = 1, −1.
         let mut best = [[inf, zero], [inf, zero]];
@@ -172,7 +172,7 @@ impl<T: Real> RaySpace<T> {
         let (zero, one, two, half) = (T::zero(), T::one(), T::cst(2.0), T::cst(0.5));
         let tol = default_tol::<T>();
         let dg = self.dg;
-        let h1 = [self.h[1], two * self.h[2]];
+        let h1 = self.h1();
         let rise = [fin & nd.ea[2].lt(zero) & nd.eb[2].gt(zero), fin & nd.ea[3].lt(zero) & nd.eb[3].gt(zero)];
         let has = [opposite(nd.ea[2], nd.eb[2]), opposite(nd.ea[3], nd.eb[3])];
         // Brackets (a, b, [f, −e, F₁, F̄₁] at a, at b) of each side's root.
