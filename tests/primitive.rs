@@ -156,22 +156,26 @@ fn bit_identical_to_the_replaced_functions() {
     // Slot 3 re-recorded in f32 and f32x8 only for the Taylor certificate of P's monotonicity
     // (`Direct::p_monotone`: nodes the Bernstein count left to the cascade are now certified,
     // so those queries take the certified solve; answers within E, same tests; f64 unchanged).
+    // Slot 3 re-recorded in every precision for the start of the Halley solves for g's roots
+    // (`Direct::g_root_start`: the root of g's second-order Taylor model about a bracket end
+    // instead of the regula-falsi point; the same roots to the solve's tolerance, answers
+    // within E, same tests).
     // Slots 0 and 2 (sphere, Han) are unchanged.
     assert_eq!(
         fingerprint::<f64>(&cs),
-        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0xaaecdd133ece84de]
+        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0xc972b75f30c2e145]
     );
     assert_eq!(
         fingerprint::<f32>(&cs),
-        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x4e402953001c4b3e]
+        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x9e14c61f08e0b36c]
     );
     assert_eq!(
         fingerprint::<WideF32x8>(&cs),
-        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x91f826a71fb9bf4a]
+        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x6ac787f518ee53ec]
     );
     assert_eq!(
         fingerprint::<WideF64x4>(&cs),
-        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0xed4caa5c40b847a2]
+        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0x5b0d37bcf0f0fbad]
     );
     assert_eq!(
         fingerprint_scalar::<f64>(&cs),

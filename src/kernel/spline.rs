@@ -315,7 +315,7 @@ impl<T: Real> QuadTube<T> {
         // The certified count on g's real pieces first; P's cascade only for lanes it
         // cannot certify (`RaySpace::certified`). A lane with a candidate real within
         // the gap's rounding but no piece with g > 0 (a graze within τ) is not certified.
-        let roots = rs.dg.g_roots(extrema, Bracket::Newton);
+        let roots = rs.dg.g_roots_started(extrema);
         let (fast, cert) = if path == Path::Auto {
             let (xc, pieces, cert) = rs.certified(&roots);
             let cert = cert & ((pieces & real) | (!pieces & !real));

@@ -243,7 +243,24 @@ pub(crate) fn halley_or_newton<T: Real>(
     valid: T::Mask,
     tol: T,
 ) -> T {
-    let mut s = Newton::new(a, b, fa, fb, valid, tol);
+    halley_or_newton_at(f, df, d2f, use_d2, [a, b, fa, fb], T::cst(f64::NAN), valid, tol)
+}
+
+/// [`halley_or_newton`] from the start `x0` where it lies strictly inside the bracket
+/// ([`Newton::new_at`]).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn halley_or_newton_at<T: Real>(
+    f: impl Fn(T) -> T,
+    df: impl Fn(T) -> T,
+    d2f: impl Fn(T) -> T,
+    use_d2: bool,
+    [a, b, fa, fb]: [T; 4],
+    x0: T,
+    valid: T::Mask,
+    tol: T,
+) -> T {
+    let mut s = Newton::new_at(a, b, fa, fb, x0, valid, tol);
     let mut it = 0;
     while !s.done.all() && it < MAX_ITER {
         it += 1;
@@ -251,6 +268,23 @@ pub(crate) fn halley_or_newton<T: Real>(
         s.step(f(s.x), df(s.x), d2, use_d2);
     }
     s.x
+}
+
+/// The root of the Taylor model `f + f'δ + ½f''δ²` (`[f, f', f'']` at `e`) on the side `dir`
+/// (`±1`) nearest to `e`, as `e + δ`: a start for a bracketed Halley solve from a bracket end
+/// (NaN where the model has no root on that side; the solve then starts at the regula-falsi
+/// point). Roots `q/(½f'')` and `f/q` with `q = −½(f' + sgn(f')√(f'² − 2ff''))`, no
+/// cancellation.
+#[inline(always)]
+pub(crate) fn model_start<T: Real>(e: T, dir: T, [f, f1, f2]: [T; 3]) -> T {
+    let (zero, half) = (T::zero(), T::cst(0.5));
+    let disc = f1 * f1 - T::cst(2.0) * f * f2;
+    let sq = disc.max(zero).sqrt();
+    let q = -half * (f1 + T::select(f1.ge(zero), sq, -sq));
+    let (d1, d2) = (q / (half * f2), f / q);
+    let (ok1, ok2) = ((d1 * dir).gt(zero), (d2 * dir).gt(zero));
+    let d = T::select(ok1 & (!ok2 | d1.abs().le(d2.abs())), d1, T::select(ok2, d2, T::cst(f64::NAN)));
+    T::select(disc.ge(zero), e + d, T::cst(f64::NAN))
 }
 
 /// Two independent [`halley`] solves of one function in lock step: each result is bit for bit
@@ -284,8 +318,26 @@ pub(crate) fn pair_of<T: Real>(
     valid: [T::Mask; 2],
     tol: T,
 ) -> [T; 2] {
-    let mut s =
-        [Newton::new(a[0], b[0], fa[0], fb[0], valid[0], tol), Newton::new(a[1], b[1], fa[1], fb[1], valid[1], tol)];
+    pair_at(f, df, d2f, use_d2, [a, b, fa, fb], [T::cst(f64::NAN); 2], valid, tol)
+}
+
+/// [`pair_of`] from the starts `x0` ([`Newton::new_at`]).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn pair_at<T: Real>(
+    f: impl Fn(T) -> T,
+    df: impl Fn(T) -> T,
+    d2f: impl Fn(T) -> T,
+    use_d2: bool,
+    [a, b, fa, fb]: [[T; 2]; 4],
+    x0: [T; 2],
+    valid: [T::Mask; 2],
+    tol: T,
+) -> [T; 2] {
+    let mut s = [
+        Newton::new_at(a[0], b[0], fa[0], fb[0], x0[0], valid[0], tol),
+        Newton::new_at(a[1], b[1], fa[1], fb[1], x0[1], valid[1], tol),
+    ];
     let mut it = 0;
     while !(s[0].done.all() && s[1].done.all()) && it < MAX_ITER {
         it += 1;
@@ -328,6 +380,15 @@ impl<T: Real> Newton<T> {
         let x0 = a - ya * (b - a) / T::select(den.gt(zero), den, one);
         let x = T::select(valid, x0.clamp(a, b), (a + b) * half);
         Self { s, a, b, ya, yb, x, tol, done: !valid | (b - a).le(tol) }
+    }
+
+    /// [`Self::new`] starting at `x0` where it lies strictly inside `(a, b)` (false for NaN),
+    /// at the regula-falsi point elsewhere.
+    #[inline(always)]
+    fn new_at(a: T, b: T, fa: T, fb: T, x0: T, valid: T::Mask, tol: T) -> Self {
+        let mut s = Self::new(a, b, fa, fb, valid, tol);
+        s.x = T::select(valid & x0.gt(a) & x0.lt(b), x0, s.x);
+        s
     }
 
     /// One step from `f(x) = fx`, `f'(x) = dfx` (and `f''(x) = d2fx` where `use_d2`: Halley's
@@ -407,6 +468,20 @@ pub fn cascade_level_halley<T: Real>(
     level_with(bp, n, f, df, d2f, true, Bracket::Newton)
 }
 
+/// [`cascade_level_halley`] with each solve started at `start(a, b, f(a), f(b))` where that
+/// lies strictly inside its bracket (NaN: the regula-falsi point, as there).
+#[inline(always)]
+pub fn cascade_level_halley_at<T: Real>(
+    bp: &[T; 8],
+    n: usize,
+    f: impl Fn(T) -> T + Copy,
+    df: impl Fn(T) -> T + Copy,
+    d2f: impl Fn(T) -> T + Copy,
+    start: impl Fn(T, T, T, T) -> T + Copy,
+) -> [T; 8] {
+    level_from(bp, n, f, df, d2f, true, Bracket::Newton, start)
+}
+
 #[inline(always)]
 fn level_with<T: Real>(
     bp: &[T; 8],
@@ -416,6 +491,21 @@ fn level_with<T: Real>(
     d2f: impl Fn(T) -> T + Copy,
     use_d2: bool,
     method: Bracket,
+) -> [T; 8] {
+    level_from(bp, n, f, df, d2f, use_d2, method, |_, _, _, _| T::cst(f64::NAN))
+}
+
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn level_from<T: Real>(
+    bp: &[T; 8],
+    n: usize,
+    f: impl Fn(T) -> T + Copy,
+    df: impl Fn(T) -> T + Copy,
+    d2f: impl Fn(T) -> T + Copy,
+    use_d2: bool,
+    method: Bracket,
+    start: impl Fn(T, T, T, T) -> T + Copy,
 ) -> [T; 8] {
     debug_assert!((2..8).contains(&n));
     let mut fv = [T::zero(); 8];
@@ -468,7 +558,7 @@ fn level_with<T: Real>(
         let r = match method {
             Bracket::Bisection(k) => bisection(f, a, b, fa, k),
             Bracket::Itp => itp(f, a, b, fa, fb, valid, tol),
-            Bracket::Newton => halley_or_newton(f, df, d2f, use_d2, [a, b, fa, fb], valid, tol),
+            Bracket::Newton => halley_or_newton_at(f, df, d2f, use_d2, [a, b, fa, fb], start(a, b, fa, fb), valid, tol),
         };
         out[i + 1] = T::select(valid, r, ph);
     }
@@ -478,12 +568,14 @@ fn level_with<T: Real>(
         let (i, [a, b, fa, fb], valid) = pend[k];
         if k + 1 < np {
             let (j, [a2, b2, fa2, fb2], valid2) = pend[k + 1];
-            let [r, r2] = pair_of(f, df, d2f, use_d2, [[a, a2], [b, b2], [fa, fa2], [fb, fb2]], [valid, valid2], tol);
+            let x0 = [start(a, b, fa, fb), start(a2, b2, fa2, fb2)];
+            let [r, r2] =
+                pair_at(f, df, d2f, use_d2, [[a, a2], [b, b2], [fa, fa2], [fb, fb2]], x0, [valid, valid2], tol);
             out[i + 1] = T::select(valid, r, out[i + 1]);
             out[j + 1] = T::select(valid2, r2, out[j + 1]);
             k += 2;
         } else {
-            let r = halley_or_newton(f, df, d2f, use_d2, [a, b, fa, fb], valid, tol);
+            let r = halley_or_newton_at(f, df, d2f, use_d2, [a, b, fa, fb], start(a, b, fa, fb), valid, tol);
             out[i + 1] = T::select(valid, r, out[i + 1]);
             k += 1;
         }
