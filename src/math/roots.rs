@@ -228,29 +228,15 @@ pub fn halley<T: Real>(
     valid: T::Mask,
     tol: T,
 ) -> T {
-    halley_or_newton(f, df, d2f, true, [a, b, fa, fb], valid, tol)
+    halley_or_newton(f, df, d2f, true, [a, b, fa, fb], T::cst(f64::NAN), valid, tol)
 }
 
 /// The safeguarded Newton solve on `[a, b, f(a), f(b)]`: Newton's steps, or Halley's (`use_d2`,
-/// [`halley`]) where they qualify.
-#[inline(always)]
-pub(crate) fn halley_or_newton<T: Real>(
-    f: impl Fn(T) -> T,
-    df: impl Fn(T) -> T,
-    d2f: impl Fn(T) -> T,
-    use_d2: bool,
-    [a, b, fa, fb]: [T; 4],
-    valid: T::Mask,
-    tol: T,
-) -> T {
-    halley_or_newton_at(f, df, d2f, use_d2, [a, b, fa, fb], T::cst(f64::NAN), valid, tol)
-}
-
-/// [`halley_or_newton`] from the start `x0` where it lies strictly inside the bracket
-/// ([`Newton::new_at`]).
+/// [`halley`]) where they qualify, from `x0` where it lies strictly inside `(a, b)` (NaN: the
+/// regula-falsi point; [`Newton::new_at`]).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn halley_or_newton_at<T: Real>(
+pub(crate) fn halley_or_newton<T: Real>(
     f: impl Fn(T) -> T,
     df: impl Fn(T) -> T,
     d2f: impl Fn(T) -> T,
@@ -304,27 +290,13 @@ pub fn halley_pair<T: Real>(
     valid: [T::Mask; 2],
     tol: T,
 ) -> [T; 2] {
-    pair_of(f, df, d2f, true, [a, b, fa, fb], valid, tol)
+    pair_of(f, df, d2f, true, [a, b, fa, fb], [T::cst(f64::NAN); 2], valid, tol)
 }
 
-/// Two [`halley_or_newton`] solves in lock step (as [`halley_pair`]).
-#[inline(always)]
-pub(crate) fn pair_of<T: Real>(
-    f: impl Fn(T) -> T,
-    df: impl Fn(T) -> T,
-    d2f: impl Fn(T) -> T,
-    use_d2: bool,
-    [a, b, fa, fb]: [[T; 2]; 4],
-    valid: [T::Mask; 2],
-    tol: T,
-) -> [T; 2] {
-    pair_at(f, df, d2f, use_d2, [a, b, fa, fb], [T::cst(f64::NAN); 2], valid, tol)
-}
-
-/// [`pair_of`] from the starts `x0` ([`Newton::new_at`]).
+/// Two [`halley_or_newton`] solves in lock step (as [`halley_pair`]), from the starts `x0`.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn pair_at<T: Real>(
+pub(crate) fn pair_of<T: Real>(
     f: impl Fn(T) -> T,
     df: impl Fn(T) -> T,
     d2f: impl Fn(T) -> T,
@@ -452,11 +424,12 @@ pub fn cascade_level<T: Real>(
     df: impl Fn(T) -> T + Copy,
     method: Bracket,
 ) -> [T; 8] {
-    level_with(bp, n, f, df, |_| T::zero(), false, method)
+    level_with(bp, n, f, df, |_| T::zero(), false, method, no_start)
 }
 
 /// [`cascade_level`] with [`Bracket::Newton`] solving by [`halley`] (`d2f` the second
-/// derivative).
+/// derivative), each solve started at `start(a, b, f(a), f(b))` where that lies strictly
+/// inside its bracket (NaN, e.g. [`no_start`]: at the regula-falsi point).
 #[inline(always)]
 pub fn cascade_level_halley<T: Real>(
     bp: &[T; 8],
@@ -464,40 +437,20 @@ pub fn cascade_level_halley<T: Real>(
     f: impl Fn(T) -> T + Copy,
     df: impl Fn(T) -> T + Copy,
     d2f: impl Fn(T) -> T + Copy,
-) -> [T; 8] {
-    level_with(bp, n, f, df, d2f, true, Bracket::Newton)
-}
-
-/// [`cascade_level_halley`] with each solve started at `start(a, b, f(a), f(b))` where that
-/// lies strictly inside its bracket (NaN: the regula-falsi point, as there).
-#[inline(always)]
-pub fn cascade_level_halley_at<T: Real>(
-    bp: &[T; 8],
-    n: usize,
-    f: impl Fn(T) -> T + Copy,
-    df: impl Fn(T) -> T + Copy,
-    d2f: impl Fn(T) -> T + Copy,
     start: impl Fn(T, T, T, T) -> T + Copy,
 ) -> [T; 8] {
-    level_from(bp, n, f, df, d2f, true, Bracket::Newton, start)
+    level_with(bp, n, f, df, d2f, true, Bracket::Newton, start)
 }
 
+/// No start: every solve of [`cascade_level_halley`] from the regula-falsi point.
 #[inline(always)]
-fn level_with<T: Real>(
-    bp: &[T; 8],
-    n: usize,
-    f: impl Fn(T) -> T + Copy,
-    df: impl Fn(T) -> T + Copy,
-    d2f: impl Fn(T) -> T + Copy,
-    use_d2: bool,
-    method: Bracket,
-) -> [T; 8] {
-    level_from(bp, n, f, df, d2f, use_d2, method, |_, _, _, _| T::cst(f64::NAN))
+pub fn no_start<T: Real>(_: T, _: T, _: T, _: T) -> T {
+    T::cst(f64::NAN)
 }
 
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn level_from<T: Real>(
+fn level_with<T: Real>(
     bp: &[T; 8],
     n: usize,
     f: impl Fn(T) -> T + Copy,
@@ -558,7 +511,7 @@ fn level_from<T: Real>(
         let r = match method {
             Bracket::Bisection(k) => bisection(f, a, b, fa, k),
             Bracket::Itp => itp(f, a, b, fa, fb, valid, tol),
-            Bracket::Newton => halley_or_newton_at(f, df, d2f, use_d2, [a, b, fa, fb], start(a, b, fa, fb), valid, tol),
+            Bracket::Newton => halley_or_newton(f, df, d2f, use_d2, [a, b, fa, fb], start(a, b, fa, fb), valid, tol),
         };
         out[i + 1] = T::select(valid, r, ph);
     }
@@ -570,12 +523,12 @@ fn level_from<T: Real>(
             let (j, [a2, b2, fa2, fb2], valid2) = pend[k + 1];
             let x0 = [start(a, b, fa, fb), start(a2, b2, fa2, fb2)];
             let [r, r2] =
-                pair_at(f, df, d2f, use_d2, [[a, a2], [b, b2], [fa, fa2], [fb, fb2]], x0, [valid, valid2], tol);
+                pair_of(f, df, d2f, use_d2, [[a, a2], [b, b2], [fa, fa2], [fb, fb2]], x0, [valid, valid2], tol);
             out[i + 1] = T::select(valid, r, out[i + 1]);
             out[j + 1] = T::select(valid2, r2, out[j + 1]);
             k += 2;
         } else {
-            let r = halley_or_newton_at(f, df, d2f, use_d2, [a, b, fa, fb], start(a, b, fa, fb), valid, tol);
+            let r = halley_or_newton(f, df, d2f, use_d2, [a, b, fa, fb], start(a, b, fa, fb), valid, tol);
             out[i + 1] = T::select(valid, r, out[i + 1]);
             k += 1;
         }

@@ -4,7 +4,7 @@
 //! `ε·(L/r)²` of the values `≈ (r/L)²` that decide a thin tube's hits.
 
 use crate::math::quadric::quadratic_roots_in;
-use crate::math::roots::{cascade_level, cascade_level_halley, cascade_level_halley_at, model_start, Bracket};
+use crate::math::roots::{cascade_level, cascade_level_halley, model_start, no_start, Bracket};
 use crate::real::Real;
 use crate::vec::V3;
 
@@ -280,7 +280,7 @@ impl<T: Real> Direct<T> {
             cascade_level(&bp, 3, |t| self.g2(t), |t| self.g3(t), m)
         };
         let ext = if m == Bracket::Newton {
-            cascade_level_halley(&bp, 4, |t| self.g1(t), |t| self.g2(t), |t| self.g3(t))
+            cascade_level_halley(&bp, 4, |t| self.g1(t), |t| self.g2(t), |t| self.g3(t), no_start)
         } else {
             cascade_level(&bp, 4, |t| self.g1(t), |t| self.g2(t), m)
         };
@@ -294,7 +294,7 @@ impl<T: Real> Direct<T> {
         let e = extrema;
         let ext = [e[0], e[1], e[2], e[3], e[4], e[4], e[4], e[4]];
         let bp = if m == Bracket::Newton {
-            cascade_level_halley(&ext, 5, |t| self.g_sq(t), |t| self.g1(t), |t| self.g2(t))
+            cascade_level_halley(&ext, 5, |t| self.g_sq(t), |t| self.g1(t), |t| self.g2(t), no_start)
         } else {
             cascade_level(&ext, 5, |t| self.g(t), |t| self.g1(t), m)
         };
@@ -316,7 +316,7 @@ impl<T: Real> Direct<T> {
         let e = extrema;
         let ext = [e[0], e[1], e[2], e[3], e[4], e[4], e[4], e[4]];
         let start = |a, b, fa, fb| self.g_root_start(a, b, fa, fb);
-        let bp = cascade_level_halley_at(&ext, 5, |t| self.g_sq(t), |t| self.g1(t), |t| self.g2(t), start);
+        let bp = cascade_level_halley(&ext, 5, |t| self.g_sq(t), |t| self.g1(t), |t| self.g2(t), start);
         [bp[0], bp[1], bp[2], bp[3], bp[4], bp[5]]
     }
 

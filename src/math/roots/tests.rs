@@ -68,9 +68,12 @@ fn paired_solves_equal_single_solves() {
             let (p, q) = (br(), br());
             let (vp, vq) = (opposite(p[2], p[3]), opposite(q[2], q[3]));
             let h = k % 2 == 1;
-            let single = [halley_or_newton(f, df, d2f, h, p, vp, tol), halley_or_newton(f, df, d2f, h, q, vq, tol)];
+            let single = [
+                halley_or_newton(f, df, d2f, h, p, T::cst(f64::NAN), vp, tol),
+                halley_or_newton(f, df, d2f, h, q, T::cst(f64::NAN), vq, tol),
+            ];
             let br2 = [[p[0], q[0]], [p[1], q[1]], [p[2], q[2]], [p[3], q[3]]];
-            let pair = pair_of(f, df, d2f, h, br2, [vp, vq], tol);
+            let pair = pair_of(f, df, d2f, h, br2, [T::cst(f64::NAN); 2], [vp, vq], tol);
             assert_eq!(single.map(|x| x.to_f64().to_bits()), pair.map(|x| x.to_f64().to_bits()), "halley {h} {r:?}");
         }
     }
