@@ -159,23 +159,25 @@ fn bit_identical_to_the_replaced_functions() {
     // Slot 3 re-recorded in every precision for the start of the Halley solves for g's roots
     // (`Direct::g_root_start`: the root of g's second-order Taylor model about a bracket end
     // instead of the regula-falsi point; the same roots to the solve's tolerance, answers
-    // within E, same tests).
+    // within E, same tests). Slot 3 re-recorded in every precision for the start of the
+    // certified path's Halley solves on P (the regula-falsi point of the side's own sign
+    // function instead of P's; the same roots to the tolerance, answers within E, same tests).
     // Slots 0 and 2 (sphere, Han) are unchanged.
     assert_eq!(
         fingerprint::<f64>(&cs),
-        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0xc972b75f30c2e145]
+        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0xaf09d9f3f5383c30]
     );
     assert_eq!(
         fingerprint::<f32>(&cs),
-        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x9e14c61f08e0b36c]
+        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x2fd6b20f34350fc4]
     );
     assert_eq!(
         fingerprint::<WideF32x8>(&cs),
-        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x6ac787f518ee53ec]
+        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x7b3b1df9ce79340c]
     );
     assert_eq!(
         fingerprint::<WideF64x4>(&cs),
-        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0x5b0d37bcf0f0fbad]
+        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0x79fa3e7ac8ca7d40]
     );
     assert_eq!(
         fingerprint_scalar::<f64>(&cs),

@@ -214,21 +214,19 @@ impl<T: Real> Itp<T> {
 /// where that falls strictly inside the bracket and is within `[⅔, 2]` times Newton's (cubic
 /// convergence near a simple root: a solve from the regula-falsi start takes fewer dependent
 /// steps — issue 10's cost, the spline's `g'`, `g` and `P` solves: 3.7–4.3 steps where Newton
-/// took 5.7–6.6 on the spline bench's f32 hits); Newton's step otherwise.
-#[allow(clippy::too_many_arguments)]
+/// took 5.7–6.6 on the spline bench's f32 hits); Newton's step otherwise. On the bracket
+/// `[a, b, f(a), f(b)]`, from `x0` where it lies strictly inside (NaN: the regula-falsi point).
 #[inline(always)]
 pub fn halley<T: Real>(
     f: impl Fn(T) -> T,
     df: impl Fn(T) -> T,
     d2f: impl Fn(T) -> T,
-    a: T,
-    b: T,
-    fa: T,
-    fb: T,
+    bracket: [T; 4],
+    x0: T,
     valid: T::Mask,
     tol: T,
 ) -> T {
-    halley_or_newton(f, df, d2f, true, [a, b, fa, fb], T::cst(f64::NAN), valid, tol)
+    halley_or_newton(f, df, d2f, true, bracket, x0, valid, tol)
 }
 
 /// The safeguarded Newton solve on `[a, b, f(a), f(b)]`: Newton's steps, or Halley's (`use_d2`,
@@ -273,24 +271,22 @@ pub(crate) fn model_start<T: Real>(e: T, dir: T, [f, f1, f2]: [T; 3]) -> T {
     T::select(disc.ge(zero), e + d, T::cst(f64::NAN))
 }
 
-/// Two independent [`halley`] solves of one function in lock step: each result is bit for bit
-/// the one [`halley`] returns (the same operations; a solve that has converged is frozen while
-/// the other runs). Lock step lets the processor overlap two chains of dependent steps (issue
-/// 10's cost: the spline's entry and exit).
-#[allow(clippy::too_many_arguments)]
+/// Two independent [`halley`] solves of one function in lock step (brackets
+/// `[[a₀, a₁], [b₀, b₁], [f(a₀), f(a₁)], [f(b₀), f(b₁)]]`, starts `x0`): each result is bit for
+/// bit the one [`halley`] returns (the same operations; a solve that has converged is frozen
+/// while the other runs). Lock step lets the processor overlap two chains of dependent steps
+/// (issue 10's cost: the spline's entry and exit).
 #[inline(always)]
 pub fn halley_pair<T: Real>(
     f: impl Fn(T) -> T,
     df: impl Fn(T) -> T,
     d2f: impl Fn(T) -> T,
-    a: [T; 2],
-    b: [T; 2],
-    fa: [T; 2],
-    fb: [T; 2],
+    brackets: [[T; 2]; 4],
+    x0: [T; 2],
     valid: [T::Mask; 2],
     tol: T,
 ) -> [T; 2] {
-    pair_of(f, df, d2f, true, [a, b, fa, fb], [T::cst(f64::NAN); 2], valid, tol)
+    pair_of(f, df, d2f, true, brackets, x0, valid, tol)
 }
 
 /// Two [`halley_or_newton`] solves in lock step (as [`halley_pair`]), from the starts `x0`.

@@ -93,6 +93,6 @@ fn halley_is_not_fooled_by_a_flat_end() {
     let df = |x: f64| 4.0 * x * x * x;
     let d2f = |x: f64| 12.0 * x * x;
     let tol = default_tol::<f64>();
-    let x = halley(f, df, d2f, 0.0, 1.0, f(0.0), f(1.0), true, tol);
+    let x = halley(f, df, d2f, [0.0, 1.0, f(0.0), f(1.0)], f64::NAN, true, tol);
     assert!((x - 1e-4).abs() <= 4.0 * tol, "{x:e}");
 }
