@@ -254,6 +254,14 @@ pub(crate) fn halley_or_newton<T: Real>(
     s.x
 }
 
+/// The regula-falsi point `a − f(a)(b − a)/(f(b) − f(a))` of the bracket `[a, b]` (inside it
+/// where `f(a)`, `f(b)` have opposite signs; `a` where they are equal).
+#[inline(always)]
+pub(crate) fn regula_falsi<T: Real>(a: T, b: T, fa: T, fb: T) -> T {
+    let den = fb - fa;
+    a - fa * (b - a) / T::select(den.eq(T::zero()), T::one(), den)
+}
+
 /// The root of the Taylor model `f + f'δ + ½f''δ²` (`[f, f', f'']` at `e`) on the side `dir`
 /// (`±1`) nearest to `e`, as `e + δ`: a start for a bracketed Halley solve from a bracket end
 /// (NaN where the model has no root on that side; the solve then starts at the regula-falsi
@@ -344,9 +352,7 @@ impl<T: Real> Newton<T> {
         let s = T::select(fa.gt(zero), -one, one);
         let (ya, yb) = (fa * s, fb * s);
         // Start at the regula-falsi point (inside the bracket for a valid one).
-        let den = yb - ya;
-        let x0 = a - ya * (b - a) / T::select(den.gt(zero), den, one);
-        let x = T::select(valid, x0.clamp(a, b), (a + b) * half);
+        let x = T::select(valid, regula_falsi(a, b, ya, yb).clamp(a, b), (a + b) * half);
         Self { s, a, b, ya, yb, x, tol, done: !valid | (b - a).le(tol) }
     }
 

@@ -298,10 +298,16 @@ impl<T: Real> Direct<T> {
     /// [`Self::g_breakpoints`].
     #[inline(always)]
     pub(super) fn g_roots(&self, extrema: [T; 5], m: Bracket) -> [T; 6] {
+        self.g_roots_from(extrema, m, no_start)
+    }
+
+    /// [`Self::g_roots`], the Halley solves ([`Bracket::Newton`]) started at `start`.
+    #[inline(always)]
+    fn g_roots_from(&self, extrema: [T; 5], m: Bracket, start: impl Fn(T, T, T, T) -> T + Copy) -> [T; 6] {
         let e = extrema;
         let ext = [e[0], e[1], e[2], e[3], e[4], e[4], e[4], e[4]];
         let bp = if m == Bracket::Newton {
-            cascade_level_halley(&ext, 5, |t| self.g_sq(t), |t| self.g1(t), |t| self.g2(t), no_start)
+            cascade_level_halley(&ext, 5, |t| self.g_sq(t), |t| self.g1(t), |t| self.g2(t), start)
         } else {
             cascade_level(&ext, 5, |t| self.g(t), |t| self.g1(t), m)
         };
@@ -320,11 +326,7 @@ impl<T: Real> Direct<T> {
     /// [`Solver::Newton`]: crate::Solver::Newton
     #[inline(always)]
     pub(super) fn g_roots_started(&self, extrema: [T; 5]) -> [T; 6] {
-        let e = extrema;
-        let ext = [e[0], e[1], e[2], e[3], e[4], e[4], e[4], e[4]];
-        let start = |a, b, fa, fb| self.g_root_start(a, b, fa, fb);
-        let bp = cascade_level_halley(&ext, 5, |t| self.g_sq(t), |t| self.g1(t), |t| self.g2(t), start);
-        [bp[0], bp[1], bp[2], bp[3], bp[4], bp[5]]
+        self.g_roots_from(extrema, Bracket::Newton, |a, b, fa, fb| self.g_root_start(a, b, fa, fb))
     }
 
     /// A start for the solve of `g'`'s root in `[a, b]` (`g'(a) = fa`, `g'(b) = fb` of opposite
@@ -357,8 +359,8 @@ impl<T: Real> Direct<T> {
     fn g_root_start(&self, a: T, b: T, ga: T, gb: T) -> T {
         let from_a = ga.abs().le(gb.abs());
         let e = T::select(from_a, a, b);
-        let [g, g1, g2, _] = self.g_jet(e);
-        model_start(e, T::select(from_a, T::one(), -T::one()), [g, g1, g2])
+        let [_, g1, g2, _] = self.g_jet(e);
+        model_start(e, T::select(from_a, T::one(), -T::one()), [T::select(from_a, ga, gb), g1, g2])
     }
 
     /// [`Self::g_extrema`] and [`Self::g_roots`].

@@ -7,7 +7,7 @@
 use super::{Crossings, RaySpace};
 use crate::math::bezier::split_half;
 use crate::math::descartes::{bernstein_on, max_sign_variations};
-use crate::math::roots::{default_tol, halley, halley_pair, horner, itp, opposite, poly_mul};
+use crate::math::roots::{default_tol, halley, halley_pair, horner, itp, opposite, poly_mul, regula_falsi};
 use crate::real::{Mask, Real};
 use crate::vec::V3;
 
@@ -244,11 +244,7 @@ impl<T: Real> RaySpace<T> {
             let (a, b) = ([br[0].0, br[1].0], [br[0].1, br[1].1]);
             // Start at the regula-falsi point of the side's own sign function (its values at
             // the ends are known), not of P = −F₁F̄₁, whose end values are products.
-            let start = |k: usize| {
-                let (fa, fb) = (br[k].2[k + 2], br[k].3[k + 2]);
-                let den = fb - fa;
-                a[k] - fa * (b[k] - a[k]) / T::select(den.eq(zero), one, den)
-            };
+            let start = |k: usize| regula_falsi(a[k], b[k], br[k].2[k + 2], br[k].3[k + 2]);
             xs = if on_p[0].any() && on_p[1].any() {
                 let br = [a, b, [pv[0][0], pv[1][0]], [pv[0][1], pv[1][1]]];
                 halley_pair(f, df, d2f, br, [start(0), start(1)], on_p, tol)
