@@ -303,25 +303,8 @@ fn cert_intersect<T: Real>(tube: &QuadTube<T>, ray: &Ray<T>) -> (T, T, T::Mask, 
     (f.tc + s_in * f.scale, f.tc + s_out * f.scale, real, ok)
 }
 
-fn cases() -> Vec<(QuadTube<f64>, RoundCone<f64>, Ray<f64>)> {
-    let mut rng = rand::rngs::StdRng::seed_from_u64(7);
-    let mut v = || V3::new(rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0));
-    let mut out = Vec::new();
-    while out.len() < 64 {
-        let (a, m, b) = (v(), v(), v());
-        let (tgt, dir) = (v() * 0.8, v());
-        if dir.length() < 0.2 {
-            continue;
-        }
-        let t = QuadTube::new([a, m, b], [0.3, 0.4, 0.2]).unwrap();
-        let l = RoundCone::new(a, 0.3, b, 0.2).unwrap();
-        let ray = Ray::new(tgt - dir * (5.0 / dir.length()), dir);
-        if t.intersect(&ray).hit {
-            out.push((t, l, ray));
-        }
-    }
-    out
-}
+const N: usize = 64;
+include!("../../../benches/common/spline_cases.rs");
 
 /// Certified count and largest distance (along the ray, world units) from the kernel's f64
 /// interval, in precision `T`.
@@ -340,7 +323,7 @@ fn certified<T: tubecast::Scalar>(cs: &[(QuadTube<f64>, RoundCone<f64>, Ray<f64>
 }
 
 fn bench(c: &mut Criterion) {
-    let cs = cases();
+    let cs = cases(Mix::Hits);
     let (n32, e32) = certified::<f32>(&cs);
     let (n64, e64) = certified::<f64>(&cs);
     eprintln!(
