@@ -183,6 +183,23 @@ impl<T: Real> Interval<T> {
             hit: self.hit | o.hit,
         }
     }
+    /// Lanes from scalar intervals, lane `i` from `f(i)` (at most 16 lanes).
+    #[inline]
+    pub(crate) fn from_lanes(f: impl Fn(usize) -> Interval<T::Elem>) -> Self {
+        assert!(T::LANES <= 16, "Interval::from_lanes: more than 16 lanes");
+        let lanes: [Interval<T::Elem>; 16] =
+            core::array::from_fn(|i| if i < T::LANES { f(i) } else { Interval::miss() });
+        let one = |b: bool| if b { T::Elem::one() } else { T::Elem::zero() };
+        Self {
+            t_in: T::from_fn(|i| lanes[i].t_in),
+            t_out: T::from_fn(|i| lanes[i].t_out),
+            n_in: V3::from_fn(|i| lanes[i].n_in),
+            n_out: V3::from_fn(|i| lanes[i].n_out),
+            u_in: T::from_fn(|i| lanes[i].u_in),
+            u_out: T::from_fn(|i| lanes[i].u_out),
+            hit: T::from_fn(|i| one(lanes[i].hit)).gt(T::zero()),
+        }
+    }
     /// Lane `i` as a scalar interval.
     pub fn lane(&self, i: usize) -> Interval<T::Elem> {
         Interval {

@@ -103,7 +103,8 @@
 //! by `E`: a miss is right). Before all this a chord-capsule filter (`capsule.rs`, exact, proof
 //! there) rejects lines farther than `max rᵢ + ½|b₁ − (b₀+b₂)/2|` (plus a margin over `E`)
 //! from the chord `[b₀, b₂]` with a dozen dot products. Lanes take an exit only when every lane does, and mask the same
-//! lanes otherwise, so a lane still equals the scalar call.
+//! lanes otherwise, so a lane still equals the scalar call; where at most three quarters of the
+//! lanes pass the capsule filter, they run the scalar kernel one by one.
 //!
 //! The kernel returns the hull `[first entry, last exit]` ([`QuadTube::intersect_with`]). A strongly
 //! bent segment can be crossed more than once; [`QuadTube::intersect_pieces`] returns one
@@ -270,6 +271,24 @@ impl<T: Real> QuadTube<T> {
         let far = capsule_misses(self, ray);
         if far.all() {
             return Interval::miss();
+        }
+        // At most three quarters of the lanes left: the scalar kernel lane by lane (the same
+        // answer bit for bit, by construction). The lane kernel pays each stage's worst lane in
+        // every lane, so a pack with one hit costs about what eight hits cost: one ray against
+        // a leaf's eight segments (`spline_leaf_hits` in `benches/spline.rs`, 1.2 segment hits
+        // per ray) cost 12× the link packet in f32x8, twice eight scalar calls; with this
+        // 6.8–7.4× (one run each at thresholds ½ and ¾, beside a CI build).
+        if T::LANES > 1 {
+            let live = (0..T::LANES).filter(|&i| !far.lane(i)).count();
+            if 4 * live <= 3 * T::LANES {
+                return Interval::from_lanes(|i| {
+                    if far.lane(i) {
+                        Interval::miss()
+                    } else {
+                        self.lane(i).line_interval_with(&ray.lane(i), solver)
+                    }
+                });
+            }
         }
         self.line_interval_unfiltered(ray, solver).masked(!far)
     }
