@@ -239,3 +239,30 @@ fn zero_radius_tip_on_the_ray_far_side() {
         }
     }
 }
+
+/// CI finding (stop 28, `spline_kernel::bulge_region`, random seed): a bulging segment (radii
+/// 1.0–1.7 against a curvature radius below 1). The exit is an interior maximum (u = 0.4525);
+/// Russig's cascade (ITP, Newton, bisection) took the end u = 1, an exit 0.055 inside the tube
+/// — a counterexample to the claim it rests on (`Solver::Itp`'s docs). Polynomial is exact; the
+/// cascade's interval must still lie inside the true one (each value it reports is a sphere's).
+#[test]
+fn bulge_itp_ci_finding() {
+    let b = [
+        [0.0, 0.0, -0.6806039668123537],
+        [-0.42271596806995143, -0.9811607155883479, 0.6582221758710051],
+        [0.26729668302490284, -0.9026323694476711, 0.0],
+    ];
+    let r = [1.5760971475488506, 0.9638322995064503, 1.7370831633480899];
+    let o = [2.687277453413412, 3.9812392210464354, -4.686087897631452];
+    let d = [-0.5135450748714411, -0.5688428720408804, 0.7968040960170104];
+    let t = tube(&b, &r);
+    let ray = Ray::new(V3::from(o), V3::from(d));
+    let want = oracle(&b, &r, o, d, 4000).expect("the oracle hits");
+    let tol = bound(f64::EPSILON, scale(&b, &r) + 2.0) / norm(d);
+    let iv = t.intersect_with(&ray, Solver::Polynomial);
+    assert!(iv.hit && (iv.t_in - want.t_in).abs() <= tol && (iv.t_out - want.t_out).abs() <= tol, "{iv:?} vs {want:?}");
+    for solver in [Solver::Itp, Solver::Newton, Solver::Bisection { iters: 40 }] {
+        let iv = t.intersect_with(&ray, solver);
+        assert!(iv.hit && iv.t_in >= want.t_in - tol && iv.t_out <= want.t_out + tol, "{solver:?}: {iv:?} vs {want:?}");
+    }
+}
