@@ -46,8 +46,17 @@ proptest! {
                         Solver::Bisection { iters: 10 } => 1e-3 * s,
                         _ => bound(f64::EPSILON, s),
                     };
-                    prop_assert!((iv.t_in - ti).abs() * dl <= tol, "{solver:?} entry {} vs {ti}", iv.t_in);
-                    prop_assert!((iv.t_out - to).abs() * dl <= tol, "{solver:?} exit {} vs {to}", iv.t_out);
+                    if solver == Solver::Polynomial || solver == (Solver::Bisection { iters: 10 }) {
+                        prop_assert!((iv.t_in - ti).abs() * dl <= tol, "{solver:?} entry {} vs {ti}", iv.t_in);
+                        prop_assert!((iv.t_out - to).abs() * dl <= tol, "{solver:?} exit {} vs {to}", iv.t_out);
+                    } else {
+                        // Russig's cascade rests on a claim with counterexamples (`Solver::Itp`'s
+                        // docs, `bulge_region` below): it can take a segment end for an interior
+                        // extremum. Every value it reports is a real sphere's entry or exit, so
+                        // its interval lies inside the true one (to the rounding bound).
+                        prop_assert!((ti - iv.t_in) * dl <= tol, "{solver:?} entry {} early of {ti}", iv.t_in);
+                        prop_assert!((iv.t_out - to) * dl <= tol, "{solver:?} exit {} late of {to}", iv.t_out);
+                    }
                 }
                 None => prop_assert!(!iv.hit || iv.t_out - iv.t_in < 1e-3, "{solver:?} hit where the oracle misses"),
                 _ => {}
@@ -129,11 +138,16 @@ proptest! {
         let s = scale(&b, &r) + 2.0;
         if let Some(QuadCrossing { t_in: ti, t_out: to, depth, .. }) = oracle(&b, &r, o, d, 4000) {
             if depth > 1e-3 {
-                for solver in [Solver::Polynomial, Solver::Itp, Solver::Newton] {
+                let iv = t.intersect_with(&ray, Solver::Polynomial);
+                prop_assert!(iv.hit);
+                prop_assert!((iv.t_in - ti).abs() * norm(d) <= bound(f64::EPSILON, s));
+                prop_assert!((iv.t_out - to).abs() * norm(d) <= bound(f64::EPSILON, s));
+                // Russig's cascade: inside the true interval (see `bulge_region`).
+                for solver in [Solver::Itp, Solver::Newton] {
                     let iv = t.intersect_with(&ray, solver);
                     prop_assert!(iv.hit);
-                    prop_assert!((iv.t_in - ti).abs() * norm(d) <= bound(f64::EPSILON, s), "{solver:?}");
-                    prop_assert!((iv.t_out - to).abs() * norm(d) <= bound(f64::EPSILON, s), "{solver:?}");
+                    prop_assert!((ti - iv.t_in) * norm(d) <= bound(f64::EPSILON, s), "{solver:?} enters early");
+                    prop_assert!((iv.t_out - to) * norm(d) <= bound(f64::EPSILON, s), "{solver:?} exits late");
                 }
             }
         }

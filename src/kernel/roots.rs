@@ -33,6 +33,12 @@ pub enum Solver {
         iters: u32,
     },
     /// Russig's cascade with the ITP method in every bracket, to a `t` tolerance of a few ulps.
+    ///
+    /// **Not exact where Russig's claim fails** (as `Bisection` and `Newton`): it can take a
+    /// segment end for an interior extremum, e.g. an exit 0.055 inside a bulging tube
+    /// (`tests/spline_regressions.rs`, `bulge_itp_ci_finding`). Every value it reports is a real
+    /// sphere's entry or exit, so its interval lies inside the true one; the renderer and the
+    /// CLI use [`Solver::Polynomial`].
     Itp,
     /// Russig's cascade with `g''`'s roots in closed form, safeguarded Newton on the
     /// polynomial levels (`g'`, `g`) and on `f'`, ITP on `f'''` and `f''` (whose derivatives
