@@ -285,7 +285,9 @@ impl<T: Real> QuadTube<T> {
                     if far.lane(i) {
                         Interval::miss()
                     } else {
-                        self.lane(i).line_interval_with(&ray.lane(i), solver)
+                        // The lane passed the filter: the scalar call's remaining stages (its
+                        // `masked(true)` as the scalar `line_interval_with` ends).
+                        self.lane(i).line_interval_unfiltered(&ray.lane(i), solver).masked(true)
                     }
                 });
             }

@@ -207,14 +207,36 @@ fn shading_options_render_without_nan() {
 fn bvh_queries_on_dense_links_equal_brute_force_bitwise() {
     let scene = Scene::from_polylines(&generate::furball(40, 20, 7), 0.05, "furball").unwrap();
     let bvh = Bvh::build(scene.primitives());
+    bvh_queries_equal_brute_force_bitwise(&bvh, |p, u| {
+        let cone = p.round_cone().expect("the link model has no spline primitives");
+        cone.a.cast::<f64>() * (1.0 - u) + cone.b.cast::<f64>() * u
+    });
+}
+
+/// The same for the spline model (leaves of several spline sub-segments, each tested on the
+/// scalar path: spline lane packets ran opaque frames at 0.72–1.06× the speed, `frame/*/splines`
+/// in `benches/frames.rs`, so the BVH does not build them). Closest and any hit take the
+/// pieces where a ray starts inside a bent segment's hull.
+#[test]
+fn bvh_queries_on_dense_splines_equal_brute_force_bitwise() {
+    let scene = Scene::from_polylines(&generate::furball(40, 20, 7), 0.05, "furball").unwrap();
+    let prims = scene.spline_primitives().unwrap();
+    assert!(prims.iter().all(|p| p.quad().is_some()), "the spline model of curved hairs is all splines");
+    let bvh = Bvh::build(prims);
+    bvh_queries_equal_brute_force_bitwise(&bvh, |p, u| p.quad().unwrap().cast::<f64>().point(u));
+}
+
+/// Closest hit, any hit and line intervals of `bvh` against brute force over its primitives,
+/// bit for bit, on 300 rays aimed within two radii of `centre(prim, u)` (a point of a random
+/// primitive's centre line relative to its origin).
+fn bvh_queries_equal_brute_force_bitwise(bvh: &Bvh, centre: impl Fn(&tubecast_render::scene::Prim, f64) -> V3<f64>) {
     let mut rng = generate::Rng::new(11);
     let (mut hits, mut intervals) = (0, 0);
     for i in 0..300 {
-        // Aim near a random link's axis (within two radii), so most rays hit.
+        // Aim near a random primitive's axis (within two radii), so most rays hit.
         let p = &bvh.prims[(rng.uniform() * bvh.prims.len() as f64) as usize];
         let u = rng.uniform();
-        let cone = p.round_cone().expect("the link model has no spline primitives");
-        let c = V3::from(p.origin) + (cone.a.cast::<f64>() * (1.0 - u) + cone.b.cast::<f64>() * u);
+        let c = V3::from(p.origin) + centre(p, u);
         let target = c + V3::from(rng.unit()) * (2.0 * p.max_radius() as f64 * rng.uniform());
         let dir = V3::from(rng.unit());
         // Some rays start inside the scene (shadow-ray-like), some far outside.
