@@ -165,22 +165,26 @@ fn bit_identical_to_the_replaced_functions() {
     // Slot 3 re-recorded in f64 and f64x4 (f32 unchanged) for the start of the solves for g''s
     // roots (`Direct::g1_root_start`: the model g' + ½g'''δ² about a root of g''; same roots
     // to the tolerance, answers within E, same tests).
+    // Slot 3 re-recorded in every precision for the certified count on real pieces bounded
+    // from outside (`Direct::g_piece_bounds`: points past g's roots, proven off the tube,
+    // instead of the roots; the same count and crossings, the solves start from other
+    // brackets: the same roots to the tolerance, answers within E, same tests).
     // Slots 0 and 2 (sphere, Han) are unchanged.
     assert_eq!(
         fingerprint::<f64>(&cs),
-        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0xeaf29226ad8ecf7a]
+        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0xccbfe151052cf263]
     );
     assert_eq!(
         fingerprint::<f32>(&cs),
-        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x2fd6b20f34350fc4]
+        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x7110072586420060]
     );
     assert_eq!(
         fingerprint::<WideF32x8>(&cs),
-        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x7b3b1df9ce79340c]
+        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x60ac2772ae618650]
     );
     assert_eq!(
         fingerprint::<WideF64x4>(&cs),
-        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0x6f6cf604b6f63782]
+        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0x3f908f2cddac825b]
     );
     assert_eq!(
         fingerprint_scalar::<f64>(&cs),

@@ -336,9 +336,10 @@ impl<T: Real> QuadTube<T> {
         // The certified count on g's real pieces first; P's cascade only for lanes it
         // cannot certify (`RaySpace::certified`). A lane with a candidate real within
         // the gap's rounding but no piece with g > 0 (a graze within τ) is not certified.
-        let roots = rs.dg.g_roots_started(extrema);
         let (fast, cert) = if path == Path::Auto {
-            let (xc, pieces, cert) = rs.certified(&roots);
+            // The real pieces bounded from outside (no solves for g's roots,
+            // `Direct::g_piece_bounds`): the count and its crossings are the same.
+            let (xc, pieces, cert) = rs.certified(&rs.dg.g_piece_bounds(extrema));
             let cert = cert & ((pieces & real) | (!pieces & !real));
             let fast = rs.interval(ray, xc, pieces & real, false);
             if cert.all() {
@@ -348,6 +349,7 @@ impl<T: Real> QuadTube<T> {
         } else {
             (Interval::miss(), none)
         };
+        let roots = rs.dg.g_roots_started(extrema);
         // The ends 0 and 1 once (they open and close every breakpoint list).
         let mut z = [T::zero(); 9];
         z[..4].copy_from_slice(&roots[1..5]);

@@ -4,7 +4,8 @@
 //! `ε·(L/r)²` of the values `≈ (r/L)²` that decide a thin tube's hits.
 
 use crate::math::quadric::quadratic_roots_in;
-use crate::math::roots::{cascade_level, cascade_level_halley, model_start, no_start, Bracket};
+use crate::math::roots::{cascade_level, cascade_level_halley, model_start, no_start, opposite, Bracket};
+use crate::real::Mask;
 use crate::real::Real;
 use crate::vec::V3;
 
@@ -329,6 +330,64 @@ impl<T: Real> Direct<T> {
         self.g_roots_from(extrema, Bracket::Newton, |a, b, fa, fb| self.g_root_start(a, b, fa, fb))
     }
 
+    /// Points that bound `g`'s real pieces **from outside**, for the certified count
+    /// (`RaySpace::certified`), in the layout of [`Self::g_roots_started`] (`0 = z₀ ≤ … ≤
+    /// z₅ = 1`): in each monotone piece `[a, b]` of `g` (consecutive extrema) whose ends
+    /// differ in sign, instead of the root, a point `z` past it on the side where `g < 0`,
+    /// proven so: its computed gap is `< −τ` (so the gap of the perturbed data, within `τ` of
+    /// it, is negative: the sphere `z` misses the line, see "Conditioning" in the parent module)
+    /// and `g'` has, at `z`, the sign of `g(b) − g(a)`. As `g` is monotone on `[a, b]`, all of
+    /// `[a, b]` beyond `z` is off the tube and the real part lies on the other side; there
+    /// `√max(g, 0) = 0`, so the sign functions are `F₁ = F̄₁ = −g'`, of the sign they have at
+    /// the root itself, and `P = 4h'²g − g'² < 0` has no root. A count on the widened piece is
+    /// therefore the count on the real piece, and its entry and exit the same.
+    ///
+    /// `z` is the root of the Taylor model of [`Self::g_root_start`] (the Halley start, third
+    /// order about an extremum) pushed an eighth of its distance from the model's end further
+    /// towards the `g < 0` end: no Halley iterations (the solves for `g`'s roots were 20% of an
+    /// f32 hit, issue 10's cost). Lanes where a piece's point fails the proof (the model has
+    /// no root there, the push does not clear `τ` — a tube thinner than about `8τ` —, or an
+    /// end value is exactly 0) take [`Self::g_roots_started`] for all their pieces.
+    #[inline(always)]
+    pub(super) fn g_piece_bounds(&self, extrema: [T; 5]) -> PieceBounds<T> {
+        let zero = T::zero();
+        let e = extrema;
+        let mut out = [zero; 6];
+        out[0] = e[0];
+        out[5] = e[4];
+        let mut exact = T::Mask::splat(false);
+        let fv = [self.g_sq(e[0]), self.g_sq(e[1]), self.g_sq(e[2]), self.g_sq(e[3]), self.g_sq(e[4])];
+        for i in 0..4 {
+            let (a, b, fa, fb) = (e[i], e[i + 1], fv[i], fv[i + 1]);
+            let zero_end = fa.eq(zero) | fb.eq(zero);
+            let change = opposite(fa, fb);
+            // The placeholder of a piece without a root, as `cascade_level_halley` sets it.
+            let ph = T::select(fa.eq(zero), a, b);
+            out[i + 1] = ph;
+            if change.none() {
+                exact = exact | zero_end;
+                continue;
+            }
+            let x0 = self.g_root_start(a, b, fa, fb);
+            let from = T::select(fa.abs().le(fb.abs()), a, b);
+            let to_b = fb.lt(zero);
+            let push = (x0 - from).abs() * T::cst(0.125);
+            let z = x0 + T::select(to_b, push, -push);
+            let (gap, _, g1) = self.gap_g_g1(z);
+            let sign_ok = T::select(to_b, -g1, g1).gt(zero);
+            let ok = change & z.gt(a) & z.lt(b) & gap.lt(-self.tau) & sign_ok;
+            out[i + 1] = T::select(ok, z, ph);
+            exact = exact | zero_end | (change & !ok);
+        }
+        if exact.any() {
+            let ex = self.g_roots_started(extrema);
+            for i in 1..5 {
+                out[i] = T::select(exact, ex[i], out[i]);
+            }
+        }
+        PieceBounds { z: out, ext: e, g_ext: fv, exact }
+    }
+
     /// A start for the solve of `g'`'s root in `[a, b]` (`g'(a) = fa`, `g'(b) = fb` of opposite
     /// signs; the ends are roots of the quadratic `g''` or the segment's ends): from the end
     /// with the smaller `|g'|` where that is inside `(0, 1)`, a root `e` of `g''`, the root of
@@ -382,6 +441,40 @@ fn p_from<T: Real>([g, g1, g2, g3]: [T; 4], hp: T, hpp: T) -> [T; 3] {
     let p2 =
         T::cst(8.0) * hpp * hpp * g + T::cst(16.0) * hp * hpp * g1 + four * hp2 * g2 - two * g2 * g2 - two * g1 * g3;
     [p, p1, p2]
+}
+
+/// [`Direct::g_piece_bounds`]: breakpoints `z` (`0 = z₀ ≤ … ≤ z₅ = 1`) between which `g` is of
+/// one sign **or** a real piece lies with a margin off the tube on either side, and what tells
+/// the two kinds of piece apart.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct PieceBounds<T: Real> {
+    /// The breakpoints.
+    pub(super) z: [T; 6],
+    /// `g`'s extrema (the input) and `g` at them (`r² − |w|²`).
+    pub(super) ext: [T; 5],
+    pub(super) g_ext: [T; 5],
+    /// Lanes whose `z` are `g`'s roots ([`Direct::g_roots_started`]) rather than bounds.
+    pub(super) exact: T::Mask,
+}
+
+impl<T: Real> PieceBounds<T> {
+    /// Whether the piece `[a, b]` (consecutive breakpoints) holds a real part, given
+    /// `g((a + b)/2) > 0` as `mid_real`. Where `z` are `g`'s roots, `g` has one sign on the
+    /// piece and its midpoint decides. Where they are bounds, a widened real piece's midpoint
+    /// can lie in a margin off the tube; but each real piece holds an extremum of `g` with
+    /// `g > 0` (it begins at a segment end with `g > 0`, or at a root in a monotone piece
+    /// `[eᵢ, eᵢ₊₁]` where `g` rises, so `g(eᵢ₊₁) > 0` and `eᵢ₊₁` lies before the bound that
+    /// ends it, which is in a later monotone piece), while a piece off the tube holds no
+    /// point with `g > 0`: so an extremum with `g > 0` in `[a, b]` decides as well.
+    #[inline(always)]
+    pub(super) fn real(&self, a: T, b: T, mid_real: T::Mask) -> T::Mask {
+        let mut real = mid_real;
+        for i in 0..5 {
+            let (e, g) = (self.ext[i], self.g_ext[i]);
+            real = real | (!self.exact & e.ge(a) & e.le(b) & g.gt(T::zero()));
+        }
+        real & b.gt(a)
+    }
 }
 
 /// [`Direct::g_breakpoints`]: the roots of `g` and of `g'` on `[0, 1]`, with both ends.

@@ -4,6 +4,7 @@
 //! number of sign changes of their sign functions, the entry and exit follow from one bracketed
 //! solve each, and `P`'s cascade is skipped (see the parent modules' docs).
 
+use super::super::direct::PieceBounds;
 use super::{Crossings, RaySpace};
 use crate::math::bezier::split_half;
 use crate::math::descartes::{bernstein_on, max_sign_variations};
@@ -74,7 +75,8 @@ impl<T: Real> RaySpace<T> {
     ///
     /// [`Direct::p_monotone`]: super::super::direct::Direct::p_monotone
     #[inline(always)]
-    pub(in crate::kernel::spline) fn certified(&self, z: &[T; 6]) -> (Crossings<T>, T::Mask, T::Mask) {
+    pub(in crate::kernel::spline) fn certified(&self, pb: &PieceBounds<T>) -> (Crossings<T>, T::Mask, T::Mask) {
+        let z = &pb.z;
         let (zero, one, half, inf) = (T::zero(), T::one(), T::cst(0.5), T::infinity());
         let dg = self.dg;
         let ends = |t: T| self.ends(t);
@@ -86,7 +88,7 @@ impl<T: Real> RaySpace<T> {
         let mut cert = T::Mask::splat(true);
         for k in 0..5 {
             let (a, b) = (z[k], z[k + 1]);
-            let real = b.gt(a) & dg.g((a + b) * half).gt(zero);
+            let real = pb.real(a, b, dg.g((a + b) * half).gt(zero));
             if real.none() {
                 continue;
             }
