@@ -167,24 +167,25 @@ fn bit_identical_to_the_replaced_functions() {
     // to the tolerance, answers within E, same tests).
     // Slot 3 re-recorded in every precision for the certified count on real pieces bounded
     // from outside (`Direct::g_piece_bounds`: points past g's roots, proven off the tube,
-    // instead of the roots; the same count and crossings, the solves start from other
-    // brackets: the same roots to the tolerance, answers within E, same tests).
+    // instead of the roots, each root solved only where its bound fails; the same count and
+    // crossings, the solves start from other brackets: the same roots to the tolerance,
+    // answers within E, same tests).
     // Slots 0 and 2 (sphere, Han) are unchanged.
     assert_eq!(
         fingerprint::<f64>(&cs),
-        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0xccbfe151052cf263]
+        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0xbabb30bcf6f17bb8]
     );
     assert_eq!(
         fingerprint::<f32>(&cs),
-        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x7110072586420060]
+        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x0d44ac20817a3503]
     );
     assert_eq!(
         fingerprint::<WideF32x8>(&cs),
-        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x60ac2772ae618650]
+        [0x5b4698ba48087a8e, 0xb024259242bc31bd, 0x77b75045ede7a321, 0x07a82c2fee93a65b]
     );
     assert_eq!(
         fingerprint::<WideF64x4>(&cs),
-        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0x3f908f2cddac825b]
+        [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0x019237f4527216a0]
     );
     assert_eq!(
         fingerprint_scalar::<f64>(&cs),

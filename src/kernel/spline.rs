@@ -35,7 +35,9 @@
 //!   on the line) and at `t = 0, 1`.
 //!   Needs no real intervals and no claim.
 //!
-//!   Where it can, it skips `P`'s cascade (issue 10's cost): on each real piece of `g`, the
+//!   Where it can, it skips `P`'s cascade (issue 10's cost): on each real piece of `g`
+//!   (bounded by points proven off the tube just past `g`'s roots, which then need no solve:
+//!   `Direct::g_piece_bounds`), the
 //!   Bernstein coefficients of `P` with a bound on their rounding count its roots from above
 //!   (Descartes' rule, `crate::math::descartes`); when that count equals the number of the
 //!   entry's and exit's sign functions that change sign between the piece's ends (halving the

@@ -4,7 +4,9 @@
 //! `ε·(L/r)²` of the values `≈ (r/L)²` that decide a thin tube's hits.
 
 use crate::math::quadric::quadratic_roots_in;
-use crate::math::roots::{cascade_level, cascade_level_halley, model_start, no_start, opposite, Bracket};
+use crate::math::roots::{
+    cascade_level, cascade_level_halley, default_tol, halley, model_start, no_start, opposite, Bracket,
+};
 use crate::real::Mask;
 use crate::real::Real;
 use crate::vec::V3;
@@ -345,9 +347,12 @@ impl<T: Real> Direct<T> {
     /// `z` is the root of the Taylor model of [`Self::g_root_start`] (the Halley start, third
     /// order about an extremum) pushed an eighth of its distance from the model's end further
     /// towards the `g < 0` end: no Halley iterations (the solves for `g`'s roots were 20% of an
-    /// f32 hit, issue 10's cost). Lanes where a piece's point fails the proof (the model has
-    /// no root there, the push does not clear `τ` — a tube thinner than about `8τ` —, or an
-    /// end value is exactly 0) take [`Self::g_roots_started`] for all their pieces.
+    /// f32 hit, issue 10's cost). Where a piece's point fails the proof (the model has no root
+    /// there, or a poor one — from an end that is not an extremum —, or the push does not
+    /// clear `τ`: a tube thinner than about `8τ`) that piece's root is solved as
+    /// [`Self::g_roots_started`] solves it (the same start, the same root); on the spline
+    /// bench's f32 hits 30 of 232 pieces. Lanes with an end value exactly 0 (where the cascade
+    /// moves the bracket end inside) take [`Self::g_roots_started`] for all their pieces.
     #[inline(always)]
     pub(super) fn g_piece_bounds(&self, extrema: [T; 5]) -> PieceBounds<T> {
         let zero = T::zero();
@@ -377,7 +382,15 @@ impl<T: Real> Direct<T> {
             let sign_ok = T::select(to_b, -g1, g1).gt(zero);
             let ok = change & z.gt(a) & z.lt(b) & gap.lt(-self.tau) & sign_ok;
             out[i + 1] = T::select(ok, z, ph);
-            exact = exact | zero_end | (change & !ok);
+            // Where the proof fails, this piece's root (the solve `g_roots_started` makes
+            // there, from the same start: the same root).
+            let solve = change & !ok & !zero_end;
+            if solve.any() {
+                let x =
+                    halley(|t| self.g_sq(t), |t| self.g1(t), |t| self.g2(t), [a, b, fa, fb], x0, solve, default_tol());
+                out[i + 1] = T::select(solve, x, out[i + 1]);
+            }
+            exact = exact | zero_end;
         }
         if exact.any() {
             let ex = self.g_roots_started(extrema);
@@ -453,19 +466,23 @@ pub(super) struct PieceBounds<T: Real> {
     /// `g`'s extrema (the input) and `g` at them (`r² − |w|²`).
     pub(super) ext: [T; 5],
     pub(super) g_ext: [T; 5],
-    /// Lanes whose `z` are `g`'s roots ([`Direct::g_roots_started`]) rather than bounds.
+    /// Lanes whose `z` are all `g`'s roots as [`Direct::g_roots_started`] gives them (an end
+    /// value exactly 0); elsewhere each `z` is a root or a bound.
     pub(super) exact: T::Mask,
 }
 
 impl<T: Real> PieceBounds<T> {
     /// Whether the piece `[a, b]` (consecutive breakpoints) holds a real part, given
     /// `g((a + b)/2) > 0` as `mid_real`. Where `z` are `g`'s roots, `g` has one sign on the
-    /// piece and its midpoint decides. Where they are bounds, a widened real piece's midpoint
+    /// piece and its midpoint decides. Where some are bounds, a widened real piece's midpoint
     /// can lie in a margin off the tube; but each real piece holds an extremum of `g` with
-    /// `g > 0` (it begins at a segment end with `g > 0`, or at a root in a monotone piece
-    /// `[eᵢ, eᵢ₊₁]` where `g` rises, so `g(eᵢ₊₁) > 0` and `eᵢ₊₁` lies before the bound that
-    /// ends it, which is in a later monotone piece), while a piece off the tube holds no
-    /// point with `g > 0`: so an extremum with `g > 0` in `[a, b]` decides as well.
+    /// `g > 0` (it begins at a segment end with `g > 0`, or at a root or bound in a monotone
+    /// piece `[eᵢ, eᵢ₊₁]` where `g` rises, so `g(eᵢ₊₁) > 0`, and `eᵢ₊₁` lies before the
+    /// breakpoint that ends it, which is in a later monotone piece), while a piece off the tube
+    /// holds no extremum with `g > 0` (those in it are ends of monotone pieces whose sign
+    /// change lies on the tube's side, or of pieces without one, `g < 0` at both ends: an end
+    /// value exactly 0 makes the lane `exact`): so an extremum with `g > 0` in `[a, b]`
+    /// decides as well.
     #[inline(always)]
     pub(super) fn real(&self, a: T, b: T, mid_real: T::Mask) -> T::Mask {
         let mut real = mid_real;

@@ -42,7 +42,9 @@ impl<T: Real> RaySpace<T> {
     }
 
     /// Entry and exit by a **certified count** instead of `P`'s cascade (issue 10's cost).
-    /// On each real piece `[a, b]` of `g` (consecutive roots `z` of `g` with `g > 0` between)
+    /// On each real piece `[a, b]` of `g` (consecutive roots `z` of `g` with `g > 0` between,
+    /// or points proven off the tube past those roots: [`Direct::g_piece_bounds`], the same
+    /// count and crossings)
     /// the entry's sign function `F₁ = 2h'√g − g'` (`= 2√g·f'`) and the exit's
     /// `F̄₁ = −2h'√g − g'` (`= 2√g·(−e)'`) are evaluated at the ends from the vectors, and
     /// `P = −F₁·F̄₁` (`4h'²g − g'²`, whose roots there are exactly the critical points of `f`
@@ -74,6 +76,7 @@ impl<T: Real> RaySpace<T> {
     /// bench's f32 hits from 60 to all 64. The rest take the cascade.
     ///
     /// [`Direct::p_monotone`]: super::super::direct::Direct::p_monotone
+    /// [`Direct::g_piece_bounds`]: super::super::direct::Direct::g_piece_bounds
     #[inline(always)]
     pub(in crate::kernel::spline) fn certified(&self, pb: &PieceBounds<T>) -> (Crossings<T>, T::Mask, T::Mask) {
         let z = &pb.z;
