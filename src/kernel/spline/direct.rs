@@ -7,8 +7,7 @@ use crate::math::quadric::quadratic_roots_in;
 use crate::math::roots::{
     cascade_level, cascade_level_halley, default_tol, halley, model_start, no_start, opposite, Bracket,
 };
-use crate::real::Mask;
-use crate::real::Real;
+use crate::real::{Mask, Real};
 use crate::vec::V3;
 
 /// The power-basis vectors `w = wa t² + wb t + wc` (`w = q × d̂`, the centre's offset from the
@@ -365,12 +364,12 @@ impl<T: Real> Direct<T> {
         for i in 0..4 {
             let (a, b, fa, fb) = (e[i], e[i + 1], fv[i], fv[i + 1]);
             let zero_end = fa.eq(zero) | fb.eq(zero);
+            exact = exact | zero_end;
             let change = opposite(fa, fb);
             // The placeholder of a piece without a root, as `cascade_level_halley` sets it.
             let ph = T::select(fa.eq(zero), a, b);
             out[i + 1] = ph;
             if change.none() {
-                exact = exact | zero_end;
                 continue;
             }
             let x0 = self.g_root_start(a, b, fa, fb);
@@ -390,7 +389,6 @@ impl<T: Real> Direct<T> {
                     halley(|t| self.g_sq(t), |t| self.g1(t), |t| self.g2(t), [a, b, fa, fb], x0, solve, default_tol());
                 out[i + 1] = T::select(solve, x, out[i + 1]);
             }
-            exact = exact | zero_end;
         }
         if exact.any() {
             let ex = self.g_roots_started(extrema);
