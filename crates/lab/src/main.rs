@@ -1,7 +1,7 @@
 //! `tubecast-lab`: writes the reports (SVG charts, markdown, CSV) into a folder.
 //!
 //! ```text
-//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|thin|mesh|mesh-real|peers|voxel|voxel-ao|voxel-quantized|voxel-timing|all|tables [--out DIR]
+//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|thin|mesh|mesh-real|peers|voxel|voxel-ao|voxel-quantized|voxel-timing|spline-lanes|all|tables [--out DIR]
 //!     [--seed N] [--quick] [--big] [--threads N] [--quiet]
 //! ```
 //!
@@ -67,6 +67,8 @@ enum Which {
     VoxelQuantized,
     /// Voxelization and pyramid build timings by repeated median.
     VoxelTiming,
+    /// Spline kernel against the link per call, scalar and lanes, and the per-call lane floor.
+    SplineLanes,
     /// Every report this build has (peers only with feature `embree`).
     All,
 }
@@ -99,6 +101,9 @@ fn jobs(which: Which) -> Result<Vec<(&'static str, Job)>, String> {
     }
     if all || which == Which::VoxelTiming {
         jobs.push(("voxel-timing", report::run_voxel_timing));
+    }
+    if all || which == Which::SplineLanes {
+        jobs.push(("spline-lanes", report::run_spline_lanes));
     }
     if all || which == Which::Mesh {
         jobs.push(("mesh", report::run_mesh));

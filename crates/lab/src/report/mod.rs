@@ -18,6 +18,8 @@
 //!   image difference) versus segment count;
 //! * [`run_mesh_real`] — the same trade-off on real-world-like scenes (nibabel's `standard.trk`,
 //!   a fibre bundle, the README's neuron assembly), frame time and memory against certified error;
+//! * [`run_spline_lanes`] — issue 10's cost: the spline kernel against the link per call, in
+//!   scalar and lanes, on the spline bench's rays, and the floor of any per-call lane kernel;
 //! * `run_peers` (feature `embree`) — Embree 3's round linear curves on the same `f32` rays.
 //!
 //! The accuracy numbers (not the timings) are a pure function of [`ReportOptions`].
@@ -33,6 +35,7 @@ mod peers;
 mod peers_speed;
 mod runs;
 mod speed;
+mod spline_lanes;
 mod thin;
 mod thin_render;
 mod voxel;
@@ -49,6 +52,7 @@ pub use mesh_real::run_mesh_real;
 pub use peers::run_peers;
 pub use runs::{run_accuracy, run_stability};
 pub use speed::run_speed;
+pub use spline_lanes::{floor as spline_lane_floor, gain_needed as spline_lane_gain_needed, run_spline_lanes};
 pub use thin::run_thin;
 pub use voxel::run_voxel;
 pub use voxel_ao::run_voxel_ao;
