@@ -25,7 +25,7 @@
 //! lies at a distance `s* ≥ a` along the unit direction (`a`: the clipped entry), and the ray
 //! stays inside the hit primitive's padded box (and every box above it) for `s* ± pad`, so its
 //! exit from them is at `t ≥ (a − s₀ + pad)·scale`, with `s₀` the restart. The restart therefore
-//! lies `4·pad` (the rounding margin) plus [`LEAD`]` = 2⁻¹²` obvhs units (`2.4·10⁻⁴ > 10⁻⁴`,
+//! lies `4·pad` (the rounding margin) plus `LEAD = 2⁻¹²` obvhs units (`2.4·10⁻⁴ > 10⁻⁴`,
 //! with the slab errors above ≪ the remaining `1.4·10⁻⁴`) before `a`. Without the lead it lay
 //! `4·pad·scale ≤ 8.6·10⁻⁵` before, and the wide tree missed hits within about `2·pad` of the
 //! entry: a fuzz finding, `regression-long-link-epsilon` — six links near the origin and one

@@ -140,7 +140,7 @@ pub fn write(lines: &[Polyline]) -> String {
     String::from_utf8(w.finish().expect("writing to memory does not fail")).expect("OBJ text is UTF-8")
 }
 
-/// Writes OBJ text polyline by polyline ([`write`] as a stream): the vertices of each, then
+/// Writes OBJ text polyline by polyline ([`write()`] as a stream): the vertices of each, then
 /// its `l` element.
 ///
 /// ```

@@ -7,7 +7,7 @@ use super::SceneMesh;
 use crate::io::IoError;
 use std::path::Path;
 
-/// The formats [`write`] chooses by extension.
+/// The formats [`write()`] chooses by extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
     /// Binary little-endian PLY (`float x, y, z`; `list uchar int vertex_indices`).

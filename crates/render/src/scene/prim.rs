@@ -32,7 +32,7 @@ pub enum Shape {
     /// A tangent-cone link (different radii), centres relative to the local origin.
     Cone(RoundCone<f32>),
     /// A quadratic sphere-swept spline sub-segment: one half of a cubic Hermite segment
-    /// ([`tubecast::kernel::HermiteSegment::split`]). Its middle control radius may be
+    /// ([`tubecast::HermiteSegment::split`]). Its middle control radius may be
     /// negative as long as the radius curve is not ([`QuadTube`]).
     Spline {
         /// Control points relative to the local origin, and control radii.
@@ -147,7 +147,7 @@ pub(crate) fn stored_as_sphere(l: &RoundCone<f64>) -> bool {
 }
 
 impl Prim {
-    /// The cheapest exact primitive for a validated link: a sphere where [`stored_as_sphere`]
+    /// The cheapest exact primitive for a validated link: a sphere where `stored_as_sphere`
     /// (one end sphere contains the other, or the link is shorter than [`super::SHORT_LINK`] and
     /// than `2⁻¹⁸` of its radius), else a cylinder or a tangent-cone link.
     pub fn from_link(l: &RoundCone<f64>, link: u32) -> Self {
