@@ -84,6 +84,28 @@ fn real_intervals(gap: &dyn Fn(f64) -> f64) -> Vec<(f64, f64)> {
     out
 }
 
+/// The sweep's signed gap to the line, `min_t dist(line, p(t)) − r(t)`: every local minimum of
+/// [`GAP_SAMPLES`] samples refined by golden section, the least kept. Where the line grazes two
+/// parts of a segment, the least *sample* need not lie next to the least minimum
+/// ([`crate::quad_gap`] refines that sample only).
+pub fn quad_gap_fine(q: &Quad, line: &Line) -> f64 {
+    let gap = |t: f64| line_dist(line, q.point(t)) - q.radius(t);
+    let n = GAP_SAMPLES;
+    let at = |k: usize| k as f64 / n as f64;
+    let v: Vec<f64> = (0..=n).map(|k| gap(at(k))).collect();
+    let mut best = f64::INFINITY;
+    for k in 0..=n {
+        let left = if k > 0 { v[k - 1] } else { f64::INFINITY };
+        let right = if k < n { v[k + 1] } else { f64::INFINITY };
+        if v[k] > left || v[k] > right {
+            continue;
+        }
+        let (lo, hi) = (at(k.saturating_sub(1)), at((k + 1).min(n)));
+        best = best.min(v[k]).min(golden_min(gap, lo, hi).1);
+    }
+    best
+}
+
 /// Entry and exit `(t_in, t_out)` of the line through the sweep of `p(t)`, `r(t) + dr`, or
 /// `None` if it misses (every sphere of negative radius is empty).
 pub fn quad_crossing_offset(q: &Quad, line: &Line, dr: f64) -> Option<(f64, f64)> {
