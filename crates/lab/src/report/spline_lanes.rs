@@ -19,10 +19,8 @@
 //! ```
 //!
 //! with `c_hit`, `c_miss`, `c_link` the scalar costs per pair on the bench's hits, misses and
-//! the link.
-//!
-//! which, where every pack holds at least `W/G_s` hits, is `H·G_l/G_s`: `H` itself at
-//! `G_s = G_l`. Only the measured `H`, `G_l` and the pack composition enter;
+//! the link. Where every pack holds at least `W/G_s` hits the bound is `H·G_l/G_s`: `H` itself
+//! at `G_s = G_l`. Only the measured `H`, `G_l` and the pack composition enter;
 //! [`floor`] evaluates it and [`gain_needed`] solves it for the `G_s` a ratio of 4 needs.
 
 use super::{ensure_dir, machine, write_text, ReportError, ReportFiles, ReportOptions};
@@ -41,9 +39,8 @@ include!("../../../../benches/common/spline_cases.rs");
 
 /// `(G_l·H/N)·Σ_p min(k_p, w/g_s)`: the least ratio (spline lanes ÷ link lanes) of a per-call
 /// lane kernel whose hit path (a hit's cost beyond a miss's) costs `h` links in scalar and gains
-/// `g_s` from lanes, where the
-/// link gains `g_l` and pack `p` holds `k[p]` hits of its `w` pairs (module docs). `n` pairs in
-/// all.
+/// `g_s` from lanes, where the link gains `g_l` and pack `p` holds `k[p]` hits of its `w` pairs
+/// (module docs); `n` pairs in all.
 pub fn floor(k: &[usize], w: usize, n: usize, h: f64, g_l: f64, g_s: f64) -> f64 {
     let cap = w as f64 / g_s;
     g_l * h / n as f64 * k.iter().map(|&k| (k as f64).min(cap)).sum::<f64>()
