@@ -49,12 +49,14 @@ fn sampled_min(f: &dyn Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
     bv.min(golden_min(f, lo, hi).1)
 }
 
-/// The real intervals of `gap ≤ 0` in `[0, 1]`, one per negative local minimum of the gap.
-fn real_intervals(gap: &dyn Fn(f64) -> f64) -> Vec<(f64, f64)> {
+/// The gap at `GAP_SAMPLES + 1` samples (`k / GAP_SAMPLES`), and each sampled local minimum
+/// `k` refined by golden section between its neighbours: `(k, t, g)`, the sample itself where it
+/// is not above the refined value.
+fn refined_minima(gap: &dyn Fn(f64) -> f64) -> (Vec<f64>, Vec<(usize, f64, f64)>) {
     let n = GAP_SAMPLES;
     let at = |k: usize| k as f64 / n as f64;
     let v: Vec<f64> = (0..=n).map(|k| gap(at(k))).collect();
-    let mut out: Vec<(f64, f64)> = Vec::new();
+    let mut out = Vec::new();
     for k in 0..=n {
         let left = if k > 0 { v[k - 1] } else { f64::INFINITY };
         let right = if k < n { v[k + 1] } else { f64::INFINITY };
@@ -63,7 +65,18 @@ fn real_intervals(gap: &dyn Fn(f64) -> f64) -> Vec<(f64, f64)> {
         }
         let (lo, hi) = (at(k.saturating_sub(1)), at((k + 1).min(n)));
         let (tm, gm) = golden_min(gap, lo, hi);
-        let (tm, gm) = if v[k] <= gm { (at(k), v[k]) } else { (tm, gm) };
+        out.push(if v[k] <= gm { (k, at(k), v[k]) } else { (k, tm, gm) });
+    }
+    (v, out)
+}
+
+/// The real intervals of `gap ≤ 0` in `[0, 1]`, one per negative local minimum of the gap.
+fn real_intervals(gap: &dyn Fn(f64) -> f64) -> Vec<(f64, f64)> {
+    let n = GAP_SAMPLES;
+    let at = |k: usize| k as f64 / n as f64;
+    let (v, minima) = refined_minima(gap);
+    let mut out: Vec<(f64, f64)> = Vec::new();
+    for (k, tm, gm) in minima {
         if gm > 0.0 || out.iter().any(|&(a, b)| a <= tm && tm <= b) {
             continue;
         }
@@ -90,20 +103,7 @@ fn real_intervals(gap: &dyn Fn(f64) -> f64) -> Vec<(f64, f64)> {
 /// ([`crate::quad_gap`] refines that sample only).
 pub fn quad_gap_fine(q: &Quad, line: &Line) -> f64 {
     let gap = |t: f64| line_dist(line, q.point(t)) - q.radius(t);
-    let n = GAP_SAMPLES;
-    let at = |k: usize| k as f64 / n as f64;
-    let v: Vec<f64> = (0..=n).map(|k| gap(at(k))).collect();
-    let mut best = f64::INFINITY;
-    for k in 0..=n {
-        let left = if k > 0 { v[k - 1] } else { f64::INFINITY };
-        let right = if k < n { v[k + 1] } else { f64::INFINITY };
-        if v[k] > left || v[k] > right {
-            continue;
-        }
-        let (lo, hi) = (at(k.saturating_sub(1)), at((k + 1).min(n)));
-        best = best.min(v[k]).min(golden_min(gap, lo, hi).1);
-    }
-    best
+    refined_minima(&gap).1.into_iter().fold(f64::INFINITY, |b, (_, _, g)| b.min(g))
 }
 
 /// Entry and exit `(t_in, t_out)` of the line through the sweep of `p(t)`, `r(t) + dr`, or
