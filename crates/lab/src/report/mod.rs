@@ -52,7 +52,7 @@ pub use mesh_real::run_mesh_real;
 pub use peers::run_peers;
 pub use runs::{run_accuracy, run_stability};
 pub use speed::run_speed;
-pub use spline_lanes::{floor as spline_lane_floor, gain_needed as spline_lane_gain_needed, run_spline_lanes};
+pub use spline_lanes::{floor as spline_lane_floor, run_spline_lanes};
 pub use thin::run_thin;
 pub use voxel::run_voxel;
 pub use voxel_ao::run_voxel_ao;
