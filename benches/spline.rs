@@ -52,7 +52,7 @@ where
         b.iter(|| {
             let mut acc = T::zero();
             for (_, l, r) in &packs {
-                acc += black_box(l).intersect(black_box(r)).t_in.min(T::cst(1e9));
+                acc += black_box(l).intersect(black_box(r)).entry.t.min(T::cst(1e9));
             }
             acc
         })
@@ -62,7 +62,7 @@ where
             b.iter(|| {
                 let mut acc = T::zero();
                 for (t, _, r) in &packs {
-                    acc += black_box(t).intersect_with(black_box(r), s).t_in.min(T::cst(1e9));
+                    acc += black_box(t).intersect_with(black_box(r), s).entry.t.min(T::cst(1e9));
                 }
                 acc
             })
@@ -135,14 +135,14 @@ fn leaf_bench(c: &mut Criterion, hit: bool) {
     g.bench_function("round_cone_link", |b| {
         b.iter(|| {
             r32.iter()
-                .map(|r| l32.iter().map(|l| black_box(l).intersect(black_box(r)).t_in.min(1e9)).sum::<f32>())
+                .map(|r| l32.iter().map(|l| black_box(l).intersect(black_box(r)).entry.t.min(1e9)).sum::<f32>())
                 .sum::<f32>()
         })
     });
     g.bench_function("spline/polynomial", |b| {
         b.iter(|| {
             r32.iter()
-                .map(|r| t32.iter().map(|t| black_box(t).intersect(black_box(r)).t_in.min(1e9)).sum::<f32>())
+                .map(|r| t32.iter().map(|t| black_box(t).intersect(black_box(r)).entry.t.min(1e9)).sum::<f32>())
                 .sum::<f32>()
         })
     });
@@ -154,10 +154,10 @@ fn leaf_bench(c: &mut Criterion, hit: bool) {
     let mut g = c.benchmark_group(format!("{group}/f32x8"));
     g.throughput(Throughput::Elements(N as u64));
     g.bench_function("round_cone_link", |b| {
-        b.iter(|| rw.iter().fold(WideF32x8::zero(), |a, r| a + black_box(&lw).intersect(black_box(r)).t_in.min(big)))
+        b.iter(|| rw.iter().fold(WideF32x8::zero(), |a, r| a + black_box(&lw).intersect(black_box(r)).entry.t.min(big)))
     });
     g.bench_function("spline/polynomial", |b| {
-        b.iter(|| rw.iter().fold(WideF32x8::zero(), |a, r| a + black_box(&tw).intersect(black_box(r)).t_in.min(big)))
+        b.iter(|| rw.iter().fold(WideF32x8::zero(), |a, r| a + black_box(&tw).intersect(black_box(r)).entry.t.min(big)))
     });
     g.finish();
 }

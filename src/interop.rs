@@ -10,7 +10,7 @@
 //! let link = RoundCone::new(glam::Vec3::ZERO.into(), 1.0, glam::Vec3::new(4.0, 0.0, 0.0).into(), 0.5).unwrap();
 //! let ray: Ray<f32> = (glam::Vec3::new(2.0, -10.0, 0.0), glam::Vec3::Y).into();
 //! let iv = link.intersect(&ray);
-//! let entry: glam::Vec3 = ray.at(iv.t_in).into();
+//! let entry: glam::Vec3 = ray.at(iv.entry.t).into();
 //! assert!(iv.hit && entry.y < 0.0);
 //! # }
 //! ```

@@ -11,7 +11,7 @@
 //! let link = RoundCone::new(V3::new(0.0, 0.0, 0.0), 1.0, V3::new(4.0, 0.0, 0.0), 0.5)?;
 //! let ray = Ray::new(V3::new(2.0, -10.0, 0.0), V3::new(0.0, 1.0, 0.0));
 //! let iv = link.intersect(&ray).get().expect("hits");
-//! assert!(iv.t_in < iv.t_out);
+//! assert!(iv.entry.t < iv.exit.t);
 //! # Ok::<(), tubecast::GeometryError>(())
 //! ```
 //!
@@ -38,7 +38,7 @@ mod vec;
 
 pub use bounds::{Aabb, Obb};
 pub use error::GeometryError;
-pub use kernel::csg::{self, union, Boundary, Tagged};
+pub use kernel::csg::{self, union, Tagged};
 pub use kernel::hermite::{AdaptiveSplit, HermiteSegment};
 pub use kernel::link::{HanLink, LinkShape, RoundCone};
 pub use kernel::mesh::{
@@ -48,7 +48,7 @@ pub use kernel::roots::Solver;
 pub use kernel::spline::QuadTube;
 pub use kernel::voxel;
 pub use primitive::{Primitive, Sphere};
-pub use ray::{Interval, Ray};
+pub use ray::{Crossing, Hit, Interval, Ray};
 pub use real::{Mask, Real, Scalar};
 #[cfg(feature = "wide")]
 pub use real::{WideBoolF32x8, WideBoolF64x4, WideF32x8, WideF64x4};
@@ -67,13 +67,32 @@ pub use vec::V3;
 /// let xf = UnitConeTransform::new(&cone);
 /// let ray = Ray::new(V3::new(2.0, -10.0, 0.0), V3::new(0.0, 1.0, 0.0));
 /// let iv = intersect_stump_precomputed(&ray, &cone, &xf);
-/// assert!(iv.hit && iv.u_in > 0.0 && iv.u_in < 1.0); // on the cone side
+/// assert!(iv.hit && iv.entry.u > 0.0 && iv.entry.u < 1.0); // on the cone side
 /// ```
 pub mod cone {
     pub use crate::kernel::cone::{
         intersect_cylinder_naive, intersect_stump_on_the_fly, intersect_stump_precomputed, TangentCone,
         UnitConeTransform,
     };
+}
+
+/// What a renderer imports in one line: the primitives, rays and their answers, the number
+/// traits and, with `wide`, the lane types.
+///
+/// ```
+/// use tubecast::prelude::*;
+/// let ball = Sphere::new(V3::new(0.0, 0.0, 5.0), 1.0)?;
+/// let hit = ball.intersect(&Ray::new(V3::zero(), V3::new(0.0, 0.0, 1.0))).first_hit(0.0, f64::MAX);
+/// assert_eq!(hit.map(|h| h.t), Some(4.0));
+/// # Ok::<(), GeometryError>(())
+/// ```
+pub mod prelude {
+    pub use crate::{
+        union, Aabb, Crossing, GeometryError, HermiteSegment, Hit, Interval, Mask, Primitive, QuadTube, Ray, Real,
+        RoundCone, Scalar, Solver, Sphere, Tagged, V3,
+    };
+    #[cfg(feature = "wide")]
+    pub use crate::{WideF32x8, WideF64x4};
 }
 
 /// The README's Rust snippet, compiled and run by `cargo test --doc`.

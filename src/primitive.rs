@@ -90,8 +90,8 @@ pub trait Primitive<T: Real> {
 /// use tubecast::{Primitive, Ray, Sphere, V3};
 /// let ball = Sphere::new(V3::new(0.0, 0.0, 10.0), 2.0)?;
 /// let iv = ball.intersect(&Ray::new(V3::new(0.0, 0.0, 0.0), V3::new(0.0, 0.0, 1.0)));
-/// assert_eq!((iv.t_in, iv.t_out), (8.0, 12.0));
-/// assert_eq!(iv.n_in, V3::new(0.0, 0.0, -1.0));
+/// assert_eq!((iv.entry.t, iv.exit.t), (8.0, 12.0));
+/// assert_eq!(iv.entry.n, V3::new(0.0, 0.0, -1.0));
 /// assert_eq!(ball.sdf(V3::new(0.0, 3.0, 10.0)), 1.0);
 /// # Ok::<(), tubecast::GeometryError>(())
 /// ```

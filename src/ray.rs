@@ -92,51 +92,167 @@ impl<T: Scalar> Ray<T> {
     }
 }
 
-/// The overlap of a ray's **line** with a solid: entry and exit with unit outward normals
-/// and curve parameters.
+/// One surface crossing along a ray: the ray parameter `t`, the unit outward normal `n` and
+/// the curve parameter `u` (`u ∈ [0, 1]` along the link or segment) where the ray crosses.
 ///
-/// `t_in ≤ t_out` always hold where `hit` is set. The interval is that of the whole line
-/// (not clipped to `[t_min, t_max]`), so `t_in < t_min` means the ray starts inside the solid;
-/// `hit` is set when the interval is non-empty **and** overlaps `[t_min, t_max]`.
-/// Lanes without a hit hold `t_in = +∞`, `t_out = −∞`, zero normals and zero `u`.
+/// The building block of every answer: an [`Interval`] is an entry and an exit crossing, a
+/// [`Hit`] is a crossing attributed to a primitive.
 ///
 /// ```
-/// use tubecast::{Primitive, Ray, Sphere, V3};
+/// use tubecast::{Crossing, Ray, V3};
+/// let ray = Ray::new(V3::new(0.0, 0.0, 0.0), V3::new(0.0, 0.0, 2.0));
+/// let c = Crossing { t: 1.5, n: V3::new(0.0, 0.0, -1.0), u: 0.0 };
+/// assert_eq!(c.point(&ray), V3::new(0.0, 0.0, 3.0));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Crossing<T> {
+    /// Ray parameter.
+    pub t: T,
+    /// Unit outward normal.
+    pub n: V3<T>,
+    /// Curve parameter on the primitive.
+    pub u: T,
+}
+
+impl<T: Real> Crossing<T> {
+    /// The point `o + t·d` of `ray` where the crossing lies.
+    #[inline(always)]
+    pub fn point(&self, ray: &Ray<T>) -> V3<T> {
+        ray.at(self.t)
+    }
+    /// Lane-wise choice between two crossings.
+    #[inline(always)]
+    pub fn select(m: T::Mask, a: Self, b: Self) -> Self {
+        Self { t: T::select(m, a.t, b.t), n: V3::select(m, a.n, b.n), u: T::select(m, a.u, b.u) }
+    }
+    /// Lane `i` as a scalar crossing.
+    #[inline]
+    pub fn lane(&self, i: usize) -> Crossing<T::Elem> {
+        Crossing { t: self.t.lane(i), n: self.n.lane(i), u: self.u.lane(i) }
+    }
+}
+
+/// A surface crossing attributed to a primitive: what a query over many primitives returns
+/// (a tracer's closest hit, a boundary of a CSG [`crate::csg::union`]).
+///
+/// `id` is the caller's primitive id; `entering` is false where the ray leaves the solid (it
+/// started inside, or the crossing is the exit of a union component).
+///
+/// ```
+/// use tubecast::{Hit, Ray, V3};
+/// let n = V3::new(0.0, 0.0, -1.0);
+/// let a = Hit { t: 2.0, n, u: 0.25, id: 7, entering: true };
+/// let b = Hit { t: 2.0, n, u: 0.75, id: 3, entering: true };
+/// assert!(a.closer(&b) && !b.closer(&a)); // equal t: the smaller u
+/// let ray = Ray::new(V3::new(0.0, 0.0, 0.0), V3::new(0.0, 0.0, 1.0));
+/// assert_eq!(a.point(&ray), V3::new(0.0, 0.0, 2.0));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit<T> {
+    /// Ray parameter.
+    pub t: T,
+    /// Unit outward normal.
+    pub n: V3<T>,
+    /// Curve parameter on the primitive.
+    pub u: T,
+    /// Caller's primitive id.
+    pub id: u32,
+    /// True for an entry, false for an exit.
+    pub entering: bool,
+}
+
+impl<T: Scalar> Hit<T> {
+    /// A crossing attributed to primitive `id`.
+    #[inline(always)]
+    pub fn new(c: Crossing<T>, id: u32, entering: bool) -> Self {
+        Self { t: c.t, n: c.n, u: c.u, id, entering }
+    }
+    /// The crossing alone.
+    #[inline(always)]
+    pub fn crossing(&self) -> Crossing<T> {
+        Crossing { t: self.t, n: self.n, u: self.u }
+    }
+    /// The point `o + t·d` of `ray` where the hit lies.
+    #[inline(always)]
+    pub fn point(&self, ray: &Ray<T>) -> V3<T> {
+        ray.at(self.t)
+    }
+    /// The one rule that orders hits, used by every query and accelerator: the smaller `t`;
+    /// at equal `t`, the smaller `u`, then the smaller normal (x, y, z), then the smaller `id`
+    /// (a total order, IEEE `totalOrder` on each number).
+    ///
+    /// Why the crossing's own data before the id: accelerators number the same primitives
+    /// differently (leaf order), so a rule on the data alone gives every accelerator the same
+    /// answer bit for bit whatever order it visits the primitives in; the id decides only
+    /// between crossings equal in every bit, i.e. the same crossing of coincident primitives.
+    #[inline]
+    pub fn closer(&self, other: &Self) -> bool {
+        self.cmp_closer(other) == core::cmp::Ordering::Less
+    }
+    /// The total order behind [`Self::closer`]: `Less` where `self` is closer.
+    #[inline]
+    pub fn cmp_closer(&self, o: &Self) -> core::cmp::Ordering {
+        let c = |a: T, b: T| a.to_f64().total_cmp(&b.to_f64());
+        if self.t < o.t {
+            return core::cmp::Ordering::Less;
+        }
+        if self.t > o.t {
+            return core::cmp::Ordering::Greater;
+        }
+        c(self.t, o.t)
+            .then(c(self.u, o.u))
+            .then(c(self.n.x, o.n.x))
+            .then(c(self.n.y, o.n.y))
+            .then(c(self.n.z, o.n.z))
+            .then(self.id.cmp(&o.id))
+    }
+    /// Keep the closer of `best` and `self` (by [`Self::closer`]) in `best`.
+    #[inline]
+    pub fn keep_closer(self, best: &mut Option<Self>) {
+        if best.as_ref().map_or(true, |b| self.closer(b)) {
+            *best = Some(self);
+        }
+    }
+}
+
+/// The overlap of a ray's **line** with a solid: its entry and exit [`Crossing`]s.
+///
+/// `entry.t ≤ exit.t` always holds where `hit` is set. The interval is that of the whole line
+/// (not clipped to `[t_min, t_max]`), so `entry.t < t_min` means the ray starts inside the solid;
+/// `hit` is set when the interval is non-empty **and** overlaps `[t_min, t_max]`.
+/// Lanes without a hit hold `entry.t = +∞`, `exit.t = −∞`, zero normals and zero `u`.
+///
+/// ```
+/// use tubecast::prelude::*;
 /// let ball = Sphere::new(V3::new(0.0, 0.0, 0.0), 1.0).unwrap();
 /// // A ray starting inside: the line interval begins behind the origin.
 /// let iv = ball.intersect(&Ray::new(V3::new(0.0, 0.0, 0.5), V3::new(0.0, 0.0, 1.0)));
-/// assert!(iv.hit && iv.t_in == -1.5 && iv.t_out == 0.5);
-/// assert_eq!(iv.first_hit(0.0, f64::INFINITY).map(|h| h.0), Some(0.5)); // the exit
+/// assert!(iv.hit && iv.entry.t == -1.5 && iv.exit.t == 0.5);
+/// let first = iv.first_hit(0.0, f64::INFINITY).unwrap(); // the exit
+/// assert!(first.t == 0.5 && !first.entering);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Interval<T: Real> {
-    /// Entry parameter.
-    pub t_in: T,
-    /// Exit parameter.
-    pub t_out: T,
-    /// Unit outward normal at entry.
-    pub n_in: V3<T>,
-    /// Unit outward normal at exit.
-    pub n_out: V3<T>,
-    /// Curve parameter (`u ∈ [0, 1]` along the link or segment) at entry.
-    pub u_in: T,
-    /// Curve parameter at exit.
-    pub u_out: T,
+    /// Where the line enters the solid.
+    pub entry: Crossing<T>,
+    /// Where the line leaves the solid.
+    pub exit: Crossing<T>,
     /// Which lanes hit.
     pub hit: T::Mask,
 }
 
 impl<T: Real> Interval<T> {
+    /// An interval from its two crossings and hit mask.
+    #[inline(always)]
+    pub fn new(entry: Crossing<T>, exit: Crossing<T>, hit: T::Mask) -> Self {
+        Self { entry, exit, hit }
+    }
     /// The empty interval (a miss in every lane).
     #[inline(always)]
     pub fn miss() -> Self {
         Self {
-            t_in: T::infinity(),
-            t_out: -T::infinity(),
-            n_in: V3::zero(),
-            n_out: V3::zero(),
-            u_in: T::zero(),
-            u_out: T::zero(),
+            entry: Crossing { t: T::infinity(), n: V3::zero(), u: T::zero() },
+            exit: Crossing { t: -T::infinity(), n: V3::zero(), u: T::zero() },
             hit: T::Mask::splat(false),
         }
     }
@@ -147,23 +263,19 @@ impl<T: Real> Interval<T> {
         Self::select(m & self.hit, self, e)
     }
     /// A line interval clipped to a ray: lanes whose interval is non-empty and overlaps
-    /// `[t_min, t_max]` keep it (unclipped: `t_in < t_min` still says the ray starts inside),
+    /// `[t_min, t_max]` keep it (unclipped: `entry.t < t_min` still says the ray starts inside),
     /// the others become misses. This is the step from a `line_interval` to an `intersect`
     /// ([`crate::Primitive::intersect`]).
     #[inline(always)]
     pub fn clip(self, ray: &Ray<T>) -> Self {
-        self.masked(in_range(ray, self.t_in, self.t_out))
+        self.masked(in_range(ray, self.entry.t, self.exit.t))
     }
     /// Lane-wise choice between two intervals.
     #[inline(always)]
     pub fn select(m: T::Mask, a: Self, b: Self) -> Self {
         Self {
-            t_in: T::select(m, a.t_in, b.t_in),
-            t_out: T::select(m, a.t_out, b.t_out),
-            n_in: V3::select(m, a.n_in, b.n_in),
-            n_out: V3::select(m, a.n_out, b.n_out),
-            u_in: T::select(m, a.u_in, b.u_in),
-            u_out: T::select(m, a.u_out, b.u_out),
+            entry: Crossing::select(m, a.entry, b.entry),
+            exit: Crossing::select(m, a.exit, b.exit),
             hit: (m & a.hit) | (!m & b.hit),
         }
     }
@@ -171,15 +283,11 @@ impl<T: Real> Interval<T> {
     /// the earlier entry and the later exit, each with its normal and parameter.
     #[inline(always)]
     pub fn hull(self, o: Self) -> Self {
-        let a_in = self.hit & (!o.hit | self.t_in.le(o.t_in));
-        let a_out = self.hit & (!o.hit | self.t_out.ge(o.t_out));
+        let a_in = self.hit & (!o.hit | self.entry.t.le(o.entry.t));
+        let a_out = self.hit & (!o.hit | self.exit.t.ge(o.exit.t));
         Self {
-            t_in: T::select(a_in, self.t_in, o.t_in),
-            n_in: V3::select(a_in, self.n_in, o.n_in),
-            u_in: T::select(a_in, self.u_in, o.u_in),
-            t_out: T::select(a_out, self.t_out, o.t_out),
-            n_out: V3::select(a_out, self.n_out, o.n_out),
-            u_out: T::select(a_out, self.u_out, o.u_out),
+            entry: Crossing::select(a_in, self.entry, o.entry),
+            exit: Crossing::select(a_out, self.exit, o.exit),
             hit: self.hit | o.hit,
         }
     }
@@ -190,31 +298,37 @@ impl<T: Real> Interval<T> {
         let lanes: [Interval<T::Elem>; 16] =
             core::array::from_fn(|i| if i < T::LANES { f(i) } else { Interval::miss() });
         let one = |b: bool| if b { T::Elem::one() } else { T::Elem::zero() };
+        let cross = |g: fn(&Interval<T::Elem>) -> &Crossing<T::Elem>| Crossing {
+            t: T::from_fn(|i| g(&lanes[i]).t),
+            n: V3::from_fn(|i| g(&lanes[i]).n),
+            u: T::from_fn(|i| g(&lanes[i]).u),
+        };
         Self {
-            t_in: T::from_fn(|i| lanes[i].t_in),
-            t_out: T::from_fn(|i| lanes[i].t_out),
-            n_in: V3::from_fn(|i| lanes[i].n_in),
-            n_out: V3::from_fn(|i| lanes[i].n_out),
-            u_in: T::from_fn(|i| lanes[i].u_in),
-            u_out: T::from_fn(|i| lanes[i].u_out),
+            entry: cross(|iv| &iv.entry),
+            exit: cross(|iv| &iv.exit),
             hit: T::from_fn(|i| one(lanes[i].hit)).gt(T::zero()),
         }
     }
     /// Lane `i` as a scalar interval.
     pub fn lane(&self, i: usize) -> Interval<T::Elem> {
-        Interval {
-            t_in: self.t_in.lane(i),
-            t_out: self.t_out.lane(i),
-            n_in: self.n_in.lane(i),
-            n_out: self.n_out.lane(i),
-            u_in: self.u_in.lane(i),
-            u_out: self.u_out.lane(i),
-            hit: self.hit.lane(i),
-        }
+        Interval { entry: self.entry.lane(i), exit: self.exit.lane(i), hit: self.hit.lane(i) }
+    }
+}
+
+impl<T: Scalar> Crossing<T> {
+    /// The same crossing in `f64` (exact: `f32` and `f64` convert without rounding).
+    #[inline(always)]
+    pub fn to_f64(&self) -> Crossing<f64> {
+        Crossing { t: self.t.to_f64(), n: self.n.cast(), u: self.u.to_f64() }
     }
 }
 
 impl<T: Scalar> Interval<T> {
+    /// The same interval in `f64` (exact).
+    #[inline(always)]
+    pub fn to_f64(&self) -> Interval<f64> {
+        Interval { entry: self.entry.to_f64(), exit: self.exit.to_f64(), hit: self.hit }
+    }
     /// `Some(self)` on a hit.
     #[inline]
     pub fn get(self) -> Option<Self> {
@@ -224,17 +338,17 @@ impl<T: Scalar> Interval<T> {
             None
         }
     }
-    /// The first surface crossing inside `[t_min, t_max]`: `(t, normal, u)` — the entry, or
-    /// the exit when the ray starts inside.
+    /// The first surface crossing inside `[t_min, t_max]`, as a [`Hit`] with `id` 0 — the
+    /// entry, or the exit (`entering == false`) when the ray starts inside.
     #[inline]
-    pub fn first_hit(&self, t_min: T, t_max: T) -> Option<(T, V3<T>, T)> {
+    pub fn first_hit(&self, t_min: T, t_max: T) -> Option<Hit<T>> {
         if !self.hit {
             return None;
         }
-        if self.t_in >= t_min && self.t_in <= t_max {
-            Some((self.t_in, self.n_in, self.u_in))
-        } else if self.t_out >= t_min && self.t_out <= t_max {
-            Some((self.t_out, self.n_out, self.u_out))
+        if self.entry.t >= t_min && self.entry.t <= t_max {
+            Some(Hit::new(self.entry, 0, true))
+        } else if self.exit.t >= t_min && self.exit.t <= t_max {
+            Some(Hit::new(self.exit, 0, false))
         } else {
             None
         }

@@ -5,7 +5,7 @@
 // one), any-hit, and the CSG union of all line intervals, bit for bit. Culling may only skip
 // primitives that the kernels would miss.
 #[allow(unused_imports)]
-use tubecast::csg::{union, Boundary, Tagged};
+use tubecast::csg::{union, Tagged};
 #[allow(unused_imports)]
 use tubecast::{Ray, RoundCone, V3};
 use tubecast_render::accel::grid::Grid;
@@ -115,20 +115,24 @@ fn near(prims: &[Prim], rays: Vec<Ray<f64>>) -> Vec<Ray<f64>> {
 
 /// `tracer` against brute force over `prims` on one ray.
 pub fn agree(name: &str, tracer: &dyn Tracer, prims: &[Prim], ray: &Ray<f64>) {
-    let brute_t = prims.iter().filter_map(|p| p.first_hit(ray)).map(|h| h.0).fold(None, |m: Option<f64>, t| {
-        Some(m.map_or(t, |m| m.min(t)))
+    // Brute force under the one `closer` rule (a primitive's hit carries its link as id).
+    let brute = prims.iter().filter_map(|p| p.first_hit(ray)).fold(None, |mut best, h| {
+        h.keep_closer(&mut best);
+        best
     });
     let got = tracer.closest_hit(ray);
-    assert_eq!(got.map(|h| h.t.to_bits()), brute_t.map(f64::to_bits), "{name}: closest hit of {ray:?}");
-    if let Some(h) = got {
-        let p = tracer.prim(h.prim);
-        assert_eq!(p.first_hit(ray).map(|x| x.0.to_bits()), Some(h.t.to_bits()), "{name}: hit's own primitive");
+    assert_eq!(got.map(|h| h.t.to_bits()), brute.map(|h| h.t.to_bits()), "{name}: closest hit of {ray:?}");
+    if let (Some(h), Some(b)) = (got, brute) {
+        let p = tracer.prim(h.id);
+        assert_eq!(p.first_hit(ray).map(|x| x.t.to_bits()), Some(h.t.to_bits()), "{name}: hit's own primitive");
+        let bits = |x: tubecast::Hit<f64>| (x.n.x.to_bits(), x.n.y.to_bits(), x.n.z.to_bits(), x.u.to_bits());
+        assert_eq!((p.link, bits(h), h.entering), (b.id, bits(b), b.entering), "{name}: the closer rule, {ray:?}");
     }
     let brute_any = prims.iter().any(|p| p.meets(ray));
     assert_eq!(tracer.any_hit(ray), brute_any, "{name}: any hit of {ray:?}");
     let bounds = |ivs: &mut Vec<Tagged<f64>>| {
         let mut b: Vec<(u64, bool)> = Vec::new();
-        union(ivs, f64::NEG_INFINITY, f64::INFINITY, |x: Boundary<f64>| b.push((x.t.to_bits(), x.entering)));
+        union(ivs, f64::NEG_INFINITY, f64::INFINITY, |x: tubecast::Hit<f64>| b.push((x.t.to_bits(), x.entering)));
         b
     };
     let mut mine = Vec::new();

@@ -87,15 +87,7 @@ fn bound_and_gap(link: &RoundCone<f64>, ray: &Ray<f64>, eps: f64) -> (f64, f64) 
 }
 
 fn to64(iv: Interval<f32>) -> Interval<f64> {
-    Interval {
-        t_in: iv.t_in as f64,
-        t_out: iv.t_out as f64,
-        n_in: iv.n_in.cast(),
-        n_out: iv.n_out.cast(),
-        u_in: iv.u_in as f64,
-        u_out: iv.u_out as f64,
-        hit: iv.hit,
-    }
+    iv.to_f64()
 }
 
 /// Both hits' entry and exit `t` inside the E-bands of the line ([`e_bands`]), plus 1e-12·|t|
@@ -103,11 +95,11 @@ fn to64(iv: Interval<f32>) -> Interval<f64> {
 pub fn same_t(a: &Interval<f64>, b: &Interval<f64>, link: &RoundCone<f64>, ray: &Ray<f64>, e: f64) -> Result<(), String> {
     let [in_lo, in_hi, out_lo, out_hi] = e_bands(link, ray, e)?;
     for (what, iv) in [("first", a), ("second", b)] {
-        if !within(iv.t_in, in_lo, in_hi) {
-            return Err(format!("{what} t_in {} outside the E-band [{in_lo}, {in_hi}] (E {e:e})", iv.t_in));
+        if !within(iv.entry.t, in_lo, in_hi) {
+            return Err(format!("{what} t_in {} outside the E-band [{in_lo}, {in_hi}] (E {e:e})", iv.entry.t));
         }
-        if !within(iv.t_out, out_lo, out_hi) {
-            return Err(format!("{what} t_out {} outside the E-band [{out_lo}, {out_hi}] (E {e:e})", iv.t_out));
+        if !within(iv.exit.t, out_lo, out_hi) {
+            return Err(format!("{what} t_out {} outside the E-band [{out_lo}, {out_hi}] (E {e:e})", iv.exit.t));
         }
     }
     Ok(())
@@ -222,11 +214,11 @@ fn han_agrees_with_stable(link: &RoundCone<f64>, ray: &Ray<f64>) -> Result<(), S
         }
     } else if a.hit && gap < -e {
         let dl = ray.d.length();
-        let g = a.n_in.dot(ray.d).abs() / dl;
-        let tol = e / (g * dl) + 1e-12 * a.t_in.abs();
-        let dt = (a.t_in - b.t_in).abs();
+        let g = a.entry.n.dot(ray.d).abs() / dl;
+        let tol = e / (g * dl) + 1e-12 * a.entry.t.abs();
+        let dt = (a.entry.t - b.entry.t).abs();
         if dt.is_nan() || dt > tol {
-            return Err(format!("Han vs stable t_in {} vs {} (tol {tol:e})", b.t_in, a.t_in));
+            return Err(format!("Han vs stable t_in {} vs {} (tol {tol:e})", b.entry.t, a.entry.t));
         }
     }
     Ok(())

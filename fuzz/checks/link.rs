@@ -36,7 +36,7 @@ pub fn check(data: &[u8]) {
         let size = (link.b - link.a).length().max(link.ra).max(link.rb);
         let e = tubecast_oracle::link_error_bound(&ol, ov(ray.o), size, f64::EPSILON);
         // (t may overflow to ±∞ when the radius dwarfs |d|; such a t has no point to check.)
-        for t in [st.t_in, st.t_out].into_iter().filter(|t| t.is_finite()) {
+        for t in [st.entry.t, st.exit.t].into_iter().filter(|t| t.is_finite()) {
             let x = ray.at(t);
             if !x.is_finite() {
                 continue;

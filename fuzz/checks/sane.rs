@@ -4,15 +4,15 @@
 
 /// Panics unless `iv` satisfies the invariants above.
 pub fn sane<T: tubecast::Scalar>(iv: &tubecast::Interval<T>) {
-    let all = [iv.t_in, iv.t_out, iv.u_in, iv.u_out, iv.n_in.x, iv.n_in.y, iv.n_in.z, iv.n_out.x, iv.n_out.y, iv.n_out.z];
+    let all = [iv.entry.t, iv.exit.t, iv.entry.u, iv.exit.u, iv.entry.n.x, iv.entry.n.y, iv.entry.n.z, iv.exit.n.x, iv.exit.n.y, iv.exit.n.z];
     assert!(all.iter().all(|x| !x.to_f64().is_nan()), "NaN in {iv:?}");
     if iv.hit {
-        assert!(iv.t_in <= iv.t_out, "t_in > t_out: {iv:?}");
+        assert!(iv.entry.t <= iv.exit.t, "t_in > t_out: {iv:?}");
         let tol = if T::EPS.to_f64() < 1e-10 { 1e-12 } else { 1e-5 };
-        for n in [iv.n_in, iv.n_out] {
+        for n in [iv.entry.n, iv.exit.n] {
             assert!((n.length().to_f64() - 1.0).abs() <= tol, "normal not unit: {n:?} in {iv:?}");
         }
-        for u in [iv.u_in, iv.u_out] {
+        for u in [iv.entry.u, iv.exit.u] {
             assert!(u.to_f64() >= 0.0 && u.to_f64() <= 1.0, "u out of range: {iv:?}");
         }
     }

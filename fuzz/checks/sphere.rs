@@ -25,7 +25,7 @@ pub fn check(data: &[u8]) {
     sane(&iv);
     if iv.hit {
         let e = 16.0 * f64::EPSILON * ((ray.o - c).length() + r);
-        for t in [iv.t_in, iv.t_out].into_iter().filter(|t| t.is_finite()) {
+        for t in [iv.entry.t, iv.exit.t].into_iter().filter(|t| t.is_finite()) {
             let x = ray.at(t);
             if x.is_finite() {
                 let d = (x - c).length() - r;

@@ -93,14 +93,14 @@ pub fn check(data: &[u8]) {
     if iv.hit {
         let s = scale(&t);
         let dl = ray.d.length();
-        if (iv.t_out - iv.t_in) * dl > 1e-6 * s {
+        if (iv.exit.t - iv.entry.t) * dl > 1e-6 * s {
             // The hit point and the tube relative to b₀, (o − b₀) + t·d, as the bound's far
             // term 8ε(|o − b₀| + |t·d|) assumes: o + t·d in world coordinates rounds by ε|o|,
             // which for a tube far from the world's origin exceeds the tube itself (campaign
             // seed 2102, regression-ball-far-from-origin: a ball of radius 3.2e-5 at 1.5e144,
             // the kernel's t exact, its point o + t·d rounded back to the centre).
             let rel = QuadTube { b: [V3::new(0.0, 0.0, 0.0), b[1] - b[0], b[2] - b[0]], r };
-            for tt in [iv.t_in, iv.t_out] {
+            for tt in [iv.entry.t, iv.exit.t] {
                 let e = rel.sdf((ray.o - b[0]) + ray.d * tt);
                 let mut bound = surface_bound(&t, &ray, tt, true);
                 if let Solver::Bisection { iters } = solver {

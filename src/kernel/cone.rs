@@ -14,7 +14,7 @@
 //! charts it). Equal radii are a cylinder, handled by [`intersect_cylinder_naive`].
 
 use crate::math::quadric::{quadric_in_slab, slab};
-use crate::ray::{Interval, Ray};
+use crate::ray::{Crossing, Interval, Ray};
 use crate::real::Real;
 use crate::vec::V3;
 
@@ -195,7 +195,7 @@ pub(crate) fn stump_line<T: Real>(ray: &Ray<T>, cone: &TangentCone<T>, m: &UnitC
         T::select(cone.swapped, T::one() - u, u)
     };
     let hit = hits.ok & cone.is_cone;
-    Interval { t_in: t0, t_out: t1, n_in, n_out, u_in: zu(t0), u_out: zu(t1), hit }.masked(hit)
+    Interval::new(Crossing { t: t0, n: n_in, u: zu(t0) }, Crossing { t: t1, n: n_out, u: zu(t1) }, hit).masked(hit)
 }
 
 /// Ray–cone-stump interval computing the tangent cone and its transform per call
@@ -242,5 +242,5 @@ pub(crate) fn cylinder_line<T: Real>(ray: &Ray<T>, c1: V3<T>, c2: V3<T>, r: T) -
     let u_at = |t: T| ((zo + zd * t) / T::select(len_ok, len, T::one())).clamp(T::zero(), T::one());
     let hit = hits.ok & len_ok & r.gt(T::zero());
     let (n_in, n_out) = (n_at(t0, hits.root0), n_at(t1, hits.root1));
-    Interval { t_in: t0, t_out: t1, n_in, n_out, u_in: u_at(t0), u_out: u_at(t1), hit }.masked(hit)
+    Interval::new(Crossing { t: t0, n: n_in, u: u_at(t0) }, Crossing { t: t1, n: n_out, u: u_at(t1) }, hit).masked(hit)
 }

@@ -7,9 +7,8 @@
 //! over the whole line and only boundaries in `[t_min, t_max]` are reported, so a ray starting
 //! inside sees its first exit and nothing of the surfaces behind its origin.
 
-use crate::ray::Interval;
+use crate::ray::{Hit, Interval};
 use crate::real::Scalar;
-use crate::vec::V3;
 
 /// One primitive's interval along a ray, tagged with the primitive's id.
 ///
@@ -29,28 +28,8 @@ pub struct Tagged<T: Scalar> {
     pub id: u32,
 }
 
-/// An exterior boundary of the union (see [`union`] for an example).
-///
-/// ```
-/// use tubecast::{Boundary, V3};
-/// let b = Boundary { t: 1.0, n: V3::new(-1.0, 0.0, 0.0), u: 0.0, id: 0, entering: true };
-/// assert!(b.entering && b.n.length() == 1.0);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Boundary<T: Scalar> {
-    /// Ray parameter.
-    pub t: T,
-    /// Unit outward normal.
-    pub n: V3<T>,
-    /// Curve parameter on the primitive that owns this boundary.
-    pub u: T,
-    /// Id of the primitive that owns this boundary.
-    pub id: u32,
-    /// True for an entry (0 → 1), false for an exit (1 → 0).
-    pub entering: bool,
-}
-
-/// Union of `intervals` along the ray; calls `emit` for each exterior boundary with
+/// Union of `intervals` along the ray; calls `emit` for each exterior boundary (a [`Hit`]:
+/// `entering` for a 0 → 1 transition, its `id` the owning primitive's) with
 /// `t ∈ [t_min, t_max]`, in increasing `t`. Returns the number emitted.
 ///
 /// Sorts `intervals` in place by entry (no allocation). Intervals that touch (`entry ==
@@ -67,23 +46,23 @@ pub struct Boundary<T: Scalar> {
 /// assert_eq!(out, [(4.0, 0, true), (7.5, 1, false)]);
 /// # Ok::<(), tubecast::GeometryError>(())
 /// ```
-pub fn union<T: Scalar>(intervals: &mut [Tagged<T>], t_min: T, t_max: T, mut emit: impl FnMut(Boundary<T>)) -> usize {
-    intervals.sort_unstable_by(|a, b| {
-        // Misses (t_in = +∞) sort last; NaN cannot occur for kernel output.
-        let ka = if a.iv.hit { a.iv.t_in } else { T::infinity() };
-        let kb = if b.iv.hit { b.iv.t_in } else { T::infinity() };
-        ka.partial_cmp(&kb).unwrap_or(core::cmp::Ordering::Equal)
+pub fn union<T: Scalar>(intervals: &mut [Tagged<T>], t_min: T, t_max: T, mut emit: impl FnMut(Hit<T>)) -> usize {
+    // By entry under the one `closer` rule (misses last), so that the owner of a boundary is
+    // the same whatever order the intervals arrive in.
+    intervals.sort_unstable_by(|a, b| match (a.iv.hit, b.iv.hit) {
+        (true, true) => Hit::new(a.iv.entry, a.id, true).cmp_closer(&Hit::new(b.iv.entry, b.id, true)),
+        (x, y) => y.cmp(&x),
     });
     let mut n = 0;
     let mut cur: Option<(Tagged<T>, Tagged<T>)> = None; // (owner of entry, owner of exit)
     let mut flush = |entry: &Tagged<T>, exit: &Tagged<T>, n: &mut usize| {
-        let (ti, to) = (entry.iv.t_in, exit.iv.t_out);
+        let (ti, to) = (entry.iv.entry.t, exit.iv.exit.t);
         if ti >= t_min && ti <= t_max {
-            emit(Boundary { t: ti, n: entry.iv.n_in, u: entry.iv.u_in, id: entry.id, entering: true });
+            emit(Hit::new(entry.iv.entry, entry.id, true));
             *n += 1;
         }
         if to >= t_min && to <= t_max {
-            emit(Boundary { t: to, n: exit.iv.n_out, u: exit.iv.u_out, id: exit.id, entering: false });
+            emit(Hit::new(exit.iv.exit, exit.id, false));
             *n += 1;
         }
     };
@@ -92,8 +71,8 @@ pub fn union<T: Scalar>(intervals: &mut [Tagged<T>], t_min: T, t_max: T, mut emi
             break;
         }
         match cur {
-            Some((e, x)) if iv.iv.t_in <= x.iv.t_out => {
-                if iv.iv.t_out > x.iv.t_out {
+            Some((e, x)) if iv.iv.entry.t <= x.iv.exit.t => {
+                if iv.iv.exit.t > x.iv.exit.t {
                     cur = Some((e, *iv));
                 }
             }

@@ -41,7 +41,7 @@ use crate::vec::V3;
 /// use tubecast::{Primitive, Ray, RoundCone, V3};
 /// let link = RoundCone::new(V3::new(0.0, 0.0, 0.0), 1.0, V3::new(4.0, 0.0, 0.0), 0.5)?;
 /// let iv = link.intersect(&Ray::new(V3::new(0.0, 0.0, -5.0), V3::new(0.0, 0.0, 1.0)));
-/// assert_eq!((iv.t_in, iv.t_out, iv.u_in), (4.0, 6.0, 0.0)); // through the centre of sphere a
+/// assert_eq!((iv.entry.t, iv.exit.t, iv.entry.u), (4.0, 6.0, 0.0)); // through the centre of sphere a
 /// assert!(link.sdf(V3::new(2.0, 0.0, 0.0)) < 0.0);
 /// # Ok::<(), tubecast::GeometryError>(())
 /// ```
@@ -168,7 +168,7 @@ impl<T: Real> RoundCone<T> {
 /// let link = RoundCone::new(V3::new(0.0f64, 0.0, 0.0), 1.0, V3::new(4.0, 0.0, 0.0), 0.5)?;
 /// let ray = Ray::new(V3::new(2.0, -10.0, 0.0), V3::new(0.0, 1.0, 0.0));
 /// let (stable, han) = (link.intersect(&ray), HanLink::new(&link).intersect(&ray));
-/// assert!(han.hit && (han.t_in - stable.t_in).abs() < 1e-12);
+/// assert!(han.hit && (han.entry.t - stable.entry.t).abs() < 1e-12);
 /// # Ok::<(), tubecast::GeometryError>(())
 /// ```
 #[derive(Clone, Copy, Debug)]

@@ -12,7 +12,7 @@
 /// let ray = Ray::new(V3::new(1.0, 0.5, -5.0), V3::new(0.0, 0.0, 1.0));
 /// let exact = tube.intersect_with(&ray, Solver::Polynomial);
 /// let fast = tube.intersect_with(&ray, Solver::Bisection { iters: 10 });
-/// assert!(exact.hit && fast.hit && (exact.t_in - fast.t_in).abs() < 1e-2);
+/// assert!(exact.hit && fast.hit && (exact.entry.t - fast.entry.t).abs() < 1e-2);
 /// # Ok::<(), tubecast::GeometryError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -6,7 +6,7 @@
 //! what representing `o` itself loses.
 
 use crate::math::quadric::{sphere_chord, Chord};
-use crate::ray::{Interval, Ray};
+use crate::ray::{Crossing, Interval, Ray};
 use crate::real::Real;
 use crate::vec::V3;
 
@@ -30,5 +30,5 @@ pub(crate) fn sphere_line<T: Real>(ray: &Ray<T>, c: V3<T>, r: T, u: T) -> Interv
     // of l is not small against r.
     let n_in = (l - dn * h).normalize_or_zero();
     let n_out = (l + dn * h).normalize_or_zero();
-    Interval { t_in, t_out, n_in, n_out, u_in: u, u_out: u, hit: ok }.masked(ok)
+    Interval::new(Crossing { t: t_in, n: n_in, u }, Crossing { t: t_out, n: n_out, u }, ok).masked(ok)
 }

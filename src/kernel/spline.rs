@@ -149,9 +149,9 @@ use crate::vec::V3;
 /// )?;
 /// let ray = Ray::new(V3::new(1.0, 0.5, -5.0), V3::new(0.0, 0.0, 1.0));
 /// let iv = tube.intersect(&ray);
-/// assert!(iv.hit && iv.t_in < 5.0 && iv.t_out > 5.0);
+/// assert!(iv.hit && iv.entry.t < 5.0 && iv.exit.t > 5.0);
 /// assert_eq!(tube.intersect_with(&ray, Solver::Itp).hit, true);
-/// assert!(tube.sdf(ray.at(iv.t_in)).abs() < 1e-12); // on the surface
+/// assert!(tube.sdf(ray.at(iv.entry.t)).abs() < 1e-12); // on the surface
 /// # Ok::<(), tubecast::GeometryError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -315,7 +315,7 @@ fn certified<T: tubecast::Scalar>(cs: &[(QuadTube<f64>, RoundCone<f64>, Ray<f64>
         let (ti, to, real, ok) = cert_intersect(&t.cast::<T>(), &Ray::new(r.o.cast::<T>(), r.d.cast::<T>()));
         if real && ok {
             n += 1;
-            let e = (ti.to_f64() - k.t_in).abs().max((to.to_f64() - k.t_out).abs()) * r.d.length();
+            let e = (ti.to_f64() - k.entry.t).abs().max((to.to_f64() - k.exit.t).abs()) * r.d.length();
             err = err.max(e);
         }
     }
@@ -361,7 +361,7 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             s.iter()
                 .map(|(_, l, r)| black_box(l).intersect(black_box(r)))
-                .map(|iv| iv.t_in.min(1e9) + iv.t_out.min(1e9))
+                .map(|iv| iv.entry.t.min(1e9) + iv.exit.t.min(1e9))
                 .sum::<f32>()
         })
     });
@@ -369,7 +369,7 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             s.iter()
                 .map(|(t, _, r)| black_box(t).intersect(black_box(r)))
-                .map(|iv| iv.t_in.min(1e9) + iv.t_out.min(1e9))
+                .map(|iv| iv.entry.t.min(1e9) + iv.exit.t.min(1e9))
                 .sum::<f32>()
         })
     });
@@ -389,14 +389,14 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             w.iter()
                 .map(|(_, l, r)| black_box(l).intersect(black_box(r)))
-                .fold(W::zero(), |a, iv| a + iv.t_in.min(big) + iv.t_out.min(big))
+                .fold(W::zero(), |a, iv| a + iv.entry.t.min(big) + iv.exit.t.min(big))
         })
     });
     g.bench_function("spline/polynomial", |b| {
         b.iter(|| {
             w.iter()
                 .map(|(t, _, r)| black_box(t).intersect(black_box(r)))
-                .fold(W::zero(), |a, iv| a + iv.t_in.min(big) + iv.t_out.min(big))
+                .fold(W::zero(), |a, iv| a + iv.entry.t.min(big) + iv.exit.t.min(big))
         })
     });
     g.bench_function("experiment", |b| {

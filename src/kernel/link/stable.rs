@@ -4,7 +4,7 @@
 use super::RoundCone;
 use crate::math::frame::orthonormal_basis;
 use crate::math::quadric::{quadric_in_slab_disc, slab, sphere_chord, Chord};
-use crate::ray::{Interval, Ray};
+use crate::ray::{Crossing, Interval, Ray};
 use crate::real::{Mask, Real};
 use crate::vec::V3;
 
@@ -31,7 +31,8 @@ impl<T: Real> RoundCone<T> {
         let (n_out, u_out) = f.finish(self, hull.t_out, hull.out_a, hull.out_b, hull.cone_out, hull.side_out);
         let inv_dl = T::one() / f.dl;
         let (t_in, t_out) = ((hull.t_in + f.tc) * inv_dl, (hull.t_out + f.tc) * inv_dl);
-        Interval { t_in, t_out, n_in, n_out, u_in, u_out, hit }.masked(hit)
+        Interval::new(Crossing { t: t_in, n: n_in, u: u_in }, Crossing { t: t_out, n: n_out, u: u_out }, hit)
+            .masked(hit)
     }
 }
 

@@ -5,7 +5,7 @@ use super::direct::Direct;
 use super::QuadTube;
 use crate::math::bezier::bernstein2;
 use crate::math::roots::{cascade_level, default_tol, horner, itp, opposite, poly_breakpoints, poly_mul, Bracket};
-use crate::ray::{in_range, Interval, Ray};
+use crate::ray::{in_range, Crossing, Interval, Ray};
 use crate::real::{Mask, Real, Scalar};
 use crate::vec::V3;
 
@@ -426,6 +426,7 @@ impl<T: Real> RaySpace<T> {
         // `clip = false`: hit means only "the line meets it" (for hulls clipped later).
         let range = if clip { in_range(ray, t_in, t_out) } else { t_in.le(t_out) };
         let hit = found & self.near & range;
-        Interval { t_in, t_out, n_in, n_out, u_in, u_out, hit }.masked(hit)
+        Interval::new(Crossing { t: t_in, n: n_in, u: u_in }, Crossing { t: t_out, n: n_out, u: u_out }, hit)
+            .masked(hit)
     }
 }

@@ -39,7 +39,7 @@ fn both<T: Scalar>(t: &QuadTube<f64>, ray: &Ray<f64>) -> Option<(Line, Line, boo
     let rs = RaySpace::new(&tt, &rr)?;
     let (a, cert) = tt.polynomial_line(&rs, &rr, Path::Auto);
     let (c, _) = tt.polynomial_line(&rs, &rr, Path::Cascade);
-    let f = |iv: crate::ray::Interval<T>| (iv.hit, iv.t_in.to_f64(), iv.t_out.to_f64());
+    let f = |iv: crate::ray::Interval<T>| (iv.hit, iv.entry.t.to_f64(), iv.exit.t.to_f64());
     Some((f(a), f(c), cert))
 }
 

@@ -468,7 +468,7 @@ mod tests {
         let r = tubecast::Ray::new(V3::new(2.0f32, -10.0, 0.3), V3::new(0.0, 1.0, 0.0));
         let ours = l.intersect(&r);
         let h = s.intersect([2.0, -10.0, 0.3], [0.0, 1.0, 0.0], 0.0, f32::INFINITY).expect("hits cone");
-        assert!((h.t - ours.t_in).abs() < 1e-4, "embree {h:?} vs ours {}", ours.t_in);
+        assert!((h.t - ours.entry.t).abs() < 1e-4, "embree {h:?} vs ours {}", ours.entry.t);
         assert!(s.intersect([2.0, -10.0, 3.0], [0.0, 1.0, 0.0], 0.0, f32::INFINITY).is_none());
         assert!(Scene::round_linear(&dev, &[]).is_err());
     }

@@ -28,7 +28,7 @@
 use super::embree::{Device, EmbreeError, Scene};
 use std::sync::Arc;
 use tubecast::csg::Tagged;
-use tubecast::{Interval, Ray, RoundCone, V3};
+use tubecast::{Crossing, Interval, Ray, RoundCone, V3};
 use tubecast_render::accel::{Hit, Tracer};
 use tubecast_render::scene::Prim;
 
@@ -76,9 +76,8 @@ impl EmbreeTracer {
         if n.dot(ray.d) > 0.0 {
             n = -n;
         }
-        let prim = h.prim;
-        let link = self.prims.get(prim as usize)?.link;
-        Some(Hit { t: f64::from(h.t), n, u: f64::from(h.u), prim, link, entering: true })
+        self.prims.get(h.prim as usize)?;
+        Some(Hit { t: f64::from(h.t), n, u: f64::from(h.u), id: h.prim, entering: true })
     }
 
     /// Every surface Embree reports along `ray` in `[t_min, t_max]`, nearest first, appended
@@ -130,15 +129,11 @@ impl Tracer for EmbreeTracer {
         let mut hits = Vec::new();
         self.surfaces(ray, &mut hits);
         out.extend(hits.into_iter().map(|h| Tagged {
-            iv: Interval {
-                t_in: h.t,
-                t_out: f64::NEG_INFINITY,
-                n_in: h.n,
-                n_out: h.n,
-                u_in: h.u,
-                u_out: h.u,
-                hit: true,
-            },
+            iv: Interval::new(
+                Crossing { t: h.t, n: h.n, u: h.u },
+                Crossing { t: f64::NEG_INFINITY, n: h.n, u: h.u },
+                true,
+            ),
             id: h.prim,
         }));
     }

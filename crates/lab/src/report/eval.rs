@@ -180,7 +180,7 @@ pub struct Outcome {
 }
 
 fn outcome<T: Scalar>(iv: &Interval<T>) -> Outcome {
-    Outcome { hit: iv.hit, t_in: iv.t_in.to_f64(), t_out: iv.t_out.to_f64() }
+    Outcome { hit: iv.hit, t_in: iv.entry.t.to_f64(), t_out: iv.exit.t.to_f64() }
 }
 
 /// Results of one method on a case set, and its cost.

@@ -73,7 +73,7 @@ pub fn run_peers(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
             let l32: RoundCone<f32> = oracle::round_cone(&c.link).cast();
             let (o, d) = (oracle::v3(c.ray.o).cast::<f32>(), oracle::v3(c.ray.d).cast::<f32>());
             let ours = l32.intersect(&Ray::new(o, d));
-            let ours = if ours.hit { first(ours.t_in as f64, ours.t_out as f64) } else { None };
+            let ours = if ours.hit { first(ours.entry.t as f64, ours.exit.t as f64) } else { None };
             let scene = EScene::round_linear(&dev, &[l32]).map_err(perr)?;
             let emb = scene.intersect(o.to_array(), d.to_array(), 0.0, f32::INFINITY).map(|h| h.t as f64);
             let (_, e) = oracle::link_bound(c, f32::EPSILON as f64, 1.0);

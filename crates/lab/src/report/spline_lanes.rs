@@ -95,7 +95,7 @@ fn sweep<T: Real>(p: &Packs<T>, spline: bool, reps: usize) -> T {
     for _ in 0..reps {
         for (t, l, r) in p {
             let iv = if spline { black_box(t).intersect(black_box(r)) } else { black_box(l).intersect(black_box(r)) };
-            acc += iv.t_in.min(T::cst(1e9));
+            acc += iv.entry.t.min(T::cst(1e9));
         }
     }
     acc

@@ -57,7 +57,7 @@ fn kernel<T: Scalar>(c: &ThinCase, solver: Solver) -> Option<(f64, f64)> {
     let v = |p: Vec3| V3::new(T::from_f64(p.x), T::from_f64(p.y), T::from_f64(p.z));
     let tube = QuadTube::new(c.tube.b.map(v), c.tube.r.map(T::from_f64)).ok()?;
     let iv = tube.line_interval_with(&Ray::new(v(c.ray.o), v(c.ray.d)), solver);
-    iv.hit.then(|| (iv.t_in.to_f64(), iv.t_out.to_f64()))
+    iv.hit.then(|| (iv.entry.t.to_f64(), iv.exit.t.to_f64()))
 }
 
 /// The oracle's answers for one case in one precision: the inflated and deflated tubes'.

@@ -375,7 +375,7 @@ mod tests {
             let mut hits = 0;
             for k in 0..300 {
                 let ray = aim(&mut rng, scene, k);
-                let brute = prims.iter().filter_map(|p| p.first_hit(&ray)).map(|h| h.0).reduce(f64::min);
+                let brute = prims.iter().filter_map(|p| p.first_hit(&ray)).map(|h| h.t).reduce(f64::min);
                 let line = Ray::with_range(ray.o, ray.d, f64::NEG_INFINITY, f64::INFINITY);
                 let mut all = Vec::new();
                 for (i, p) in prims.iter().enumerate() {
@@ -389,7 +389,7 @@ mod tests {
                     let got = t.closest_hit(&ray);
                     assert_eq!(got.map(|h| h.t.to_bits()), brute.map(f64::to_bits), "ray {k}: {ray:?}");
                     if let Some(h) = got {
-                        assert_eq!(t.prim(h.prim).first_hit(&ray).map(|x| x.0.to_bits()), Some(h.t.to_bits()));
+                        assert_eq!(t.prim(h.id).first_hit(&ray).map(|x| x.t.to_bits()), Some(h.t.to_bits()));
                     }
                     assert_eq!(t.any_hit(&ray), any, "ray {k}");
                     let mut mine = Vec::new();

@@ -89,22 +89,11 @@ enum Test {
     Link(usize, tubecast::Interval<f64>),
 }
 
-/// The first surface crossing along a ray.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Hit {
-    /// Ray parameter.
-    pub t: f64,
-    /// Unit outward normal.
-    pub n: V3<f64>,
-    /// Curve parameter on the primitive.
-    pub u: f64,
-    /// Index into [`Tracer::prims`] ([`Bvh::prims`] for the BVH).
-    pub prim: u32,
-    /// Scene link index.
-    pub link: u32,
-    /// True when the crossing is an entry (false: the ray started inside).
-    pub entering: bool,
-}
+/// The first surface crossing along a ray, as every tracer answers it: the kernel crate's
+/// [`tubecast::Hit`], its `id` the primitive's index in the tracer ([`Tracer::prim`]; the scene
+/// link is `tracer.prim(hit.id).link`). Equal `t` is decided by [`tubecast::Hit::closer`] in
+/// every tracer, so all of them give the same answer bit for bit.
+pub type Hit = tubecast::Hit<f64>;
 
 /// A BVH over primitives.
 ///
@@ -120,7 +109,7 @@ pub struct Hit {
 /// let bvh = Bvh::build(scene.primitives());
 /// let down = Ray::new(V3::new(2.0, 3.0, 0.0), V3::new(0.0, -1.0, 0.0));
 /// let hit = bvh.closest_hit(&down).unwrap();
-/// assert_eq!((hit.t, hit.link, hit.entering), (2.5, 0, true));
+/// assert_eq!((hit.t, bvh.prims[hit.id as usize].link, hit.entering), (2.5, 0, true));
 /// assert!(!bvh.any_hit(&Ray::new(V3::new(2.0, 3.0, 0.0), V3::new(0.0, 1.0, 0.0))));
 /// ```
 pub struct Bvh {
@@ -431,17 +420,10 @@ impl Bvh {
                 self.visit(first, node.prim_count as usize, ray, dn, len, |test| {
                     let (id, got) = match test {
                         Test::Prim(id) => (id, self.prims[id].first_hit_unit(ray, dn, len)),
-                        Test::Link(id, iv) => {
-                            (id, iv.first_hit(ray.t_min, ray.t_max).map(|(t, n, u)| (t, n, u, t == iv.t_in)))
-                        }
+                        Test::Link(id, iv) => (id, iv.first_hit(ray.t_min, ray.t_max)),
                     };
-                    if let Some((t, n, u, entering)) = got {
-                        let link = self.prims[id].link;
-                        // Ties in t go to the lower link id, as in every tracer (same answer
-                        // whatever the traversal order).
-                        if best.map_or(true, |h| t < h.t || (t == h.t && link < h.link)) {
-                            best = Some(Hit { t, n, u, prim: id as u32, link, entering });
-                        }
+                    if let Some(h) = got {
+                        Hit { id: id as u32, ..h }.keep_closer(&mut best);
                     }
                     true
                 });
@@ -513,10 +495,7 @@ pub const HIT_COLUMNS: usize = 8;
 /// The part of the scene's surface union that a ray meets first: the entry and exit
 /// boundaries of the first component of the union (over the whole line) that overlaps
 /// `[t_min, t_max]`. The entry lies before `t_min` when the ray starts inside.
-pub fn first_component(
-    bvh: &dyn Tracer,
-    ray: &Ray<f64>,
-) -> Option<(tubecast::csg::Boundary<f64>, tubecast::csg::Boundary<f64>)> {
+pub fn first_component(bvh: &dyn Tracer, ray: &Ray<f64>) -> Option<(Hit, Hit)> {
     let mut ivs = Vec::new();
     bvh.line_intervals(ray, &mut ivs);
     let mut b = Vec::new();

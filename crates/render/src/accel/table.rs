@@ -36,10 +36,10 @@ pub fn closest_table(tracer: &dyn Tracer, rays: &[Ray<f64>]) -> Vec<[f64; HIT_CO
     rays.par_iter()
         .map(|ray| match tracer.closest_hit(ray) {
             Some(h) => {
-                let p = tracer.prim(h.prim);
-                let exit = p.intersect(ray).t_out;
+                let p = tracer.prim(h.id);
+                let exit = p.intersect(ray).exit.t;
                 let flag = if h.entering { 1.0 } else { -1.0 };
-                [h.t, exit, h.n.x, h.n.y, h.n.z, h.link as f64, h.u, flag]
+                [h.t, exit, h.n.x, h.n.y, h.n.z, p.link as f64, h.u, flag]
             }
             None => MISS_ROW,
         })
@@ -120,7 +120,7 @@ mod tests {
                 if f[5] != p[5] {
                     let other =
                         bvh.prims.iter().filter(|q| q.link as f64 == p[5]).filter_map(|q| q.first_hit(&rays[k]));
-                    assert!(other.map(|h| h.0).any(|t| t == f[0]), "ray {k}: links differ without a tie");
+                    assert!(other.map(|h| h.t).any(|t| t == f[0]), "ray {k}: links differ without a tie");
                 }
             }
         }

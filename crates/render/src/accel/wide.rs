@@ -42,7 +42,7 @@ const PIECE: usize = 1;
 /// let down = Ray::new(V3::new(2.0, 3.0, 0.0), V3::new(0.0, -1.0, 0.0));
 /// let wide = WideBvh::build(scene.primitives());
 /// let hit = wide.closest_hit(&down).unwrap();
-/// assert_eq!((hit.t, hit.link, hit.entering), (2.5, 0, true));
+/// assert_eq!((hit.t, wide.prim(hit.id).link, hit.entering), (2.5, 0, true));
 /// // Built from the scene: both links in one cluster, the same answer.
 /// let compact = WideBvh::from_scene(&scene, Model::Links).unwrap();
 /// assert_eq!(compact.closest_hit(&down), Some(hit));
@@ -249,23 +249,15 @@ impl Tracer for WideBvh {
         walk!(self, r, item, {
             if item & WHOLE != 0 {
                 let id = (item & !WHOLE) as usize;
-                if let Some((t, n, u, entering)) = self.prims[id].first_hit_unit(ray, dn, len) {
-                    let link = self.prims[id].link;
-                    // Ties in t go to the lower link id, as in every tracer.
-                    if best.map_or(true, |h| t < h.t || (t == h.t && link < h.link)) {
-                        best = Some(Hit { t, n, u, prim: id as u32, link, entering });
-                    }
+                if let Some(h) = self.prims[id].first_hit_unit(ray, dn, len) {
+                    Hit { id: id as u32, ..h }.keep_closer(&mut best);
                 }
             } else {
                 let pc = self.piece(item);
                 let k = pc.0;
                 self.clusters.hits(pc, ray, dn, len, |i, iv| {
-                    if let Some((t, n, u)) = iv.first_hit(ray.t_min, ray.t_max) {
-                        let link = self.clusters.link(k, i);
-                        if best.map_or(true, |h| t < h.t || (t == h.t && link < h.link)) {
-                            let prim = self.cluster_id(k, i);
-                            best = Some(Hit { t, n, u, prim, link, entering: t == iv.t_in });
-                        }
+                    if let Some(h) = iv.first_hit(ray.t_min, ray.t_max) {
+                        Hit { id: self.cluster_id(k, i), ..h }.keep_closer(&mut best);
                     }
                     true
                 });
@@ -411,13 +403,19 @@ pub(super) mod tests {
             let mut hits = 0;
             for k in 0..1500 {
                 let ray = aim(&mut rng, scene, k);
-                let brute = prims.iter().filter_map(|p| p.first_hit(&ray)).map(|h| h.0).reduce(f64::min);
+                let brute = prims.iter().filter_map(|p| p.first_hit(&ray)).map(|h| h.t).reduce(f64::min);
                 let got = wide.closest_hit(&ray);
                 assert_eq!(got.map(|h| h.t.to_bits()), brute.map(f64::to_bits), "ray {k}: {ray:?}");
                 if let Some(h) = got {
-                    let own = wide.prim(h.prim);
-                    assert_eq!(own.first_hit(&ray).map(|x| x.0.to_bits()), Some(h.t.to_bits()));
-                    assert_eq!(own.link, h.link);
+                    let own = wide.prim(h.id);
+                    assert_eq!(own.first_hit(&ray).map(|x| x.t.to_bits()), Some(h.t.to_bits()));
+                    // The one `closer` rule picks the same crossing as brute force under it.
+                    let b = prims.iter().filter_map(|p| p.first_hit(&ray)).fold(None, |mut b, x| {
+                        x.keep_closer(&mut b);
+                        b
+                    });
+                    let b = b.expect("brute force hits too");
+                    assert_eq!((own.link, h.n, h.u, h.entering), (b.id, b.n, b.u, b.entering), "ray {k}");
                     hits += 1;
                 }
                 assert_eq!(wide.any_hit(&ray), prims.iter().any(|p| p.meets(&ray)), "ray {k}");

@@ -12,7 +12,7 @@ use glam::Vec3A;
 use obvhs::bvh2::Bvh2;
 use obvhs::triangle::Triangle;
 use tubecast::csg::Tagged;
-use tubecast::{Interval, Ray, V3};
+use tubecast::{Crossing, Interval, Ray, V3};
 
 /// A triangle BVH over a [`SceneMesh`]; hits index the scene's exact primitives (the first
 /// primitive of the triangle's link), so colouring by link, radius or type works unchanged.
@@ -155,9 +155,7 @@ impl Tracer for MeshTracer {
         let k = hit.primitive_id as usize;
         let (t, n) = self.refine(k, ray);
         let t = if t.is_finite() { t } else { (s0 + hit.t as f64) / len };
-        let id = self.prim[k];
-        let link = self.prims.get(id as usize).map_or(0, |p| p.link);
-        Some(Hit { t, n, u: 0.0, prim: id, link, entering: n.dot(ray.d) < 0.0 })
+        Some(Hit { t, n, u: 0.0, id: self.prim[k], entering: n.dot(ray.d) < 0.0 })
     }
     fn any_hit(&self, ray: &Ray<f64>) -> bool {
         let len = ray.d.length();
@@ -177,7 +175,8 @@ impl Tracer for MeshTracer {
         for pair in xs.chunk_by(|a, b| a.0 == b.0).flat_map(|c| c.chunks_exact(2)) {
             let ((_, t_in, a), (_, t_out, b)) = (pair[0], pair[1]);
             let (n_in, n_out) = (self.refine(a, ray).1, self.refine(b, ray).1);
-            let iv = Interval { t_in, t_out, n_in, n_out, u_in: 0.0, u_out: 0.0, hit: true };
+            let iv =
+                Interval::new(Crossing { t: t_in, n: n_in, u: 0.0 }, Crossing { t: t_out, n: n_out, u: 0.0 }, true);
             out.push(Tagged { iv, id: self.prim[a] });
         }
     }

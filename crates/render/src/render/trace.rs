@@ -5,7 +5,8 @@ use super::shade::Palette;
 use super::{Camera, Options, Shading};
 use crate::accel::Tracer;
 use crate::scene::Scene;
-use tubecast::csg::{union, Boundary, Tagged};
+use tubecast::csg::{union, Tagged};
+use tubecast::Hit;
 use tubecast::Ray;
 use tubecast::V3;
 
@@ -54,11 +55,11 @@ impl Ctx<'_> {
         let Some(hit) = self.bvh.closest_hit(&ray) else {
             return Px { premul: [0.0; 3], alpha: 0.0, depth: f64::INFINITY };
         };
-        let (base, cov) = self.pal.color(self.scene, self.opts.color, &self.bvh.prim(hit.prim), hit.u);
+        let (base, cov) = self.pal.color(self.scene, self.opts.color, &self.bvh.prim(hit.id), hit.u);
         if cov < 1.0 {
             return self.faded(x, y, &ray, view);
         }
-        Px { premul: self.surface(x, y, &ray, view, (hit.prim, hit.t, hit.n), base), alpha: 1.0, depth: hit.t }
+        Px { premul: self.surface(x, y, &ray, view, (hit.id, hit.t, hit.n), base), alpha: 1.0, depth: hit.t }
     }
 
     /// The shaded colour of an opaque surface point `(prim, t, n)` of `ray` with base colour
@@ -138,7 +139,7 @@ impl Ctx<'_> {
 
     /// The exterior boundaries of the union of every primitive's intervals along `ray`, in
     /// increasing `t` within the ray's range.
-    fn boundaries(&self, ray: &Ray<f64>) -> Vec<Boundary<f64>> {
+    fn boundaries(&self, ray: &Ray<f64>) -> Vec<Hit<f64>> {
         let mut ivs: Vec<Tagged<f64>> = Vec::new();
         self.bvh.line_intervals(ray, &mut ivs);
         let mut bounds = Vec::new();

@@ -3,8 +3,8 @@
 use tubecast::QuadTube;
 use tubecast::RoundCone;
 use tubecast::Solver;
+use tubecast::{Crossing, Hit, Interval, Ray};
 use tubecast::{GeometryError, LinkShape, Primitive, Sphere, V3};
-use tubecast::{Interval, Ray};
 
 /// Which exact shape a primitive is (the tag of [`Shape`], for counting and comparing).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -60,7 +60,7 @@ pub enum Shape {
 /// let p = Prim::from_link(&link, 0);
 /// assert_eq!((p.kind(), p.origin), (PrimKind::Cylinder, [1e6 + 2.0, 0.0, 0.0]));
 /// let ray = tubecast::Ray::new(V3::new(1e6 + 2.0, 0.0, -10.0), V3::new(0.0, 0.0, 1.0));
-/// assert_eq!(p.first_hit(&ray).map(|h| h.0), Some(9.5));
+/// assert_eq!(p.first_hit(&ray).map(|h| h.t), Some(9.5));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Prim {
@@ -298,33 +298,32 @@ impl Prim {
         }
     }
 
-    /// The first surface crossing in `[t_min, t_max]`: `(t, normal, u, entering)`. Exact
-    /// for every kind: a spline's hull entry is used when it lies in the range (it is the
-    /// first entry of the pieces), otherwise the pieces are searched (a ray starting inside
-    /// the hull, e.g. a shadow ray leaving a bent segment, may be in a gap between pieces).
+    /// The first surface crossing in `[t_min, t_max]`, as a [`Hit`] whose `id` is the
+    /// primitive's link. Exact for every kind: a spline's hull entry is used when it lies in the
+    /// range (it is the first entry of the pieces), otherwise the pieces are searched (a ray
+    /// starting inside the hull, e.g. a shadow ray leaving a bent segment, may be in a gap
+    /// between pieces).
     #[inline]
-    pub fn first_hit(&self, ray: &Ray<f64>) -> Option<(f64, V3<f64>, f64, bool)> {
+    pub fn first_hit(&self, ray: &Ray<f64>) -> Option<Hit<f64>> {
         let len = ray.d.length();
         self.first_hit_unit(ray, ray.d * (1.0 / len), len)
     }
 
     /// [`Self::first_hit`] given `dn` and `len` as [`Self::intersect_unit`] takes them.
     #[inline]
-    pub(crate) fn first_hit_unit(&self, ray: &Ray<f64>, dn: V3<f64>, len: f64) -> Option<(f64, V3<f64>, f64, bool)> {
+    pub(crate) fn first_hit_unit(&self, ray: &Ray<f64>, dn: V3<f64>, len: f64) -> Option<Hit<f64>> {
         let iv = self.intersect_unit(ray, dn, len);
         if !iv.hit {
             return None;
         }
-        if self.kind() != PrimKind::Spline || (iv.t_in >= ray.t_min && iv.t_in <= ray.t_max) {
-            let (t, n, u) = iv.first_hit(ray.t_min, ray.t_max)?;
-            return Some((t, n, u, t == iv.t_in));
+        let own = |h: Hit<f64>| Hit { id: self.link, ..h };
+        if self.kind() != PrimKind::Spline || (iv.entry.t >= ray.t_min && iv.entry.t <= ray.t_max) {
+            return iv.first_hit(ray.t_min, ray.t_max).map(own);
         }
-        let mut best: Option<(f64, V3<f64>, f64, bool)> = None;
+        let mut best: Option<Hit<f64>> = None;
         self.pieces(ray, |p| {
-            if let Some((t, n, u)) = p.first_hit(ray.t_min, ray.t_max) {
-                if best.map_or(true, |b| t < b.0) {
-                    best = Some((t, n, u, t == p.t_in));
-                }
+            if let Some(h) = p.first_hit(ray.t_min, ray.t_max) {
+                own(h).keep_closer(&mut best);
             }
         });
         best
@@ -344,7 +343,7 @@ impl Prim {
         if !iv.hit {
             return false;
         }
-        if self.kind() != PrimKind::Spline || iv.t_in >= ray.t_min {
+        if self.kind() != PrimKind::Spline || iv.entry.t >= ray.t_min {
             return true;
         }
         let mut any = false;
@@ -377,21 +376,14 @@ impl Prim {
         if !iv.hit {
             return Interval::miss();
         }
-        let t_in = (tc + iv.t_in as f64) / len;
-        let t_out = (tc + iv.t_out as f64) / len;
+        let t_in = (tc + iv.entry.t as f64) / len;
+        let t_out = (tc + iv.exit.t as f64) / len;
         let hit = t_in <= t_out && t_out >= ray.t_min && t_in <= ray.t_max;
         if !hit {
             return Interval::miss();
         }
-        Interval {
-            t_in,
-            t_out,
-            n_in: iv.n_in.cast(),
-            n_out: iv.n_out.cast(),
-            u_in: iv.u_in as f64,
-            u_out: iv.u_out as f64,
-            hit,
-        }
+        let (entry, exit) = (iv.entry.to_f64(), iv.exit.to_f64());
+        Interval::new(Crossing { t: t_in, ..entry }, Crossing { t: t_out, ..exit }, hit)
     }
 }
 

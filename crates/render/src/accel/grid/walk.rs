@@ -73,8 +73,8 @@ impl Grid {
         go
     }
 
-    /// The closest surface crossing in `[t_min, t_max]`; ties in `t` go to the lower link id
-    /// (then the lower index), as in every tracer.
+    /// The closest surface crossing in `[t_min, t_max]`; equal `t` decided by
+    /// [`tubecast::Hit::closer`], as in every tracer.
     pub(super) fn closest(&self, ray: &Ray<f64>) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let mut seen = Mailbox::new();
@@ -84,11 +84,8 @@ impl Grid {
                     continue;
                 }
                 let p = &self.prims[id as usize];
-                if let Some((t, n, u, entering)) = p.first_hit(ray) {
-                    let tie = |b: &Hit| t == b.t && (p.link, id) < (b.link, b.prim);
-                    if best.map_or(true, |b| t < b.t || tie(&b)) {
-                        best = Some(Hit { t, n, u, prim: id, link: p.link, entering });
-                    }
+                if let Some(h) = p.first_hit(ray) {
+                    Hit { id, ..h }.keep_closer(&mut best);
                 }
             }
             best.map_or(true, |b| b.t > t1)
