@@ -9,7 +9,7 @@
 //! sweep (`tests/spline_hermite.rs` measures by how much); it is exact for straight segments
 //! whose node derivatives are the chord (`tᵢ = tⱼ = nⱼ − nᵢ`).
 //!
-//! **Faithful split** ([`HermiteSegment::split_adaptive`], issue 10): the cubic (its Bézier
+//! **Faithful split** ([`HermiteSegment::split_adaptive`], unlike Russig's fixed pair): the cubic (its Bézier
 //! form `P = [p₀, p₀ + m₀/3, p₁ − m₁/3, p₁]`, radius likewise) is halved by de Casteljau — an
 //! exact restriction — until every piece's *mid-point quadratic*
 //! `[L₀, (3(L₁ + L₂) − L₀ − L₃)/4, L₃]` is within the tolerance of it. That quadratic keeps the

@@ -35,7 +35,7 @@
 //!   on the line) and at `t = 0, 1`.
 //!   Needs no real intervals and no claim.
 //!
-//!   Where it can, it skips `P`'s cascade (issue 10's cost): on each real piece of `g`
+//!   Where it can, it skips `P`'s cascade, the costliest part of a hit: on each real piece of `g`
 //!   (bounded by points proven off the tube just past `g`'s roots, which then need no solve:
 //!   `Direct::g_piece_bounds`), the
 //!   Bernstein coefficients of `P` with a bound on their rounding count its roots from above
@@ -49,7 +49,7 @@
 //!   sign on a node certify it instead (`Direct::p_monotone`). On the spline bench's f32 rays
 //!   it certifies all 64 hits (60 before the Taylor bounds).
 //!
-//! # Conditioning (issue 10)
+//! # Conditioning
 //! In units of the bounding radius `R` (≈ `L/2 + r`) the coefficients of `g` are of size 1
 //! while the values that decide a thin tube's hits are `≈ (r/R)²`; `g` formed from its
 //! expanded coefficients carries an absolute rounding of `~ε`, i.e. a relative `ε·(R/r)²`:
@@ -276,10 +276,10 @@ impl<T: Real> QuadTube<T> {
         }
         // At most three quarters of the lanes left: the scalar kernel lane by lane (the same
         // answer bit for bit, by construction). The lane kernel pays each stage's worst lane in
-        // every lane, so a pack with one hit costs about what eight hits cost: one ray against
-        // a leaf's eight segments (`spline_leaf_hits` in `benches/spline.rs`, 1.2 segment hits
-        // per ray) cost 12× the link packet in f32x8, twice eight scalar calls; with this
-        // 6.8–7.4× (one run each at thresholds ½ and ¾, beside a CI build).
+        // every lane, so a pack with one hit costs about what eight hits cost: on one ray
+        // against a leaf's eight segments (`spline_leaf_hits` in `benches/spline.rs`) the lane
+        // kernel cost about twice what eight scalar calls cost without this, markedly less
+        // with it (thresholds ½ and ¾ measured alike).
         if T::LANES > 1 {
             let live = (0..T::LANES).filter(|&i| !far.lane(i)).count();
             if 4 * live <= 3 * T::LANES {

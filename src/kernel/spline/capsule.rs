@@ -1,4 +1,4 @@
-//! A static filter before the kernel (issue 10, "an OBB test before the kernel"): the chord
+//! A static filter before the kernel, cheaper than an oriented-box test: the chord
 //! capsule. It rejects, with a dozen dot products and one division, lines that the kernel's
 //! own set-up (re-centring, bounding radius, [`super::ray_space`]'s control-triangle test)
 //! would reject more expensively, and it never changes an answer (the caller also masks its

@@ -130,7 +130,7 @@ impl<T: Real> Direct<T> {
     /// its Bernstein count cannot give one. Close to a root of `g` where `g'` is small (a line
     /// nearly tangent to the tube there) `P ≈ −g'²` lies below the rounding bound of its
     /// coefficients on every small interval, while its derivative from the vectors is still
-    /// clearly non-zero (the spline bench's uncertified f32 hits, issue 10's cost).
+    /// clearly non-zero (the f32 hits of the spline bench that the count left uncertified).
     ///
     /// *Rounding.* Each value at `m` is a formula of at most ~12 roundings on the stored
     /// coefficients: its error is below `32ε` times the same formula on their magnitudes (the
@@ -254,7 +254,7 @@ impl<T: Real> Direct<T> {
         let (zero, one) = (T::zero(), T::one());
         // g'' is the quadratic 2(6A t² + 6B t + C) (module docs of `g2`): its roots in closed
         // form (no cancellation in the formula, `quadratic_roots_in`) replace a Newton level
-        // of the cascade (issue 10's cost). Its coefficients are dot products of the vectors,
+        // of the cascade, which would be an iterative solve. Its coefficients are dot products of the vectors,
         // rounded like g'' evaluated from them.
         // With a fixed-step bracket method (Bisection) the cascade from g''''s vertex is
         // kept: the vertex stays a breakpoint, narrowing g''s pieces, and its false-miss rates
@@ -345,8 +345,8 @@ impl<T: Real> Direct<T> {
     ///
     /// `z` is the root of the Taylor model of [`Self::g_root_start`] (the Halley start, third
     /// order about an extremum) pushed an eighth of its distance from the model's end further
-    /// towards the `g < 0` end: no Halley iterations (the solves for `g`'s roots were 20% of an
-    /// f32 hit, issue 10's cost). Where a piece's point fails the proof (the model has no root
+    /// towards the `g < 0` end: no Halley iterations (the solves for `g`'s roots were a large
+    /// share of an f32 hit's cost). Where a piece's point fails the proof (the model has no root
     /// there, or a poor one — from an end that is not an extremum —, or the push does not
     /// clear `τ`: a tube thinner than about `8τ`) that piece's root is solved as
     /// [`Self::g_roots_started`] solves it (the same start, the same root); on the spline
@@ -404,8 +404,8 @@ impl<T: Real> Direct<T> {
     /// with the smaller `|g'|` where that is inside `(0, 1)`, a root `e` of `g''`, the root of
     /// the model `g'(e) + ½g'''(e)δ² = 0` (exact to third order: `g''''` is constant), which
     /// needs only `g'''` (linear) besides the known `g'(e)`; NaN elsewhere (the regula-falsi
-    /// point). On the spline bench's f32 hits: 3.0 lock-step iterations per pair where 4.35
-    /// from the regula-falsi point, 3.2 per single solve where 3.7 (issue 10's cost). Every
+    /// point). On the spline bench's f32 hits it takes fewer lock-step iterations than the
+    /// regula-falsi point, per pair and per single solve. Every
     /// solver's cascade uses it ([`Self::g_extrema`] with [`Bracket::Newton`]).
     #[inline(always)]
     fn g1_root_start(&self, a: T, b: T, fa: T, fb: T) -> T {
@@ -423,8 +423,8 @@ impl<T: Real> Direct<T> {
     /// most piece ends) the model is `g + ½g''δ² = 0`, exact to third order: for a thin tube,
     /// whose real part is a narrow cap on `g`'s maximum, the start is within `~|g'''|δ²/(6|g''|)`
     /// of the root (`δ` the root's distance from the end). On the spline bench's f32 hits the
-    /// solves for `g`'s roots took 2.9 lock-step iterations per pair and 2.7 per single solve
-    /// from this start, 4.8 and 3.7 from the regula-falsi point (issue 10's cost).
+    /// solves for `g`'s roots take fewer iterations from this start than from the regula-falsi
+    /// point, per pair and per single solve.
     #[inline(always)]
     fn g_root_start(&self, a: T, b: T, ga: T, gb: T) -> T {
         let from_a = ga.abs().le(gb.abs());

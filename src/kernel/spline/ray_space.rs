@@ -128,7 +128,7 @@ impl<T: Real> RaySpace<T> {
         let rmax = tube.r[0].abs().max(tube.r[1].abs()).max(tube.r[2].abs());
         // The bounding radius is a sum of lengths, which square the offsets: below √MIN_POSITIVE
         // (1.5e-154 in f64) the squares underflow, a length came out 0 and `big` collapsed to
-        // `rmax` (fuzz finding issue 15, regression-tiny-extent: offsets 3.5e-168, a = 7.4e-171,
+        // `rmax` (fuzz finding regression-tiny-extent: offsets 3.5e-168, a = 7.4e-171,
         // big = a, 473 times too small). The ray-space coordinates were then ~473 instead of
         // ≤ 1, and t = tc + s·(big/|d|) multiplied the rounding of big/|d| — subnormal there,
         // |d| = 4e149: an absolute q/2 = 2⁻¹⁰⁷⁵, relative 1.4e-4 — by s: t was 208q off, the
@@ -289,7 +289,7 @@ impl<T: Real> RaySpace<T> {
         if valid.none() {
             return (v, t);
         }
-        // ITP, not Newton from `t`: Newton was 8% cheaper per hit (one or two steps from a
+        // ITP, not Newton from `t`: Newton is cheaper per hit (one or two steps from a
         // root of `P`) but stops on a step ≤ tol, which a thin tube's steep `F₁'` (its
         // `h'g'/√g` term) makes tiny before `F₁` is near zero: in f32 on long thin links the
         // p99 entry error rose from 8.8e-3 to 0.34 radii (docs/report/stability.md,
@@ -304,10 +304,10 @@ impl<T: Real> RaySpace<T> {
     /// isolated in powers of `t − tv` (shifted back). About the vertex `tv` of the centre line
     /// the coefficients carry no cancellation where the curve is slow (`p' ≈ 0`:
     /// regression-pinched-slow-end, where the roots in powers of `t` near the slow end were
-    /// noise). Until issue 10's cost work the roots in powers of `t` were added as well, for
-    /// the zero-radius tip on the ray (regression-tip-on-ray); that case is covered since by
-    /// `g(1)` formed from the end and by `g`'s breakpoints, which are candidates too (both ends
-    /// always among them), and the second isolation cost 27% of a hit.
+    /// noise). The roots in powers of `t` are not added as well: the case they would catch, a
+    /// zero-radius tip on the ray (regression-tip-on-ray), is covered by `g(1)` formed from the
+    /// end and by `g`'s breakpoints, which are candidates too (both ends always among them), and
+    /// a second isolation would cost a large share of a hit.
     #[inline(always)]
     pub(super) fn p_breakpoints(&self) -> ([T; 8], usize) {
         let (lo, hi) = (-self.tv, T::one() - self.tv);
@@ -414,7 +414,7 @@ impl<T: Real> RaySpace<T> {
             let n = v.normalize_or_zero();
             V3::select(n.length2().gt(T::zero()), n, fallback)
         };
-        // Where big/|d| is subnormal (a tiny tube, a long d: issue 15, tests/spline_fuzz_findings.rs,
+        // Where big/|d| is subnormal (a tiny tube, a long d: tests/spline_fuzz_findings.rs,
         // a 7e-171 tube with |d| = 4e149) so are these t: multiples of q = 2⁻¹⁰⁷⁴ (f64), which
         // no formula can beat: the hit o + t·d is then up to |d|·q/2 off along the ray, beyond
         // the relative error model. Here tc, big·(1/|d|), s·that and the sum each round by
