@@ -213,8 +213,7 @@ impl<T: Real> Itp<T> {
 /// Safeguarded Newton (`rtsafe`, [`halley_or_newton`]) taking Halley's step `x − 2ff'/(2f'² − ff'')`
 /// where that falls strictly inside the bracket and is within `[⅔, 2]` times Newton's (cubic
 /// convergence near a simple root: a solve from the regula-falsi start takes fewer dependent
-/// steps — issue 10's cost, the spline's `g'`, `g` and `P` solves: 3.7–4.3 steps where Newton
-/// took 5.7–6.6 on the spline bench's f32 hits); Newton's step otherwise. On the bracket
+/// steps, which is what the spline's `g'`, `g` and `P` solves on a hit cost); Newton's step otherwise. On the bracket
 /// `[a, b, f(a), f(b)]`, from `x0` where it lies strictly inside (NaN: the regula-falsi point).
 #[inline(always)]
 pub fn halley<T: Real>(
@@ -283,7 +282,7 @@ pub(crate) fn model_start<T: Real>(e: T, dir: T, [f, f1, f2]: [T; 3]) -> T {
 /// `[[a₀, a₁], [b₀, b₁], [f(a₀), f(a₁)], [f(b₀), f(b₁)]]`, starts `x0`): each result is bit for
 /// bit the one [`halley`] returns (the same operations; a solve that has converged is frozen
 /// while the other runs). Lock step lets the processor overlap two chains of dependent steps
-/// (issue 10's cost: the spline's entry and exit).
+/// (the spline's entry and exit, solved side by side).
 #[inline(always)]
 pub fn halley_pair<T: Real>(
     f: impl Fn(T) -> T,
@@ -386,7 +385,7 @@ impl<T: Real> Newton<T> {
         let xm = (a + b) * half;
         // A root within rounding of a bracket end (a root of `f` at a breakpoint of the
         // cascade's level below, where `f` is flat) makes every Newton step overshoot that
-        // end, and bisection then crept towards it for up to ~40 steps (issue 10's cost: 8% of
+        // end, and bisection then crept towards it for up to ~40 steps (a noticeable share of
         // the spline cascade's solves took 16 or more). Newton landing within `tol` beyond an
         // end whose value is within `2·tol·|f'|` of zero puts the root within `2·tol` of that
         // end to first order: take the end.
@@ -505,7 +504,7 @@ fn level_with<T: Real>(
         }
         if method == Bracket::Newton && T::LANES == 1 {
             // Solved below, two pieces at a time (scalars only: in lanes a pair runs until
-            // both solves have converged in every lane, which measured ~6% slower).
+            // both solves have converged in every lane, which measured slower than one at a time).
             pend[np] = (i, [a, b, fa, fb], valid);
             np += 1;
             continue;

@@ -1,4 +1,4 @@
-//! The certified count of the Polynomial solver (issue 10's cost): on each real piece of `g`,
+//! The certified count of the Polynomial solver (cheaper than `P`'s cascade): on each real piece of `g`,
 //! `P`'s Bernstein coefficients with a bound on their rounding ([`crate::math::descartes`])
 //! bound the number of critical points of the entry and exit; where that bound equals the
 //! number of sign changes of their sign functions, the entry and exit follow from one bracketed
@@ -41,7 +41,7 @@ impl<T: Real> RaySpace<T> {
         p
     }
 
-    /// Entry and exit by a **certified count** instead of `P`'s cascade (issue 10's cost).
+    /// Entry and exit by a **certified count** instead of `P`'s cascade (its costliest part).
     /// On each real piece `[a, b]` of `g` (consecutive roots `z` of `g` with `g > 0` between,
     /// or points proven off the tube past those roots: [`Direct::g_piece_bounds`], the same
     /// count and crossings)
@@ -69,11 +69,10 @@ impl<T: Real> RaySpace<T> {
     /// near a root of `g` where `g'` is small: there the count cannot be certain. A node whose
     /// count fails is then certified by Taylor bounds from the vectors instead where they prove
     /// `P` monotone on it (at most one simple root) or of one sign (none, with `c = 0`)
-    /// ([`Direct::p_monotone`]); halving continues to depth [`CERTIFY_DEPTH`]. On
-    /// `certified_count_agrees_with_the_cascade`'s f32 queries this raised the certified share
-    /// of thin tubes (L/r to 10³) from 53% to 81%, tapered 82% → 90%, pinched 61% → 78%, bent
-    /// 89% → 95%, unit 97% → 98% (f64 unchanged: its count was rarely swamped); on the spline
-    /// bench's f32 hits from 60 to all 64. The rest take the cascade.
+    /// ([`Direct::p_monotone`]); halving continues to depth [`CERTIFY_DEPTH`]. In `f32` this
+    /// certifies most thin, tapered and pinched tubes whose count alone was swamped
+    /// (`certified_count_agrees_with_the_cascade`; `f64`'s count is rarely swamped), and every
+    /// hit of the spline bench. The rest take the cascade.
     ///
     /// [`Direct::p_monotone`]: super::super::direct::Direct::p_monotone
     /// [`Direct::g_piece_bounds`]: super::super::direct::Direct::g_piece_bounds
@@ -165,15 +164,14 @@ impl<T: Real> RaySpace<T> {
     /// puts the root within about `tol`). The entry's and the exit's solves run in lock step
     /// (`math::roots::halley_pair`), each from the regula-falsi point of its side's own sign function on
     /// the bracket (its end values are known; `P`'s are their products, whose regula-falsi point
-    /// leans to the end where `|P|` is the smaller): on the spline bench's f32 hits 3.5
-    /// lock-step iterations per pair where 4.3, 3.4 per single solve where 3.9 (issue 10's
-    /// cost). Where the halving did not separate the roots (both still in one
+    /// leans to the end where `|P|` is the smaller), which takes fewer iterations on the spline
+    /// bench's f32 hits than `P`'s own regula-falsi point. Where the halving did not separate the roots (both still in one
     /// bracket, where `P` has the same sign at both ends) the side's root is found by ITP on
-    /// its own sign function instead, as before this change.
+    /// its own sign function instead.
     ///
-    /// Measured on the spline bench's f32 hits (`cargo bench --bench spline`, issue 10's cost):
-    /// ITP on `F₁`, `F̄₁` took 7.3 lock-step iterations per hit, Newton on `P` takes fewer, each
-    /// without the two square roots and ITP's division.
+    /// Newton on `P` rather than ITP on `F₁`, `F̄₁`: on the spline bench's f32 hits
+    /// (`cargo bench --bench spline`) it takes fewer iterations, each without the two square
+    /// roots and ITP's division.
     ///
     /// [`Direct::p_jet`]: super::super::direct::Direct::p_jet
     #[inline(always)]

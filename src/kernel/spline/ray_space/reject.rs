@@ -1,12 +1,12 @@
-//! Exact early rejections of a line before the ray-space polynomials are formed (issue 10's
-//! cost): the control triangle dilated by the largest radius ([`hull_misses`]), and `g`'s
+//! Exact early rejections of a line before the ray-space polynomials are formed (most lines
+//! miss, and a miss should cost little): the control triangle dilated by the largest radius ([`hull_misses`]), and `g`'s
 //! Bernstein coefficients on the four quarters of the segment ([`g_hull_misses`]).
 
 use crate::math::bezier::split_half;
 use crate::real::{Mask, Real};
 use crate::vec::V3;
 
-/// Lanes whose line surely misses the sweep (an exact early rejection, issue 10's cost): the
+/// Lanes whose line surely misses the sweep (an exact early rejection): the
 /// centre curve lies in the triangle of its control points `cᵢ` (Bernstein weights are a
 /// convex combination) and `r(t) ≤ ρ = max rᵢ` (likewise), so the sweep lies in the triangle
 /// dilated by `ρ`, and a line farther than `ρ` from the triangle misses it. Viewed along the
@@ -46,7 +46,7 @@ pub(super) fn hull_misses<T: Real>(c: [V3<T>; 3], rho: T, dhat: V3<T>) -> T::Mas
 }
 
 /// Lanes whose line surely misses the sweep by `g`'s **Bernstein coefficients** (an exact
-/// early rejection, issue 10's cost). In ray space (units of the bounding radius, the line
+/// early rejection). In ray space (units of the bounding radius, the line
 /// through the origin along `d̂`) the centre's offset from the line is the quadratic Bézier
 /// `w(t) = Σ Wᵢ Bᵢ(t)`, `Wᵢ = cᵢ × d̂`, and the radius `r(t) = Σ rᵢ Bᵢ(t)`, so
 /// `g = r² − |w|²` is a quartic whose Bernstein coefficients are those of the products
