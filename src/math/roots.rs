@@ -213,8 +213,8 @@ impl<T: Real> Itp<T> {
 /// Safeguarded Newton (`rtsafe`, [`halley_or_newton`]) taking Halley's step `x − 2ff'/(2f'² − ff'')`
 /// where that falls strictly inside the bracket and is within `[⅔, 2]` times Newton's (cubic
 /// convergence near a simple root: a solve from the regula-falsi start takes fewer dependent
-/// steps, which is what the spline's `g'`, `g` and `P` solves on a hit cost); Newton's step otherwise. On the bracket
-/// `[a, b, f(a), f(b)]`, from `x0` where it lies strictly inside (NaN: the regula-falsi point).
+/// steps, and dependent steps are most of what the spline's `g'`, `g` and `P` solves cost on a
+/// hit); Newton's step otherwise. On the bracket `[a, b, f(a), f(b)]`, from `x0` where it lies strictly inside (NaN: the regula-falsi point).
 #[inline(always)]
 pub fn halley<T: Real>(
     f: impl Fn(T) -> T,

@@ -254,8 +254,8 @@ impl<T: Real> Direct<T> {
         let (zero, one) = (T::zero(), T::one());
         // g'' is the quadratic 2(6A t² + 6B t + C) (module docs of `g2`): its roots in closed
         // form (no cancellation in the formula, `quadratic_roots_in`) replace a Newton level
-        // of the cascade, which would be an iterative solve. Its coefficients are dot products of the vectors,
-        // rounded like g'' evaluated from them.
+        // of the cascade, which would be an iterative solve. Its coefficients are dot products
+        // of the vectors, rounded like g'' evaluated from them.
         // With a fixed-step bracket method (Bisection) the cascade from g''''s vertex is
         // kept: the vertex stays a breakpoint, narrowing g''s pieces, and its false-miss rates
         // (tests/spline_approximate.rs) are those measured.

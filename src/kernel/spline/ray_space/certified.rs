@@ -165,9 +165,9 @@ impl<T: Real> RaySpace<T> {
     /// (`math::roots::halley_pair`), each from the regula-falsi point of its side's own sign function on
     /// the bracket (its end values are known; `P`'s are their products, whose regula-falsi point
     /// leans to the end where `|P|` is the smaller), which takes fewer iterations on the spline
-    /// bench's f32 hits than `P`'s own regula-falsi point. Where the halving did not separate the roots (both still in one
-    /// bracket, where `P` has the same sign at both ends) the side's root is found by ITP on
-    /// its own sign function instead.
+    /// bench's f32 hits than `P`'s own regula-falsi point. Where the halving did not separate
+    /// the roots (both still in one bracket, where `P` has the same sign at both ends) the
+    /// side's root is found by ITP on its own sign function instead.
     ///
     /// Newton on `P` rather than ITP on `F₁`, `F̄₁`: on the spline bench's f32 hits
     /// (`cargo bench --bench spline`) it takes fewer iterations, each without the two square

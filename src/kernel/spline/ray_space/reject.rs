@@ -1,6 +1,7 @@
 //! Exact early rejections of a line before the ray-space polynomials are formed (most lines
-//! miss, and a miss should cost little): the control triangle dilated by the largest radius ([`hull_misses`]), and `g`'s
-//! Bernstein coefficients on the four quarters of the segment ([`g_hull_misses`]).
+//! miss, and a miss should cost little): the control triangle dilated by the largest radius
+//! ([`hull_misses`]), and `g`'s Bernstein coefficients on the four quarters of the segment
+//! ([`g_hull_misses`]).
 
 use crate::math::bezier::split_half;
 use crate::real::{Mask, Real};
