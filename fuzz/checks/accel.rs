@@ -1,4 +1,4 @@
-// Differential check of the accelerators (issue 15), shared by fuzz/fuzz_targets/accel.rs and
+// Differential check of the accelerators (they must agree bit for bit), shared by fuzz/fuzz_targets/accel.rs and
 // crates/render/tests/fuzz_corpus_io.rs: on a scene decoded from the input, every accelerator
 // (`tracers`) gives exactly what a brute-force loop over the same primitives gives — the same
 // kernels run on the same rays, so the bound is zero: the closest hit's t (and whether there is

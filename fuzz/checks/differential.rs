@@ -1,4 +1,5 @@
-// Differential check (issue 15), shared by fuzz/fuzz_targets/differential.rs and
+// Differential check (the methods of one primitive held to each other's bounds), shared by
+// fuzz/fuzz_targets/differential.rs and
 // tests/fuzz_corpus_kernels.rs: every link method on the same input must agree within the
 // bounds derived in tests/link_props.rs (E = tubecast_oracle::link_error_bound):
 // 1. lanes (f32x8, f64x4) equal the scalar calls bit for bit (same IEEE operations, in order);

@@ -58,7 +58,7 @@ pub fn scale(t: &QuadTube<f64>) -> f64 {
 /// ≤ 8ε(D + |t·d|) with D = |o − b₀| (a far origin cancels against t·d), plus, with `subnormal`,
 /// the absolute rounding of a subnormal t (|t| < MIN_POSITIVE: a multiple of q = 2⁻¹⁰⁷⁴,
 /// whatever the kernel does): t = tc + s·(big·(1/|d|)), |s| ≤ 1, is four roundings of ≤ q/2
-/// each there, 2q in all: |d|·4q covers it (issue 15, tests/spline_fuzz_findings.rs: tiny tubes
+/// each there, 2q in all: |d|·4q covers it (a fuzz finding, tests/spline_fuzz_findings.rs: tiny tubes
 /// hit by rays with |d| ~ 1e149; that test calls it without the term to show it is needed).
 pub fn surface_bound(t: &QuadTube<f64>, ray: &Ray<f64>, tt: f64, subnormal: bool) -> f64 {
     let s = scale(t);

@@ -1,4 +1,4 @@
-//! **Experiment, not a kernel** (issue 10, "at link cost"): does a fixed-count Newton solve
+//! **Experiment, not a kernel** (can a spline hit cost about what a link costs?): does a fixed-count Newton solve
 //! with a positivity certificate — the simplest "proven-bracket finish" — make the spline
 //! kernel's hits cheap enough for ≤ 4× `RoundCone::intersect` in f32 scalar and in lanes?
 //! Nothing in tubecast uses this code; its rounding bounds are rough (constants below, not

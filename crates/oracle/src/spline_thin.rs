@@ -1,5 +1,5 @@
 //! Seeded quadratic-tube cases across length/radius ratios `L/r = 1 … 10⁵` in the families
-//! where spline kernels fail (issue 10 and issue 15's region), judged by
+//! where spline kernels fail (thin tubes in `f32`, extreme scales and direction ratios), judged by
 //! [`crate::quad_crossing_offset`]. Every number is `f32`-representable, so the `f32` and `f64`
 //! kernels answer the same question.
 

@@ -18,7 +18,7 @@
 //!   image difference) versus segment count;
 //! * [`run_mesh_real`] — the same trade-off on real-world-like scenes (nibabel's `standard.trk`,
 //!   a fibre bundle, the README's neuron assembly), frame time and memory against certified error;
-//! * [`run_spline_lanes`] — issue 10's cost: the spline kernel against the link per call, in
+//! * [`run_spline_lanes`] — what a spline costs: the spline kernel against the link per call, in
 //!   scalar and lanes, on the spline bench's rays, and the floor of any per-call lane kernel;
 //! * `run_peers` (feature `embree`) — Embree 3's round linear curves on the same `f32` rays.
 //!

@@ -1,4 +1,4 @@
-//! Issue 10's cost in lanes: the spline kernel (`QuadTube::intersect`, the default
+//! What a spline costs, scalar and in lanes: the spline kernel (`QuadTube::intersect`, the default
 //! `Polynomial` solver) against the stable link (`RoundCone::intersect`) on the spline bench's
 //! rays (`benches/common/spline_cases.rs`), per call as `cargo bench --bench spline` calls them,
 //! by repeated median of paired ratios (not criterion), and the **floor** that any per-call lane

@@ -1,4 +1,5 @@
-//! The spline kernel's length/radius sweep (issue 10): `L/r = 10 … 10⁵` over the eleven thin-tube
+//! The spline kernel's length/radius sweep, which shows whether its error stays linear in `L/r`:
+//! `L/r = 10 … 10⁵` over the eleven thin-tube
 //! families of `tests/spline_conditioning.rs` ([`tubecast_oracle::thin_case`]), every solver in
 //! `f32` and `f64`, judged against the independent thin-tube oracle
 //! ([`tubecast_oracle::quad_crossing_offset`]) with the kernel's derived backward-error band

@@ -6,7 +6,8 @@ use tubecast::HermiteSegment;
 use tubecast::V3;
 
 /// Default tolerance of the spline model: certified distance to the cubic Hermite sweep over
-/// the local radius (issue 10).
+/// the local radius (a thousandth of a radius, where Russig's fixed pair of pieces can be off by
+/// a whole radius).
 pub const SPLINE_TOLERANCE: f64 = 1e-3;
 /// Most halvings of one Hermite segment (at most 2⁷ = 128 quadratic pieces; their index is a `u8`).
 pub const SPLINE_MAX_DEPTH: u32 = 7;
