@@ -86,7 +86,7 @@ pub const RAY_BYTES: u64 = std::mem::size_of::<tubecast::Ray<f64>>() as u64;
 /// The references a grid lists over Steiner's expectation ([`grid_footprint`]): the voxelizer is
 /// conservative (it lists every voxel the padded solid may meet) and grows the radii by the
 /// margin; the lab's voxel sweep and `generate bundle` at 10⁶ links list at most this factor
-/// over the expectation (`tubecast-lab voxel` prints the measured ratios).
+/// over the expectation (the voxel report's `refs / E(h)` column, `tubecast-lab voxel`).
 pub const GRID_REFERENCE_MARGIN: f64 = 1.08;
 
 /// Bytes per pixel of `render`'s image: linear RGB, alpha and depth (24 B, [`crate::render::
