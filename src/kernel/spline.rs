@@ -47,7 +47,7 @@
 //!   cascade. Where the count's rounding swamps `P` (a thin tube in `f32`, or next to a root of
 //!   `g` with a small `g'`), Taylor bounds from the vectors that prove `P` monotone or of one
 //!   sign on a node certify it instead (`Direct::p_monotone`). On the spline bench's f32 rays
-//!   it certifies all 64 hits (60 before the Taylor bounds).
+//!   it certifies all 64 hits (60 with the count alone).
 //!
 //! # Conditioning
 //! In units of the bounding radius `R` (≈ `L/2 + r`) the coefficients of `g` are of size 1

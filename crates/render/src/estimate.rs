@@ -45,8 +45,8 @@ use std::path::Path;
 /// to eight links), the pieces' table and Morton keys (8 B per link each) and the chunks'
 /// trees; while the clusters' nodes are stored in leaf order, the heads and the leaf order's
 /// tables (about 5 B per link). The clusters' nodes are stored once, after the tree is built
-/// (`accel::cluster`'s `Pending`); until then they were stored in run order and copied into
-/// leaf order, two copies at once, and this share was 1.0. Fitted with the builder's buffers to
+/// (`accel::cluster`'s `Pending`): stored in run order and copied into leaf order they would be
+/// held twice at once, and this share would be 1.0. Fitted with the builder's buffers to
 /// the peaks of `TUBECAST_PEAK_RSS=1 tubecast info FILE --radius 0.12` on `generate bundle
 /// --segments 84` scenes (plain release build, `VmHWM`; 24.4 B scene and 32.8 B tree per
 /// link): 1150 MB at 10⁷ links is 50 B per link over the scene and 215 B per item of the

@@ -194,8 +194,8 @@ impl Scene {
         f
     }
 
-    /// The same as [`Self::spline_primitives`] (the faithful split is the default since issue
-    /// 10; kept for callers that named it).
+    /// The same as [`Self::spline_primitives`] (the faithful split is the default; this name is
+    /// kept for callers that use it).
     pub fn faithful_spline_primitives(&self) -> Result<Vec<Prim>, SceneError> {
         self.spline_primitives()
     }
