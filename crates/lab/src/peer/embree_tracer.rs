@@ -89,7 +89,7 @@ impl EmbreeTracer {
         let mut t_near = ray.t_min;
         for _ in 0..4 * self.prims.len() + 16 {
             let Some(h) = self.hit_from(ray, t_near) else { return };
-            let r = self.prims[h.prim as usize].max_radius() as f64;
+            let r = self.prims[h.id as usize].max_radius() as f64;
             let next = (h.t + (1e-3 * r).max(h.t.abs() * 2f64.powi(-20))) as f32;
             t_near = f64::from(if next > h.t as f32 { next } else { next_up(h.t as f32) });
             out.push(h);
@@ -134,7 +134,7 @@ impl Tracer for EmbreeTracer {
                 Crossing { t: f64::NEG_INFINITY, n: h.n, u: h.u },
                 true,
             ),
-            id: h.prim,
+            id: h.id,
         }));
     }
 
@@ -165,7 +165,7 @@ mod tests {
         let (he, hb) = (e.closest_hit(&hit_ray).unwrap(), b.closest_hit(&hit_ray).unwrap());
         assert!((he.t - 2.5).abs() < 1e-5 && (hb.t - 2.5).abs() < 1e-12, "{he:?} {hb:?}");
         assert!((he.n - V3::new(0.0, 1.0, 0.0)).length() < 1e-5, "{he:?}");
-        assert_eq!(e.prim(he.prim).link, he.link);
+        assert_eq!(e.prim(he.id).link, 1, "x = 1.3 lies on link 1");
         assert!(e.any_hit(&hit_ray));
         let miss = Ray::new(V3::new(1.3, 3.0, 0.6), V3::new(0.0, -1.0, 0.0));
         assert!(e.closest_hit(&miss).is_none() && b.closest_hit(&miss).is_none() && !e.any_hit(&miss));

@@ -366,7 +366,7 @@ mod tests {
                 [1, 5, 64].iter().map(|&c| WideBvh::from_scene_chunked(scene, Model::Links, c).unwrap()).collect();
             for t in &trees {
                 // (The leaves' items are the tree's own table now: `prim` covers them below.)
-                assert!(cwbuild::depth(t.tree()) <= cwbuild::MAX_DEPTH);
+                assert!(t.depth() <= cwbuild::MAX_DEPTH);
                 let mut links: Vec<u32> = (0..t.prim_count() as u32).map(|i| t.prim(i).link).collect();
                 links.sort_unstable();
                 assert!(links.iter().enumerate().all(|(k, &l)| l == k as u32), "every link once");

@@ -63,12 +63,13 @@ pub mod grid;
 mod packet;
 mod table;
 mod tracer;
+pub mod tree;
 mod wide;
 
 pub use chunked::{CHUNK, CHUNKS_AT_ONCE};
 pub use table::{closest_table, crossings_table, hit_table, MISS_ROW};
 pub use tracer::Tracer;
-pub use wide::WideBvh;
+pub use wide::{TreeExport, WideBvh};
 
 /// How far (in obvhs units, beyond the `4·pad` rounding margin) a clipped ray restarts before
 /// its entry into the scene box: more than obvhs's absolute `10⁻⁴` below which its wide node

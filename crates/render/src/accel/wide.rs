@@ -1,22 +1,19 @@
-//! An 8-wide compressed BVH (obvhs's CWBVH: 8 children per node, child boxes quantised to
-//! 8 bits per plane, rounded outward, so every child box contains the `f32` box it quantises)
-//! over the same padded `f32` boxes and the same scene-box clipping as [`Bvh`] (see the parent
-//! module's bound), so the culling is as conservative. Its items are whole [`Prim`]s (each
-//! answered by the scalar [`Prim`] path) and, when built from a scene
+//! An eight-wide BVH: obvhs's PLOC build collapsed to eight children per node (CWBVH, child
+//! boxes quantised outward), then stored with plain `f32` planes and walked nearest-first
+//! ([`super::tree`]), over the same padded `f32` boxes and the same scene-box clipping as
+//! [`Bvh`] (see the parent module's bound), so the culling is as conservative. Its items are
+//! whole [`Prim`]s (each answered by the scalar [`Prim`] path) and, when built from a scene
 //! ([`WideBvh::from_scene`]), the links of clusters of up to eight consecutive links of a chain
-//! that share one `f64` origin and store each node once (`cluster` module: about 22 bytes per
-//! link instead of an 88-byte [`Prim`]; with the item table and the nodes, 34.5 bytes per link
-//! on a generated bundle against 92 whole); a leaf holds up to three items. Answers equal brute force over the
-//! tracer's own primitives ([`Tracer::prim`]) bit for bit: the same exact kernel results,
-//! only visited in another order.
+//! that share one `f64` origin and store each node once (`cluster` module); a leaf holds up
+//! to three items. Answers equal brute force over the tracer's own primitives
+//! ([`Tracer::prim`]) bit for bit: the same exact kernel results, only visited in another
+//! order, and equal `t` decided by the one `closer` rule.
 
 use super::chunked::CHUNK;
 use super::cluster::{Clusters, Pending};
+use super::tree::{Node, Tree, TreeRay};
 use super::{Bvh, Frame, Hit, Tracer};
 use crate::scene::{Model, Prim, Scene, SceneError};
-#[allow(unused_imports)] // named by obvhs::traverse!
-use glam::UVec2;
-use obvhs::cwbvh::CwBvh;
 use tubecast::csg::Tagged;
 use tubecast::Ray;
 
@@ -29,7 +26,24 @@ const WHOLE: u32 = 1 << 31;
 /// (nodes stored once, one origin per cluster), not the tree's.
 const PIECE: usize = 1;
 
-/// A CWBVH over primitives.
+/// [`WideBvh::export`]: the tree as plain data.
+#[derive(Clone, Debug)]
+pub struct TreeExport<'a> {
+    /// The nodes; the root is node 0 (none for an empty tree).
+    pub nodes: &'a [Node],
+    /// Per leaf-order item (the ranges of [`Node::child`] / [`Node::count`]): its primitive id.
+    pub item_prims: Vec<u32>,
+    /// World point at the tree frame's origin.
+    pub centre: [f64; 3],
+    /// Tree coordinates are `(x − centre)·scale` (a power of two).
+    pub scale: f64,
+    /// Padding of every box, world units.
+    pub pad: f64,
+    /// True for a tree over nothing (every ray misses).
+    pub empty: bool,
+}
+
+/// An eight-wide BVH over primitives (see [`super::tree`]).
 ///
 /// ```
 /// use tubecast::{Ray, V3};
@@ -49,7 +63,10 @@ const PIECE: usize = 1;
 /// assert_eq!((compact.prims().len(), compact.prim_count()), (0, 2));
 /// ```
 pub struct WideBvh {
-    bvh: CwBvh,
+    tree: Tree,
+    /// Depth of the obvhs tree the [`Tree`] was made from (checked by the build tests).
+    #[cfg(test)]
+    depth: usize,
     /// Per leaf-order item: `WHOLE | index into prims`, or a piece of a cluster.
     items: Vec<u32>,
     /// Primitives stored whole, in leaf order: ids `0..prims.len()`.
@@ -143,15 +160,27 @@ impl WideBvh {
         let frame = Frame::bounding((0..n).map(world));
         if n == 0 {
             let clusters = Clusters::default();
-            return Self { bvh: CwBvh::default(), items: Vec::new(), prims, clusters, frame, piece };
+            let tree = Tree::default();
+            return Self {
+                tree,
+                #[cfg(test)]
+                depth: 0,
+                items: Vec::new(),
+                prims,
+                clusters,
+                frame,
+                piece,
+            };
         }
         // obvhs PLOC, medium quality, with a depth guard for degenerate scenes (cwbuild.rs), in
         // spatial chunks for large scenes (chunked.rs).
         let mut bvh = super::chunked::build(n, |j| frame.padded(world(j)), chunk);
-        // obvhs reserves one node per item; a node holds up to eight children (of up to three
-        // items each), so most of that is spare: give it back.
-        bvh.nodes.shrink_to_fit();
         let order = std::mem::take(&mut bvh.primitive_indices);
+        assert!(order.len() < 1 << 30, "leaf items are addressed in 30 bits");
+        let tree = Tree::from_cwbvh(&bvh);
+        #[cfg(test)]
+        let depth = super::cwbuild::depth(&bvh);
+        drop(bvh);
         let mut whole = Vec::with_capacity(np);
         let (mut new_c, mut old_c) = (vec![u32::MAX; clusters.len()], Vec::with_capacity(clusters.len()));
         let items: Vec<u32> = order
@@ -173,7 +202,16 @@ impl WideBvh {
             .collect();
         drop((order, pieces, new_c));
         let clusters = clusters.into_clusters(old_c.into_iter());
-        Self { bvh, items, prims: whole, clusters, frame, piece }
+        Self {
+            tree,
+            #[cfg(test)]
+            depth,
+            items,
+            prims: whole,
+            clusters,
+            frame,
+            piece,
+        }
     }
 
     /// The cluster and link range of a piece item.
@@ -185,13 +223,35 @@ impl WideBvh {
 
     /// Number of nodes (each of up to eight children).
     pub fn node_count(&self) -> usize {
-        self.bvh.nodes.len()
+        self.tree.nodes().len()
     }
 
-    /// The obvhs tree (for the tests of its build).
+    /// Depth of the obvhs tree it was built from (for the tests of its build).
     #[cfg(test)]
-    pub(crate) fn tree(&self) -> &CwBvh {
-        &self.bvh
+    pub(crate) fn depth(&self) -> usize {
+        self.depth
+    }
+
+    /// The tree as plain data, for a backend that traverses it elsewhere (a GPU): the nodes
+    /// exactly as built ([`Node`]: `f32` planes, structure of arrays), the primitive id
+    /// ([`Tracer::prim`]) of each leaf-order item a leaf's range addresses, and the frame that
+    /// maps world coordinates into the tree's (`(x − centre)·scale`, boxes padded by `pad`
+    /// world units; see the `accel` module docs for the bound that padding covers).
+    pub fn export(&self) -> TreeExport<'_> {
+        let item_prims = self
+            .items
+            .iter()
+            .map(|&item| {
+                if item & WHOLE != 0 {
+                    item & !WHOLE
+                } else {
+                    let (c, i, _) = self.piece(item);
+                    self.cluster_id(c, i)
+                }
+            })
+            .collect();
+        let f = &self.frame;
+        TreeExport { nodes: self.tree.nodes(), item_prims, centre: f.centre, scale: f.scale, pad: f.pad, empty: !f.any }
     }
 
     /// Number of clusters of links (0 when built by [`Self::build`]).
@@ -206,16 +266,14 @@ impl WideBvh {
     }
 }
 
-/// Walk the tree along `$ray` (an obvhs ray, `tmax` updated by the caller's block), running
-/// `$item` with `$id` bound to each item (leaf-order index) whose box is entered; `break`
-/// stops the walk.
+/// Walk the tree along `$ray` (a [`TreeRay`] whose `t_max` the block may lower through
+/// `$tmax`), running `$item` with `$id` bound to each item (leaf-order index) of each leaf
+/// entered, nearest leaf first; the block returns false to stop the walk.
 macro_rules! walk {
-    ($self:expr, $ray:ident, $id:ident, $item:block) => {{
-        let mut state = $self.bvh.new_traversal($ray.direction);
-        let mut node;
-        obvhs::traverse!($self.bvh, node, state, node.intersect_ray(&$ray, state.oct_inv4), {
-            let $id = $self.items[state.primitive_id as usize];
-            $item
+    ($self:expr, $ray:ident, $tmax:ident, $id:ident, $item:block) => {{
+        let mut tr = TreeRay::new($ray.origin.into(), $ray.direction.into(), $ray.tmax);
+        $self.tree.walk(&mut tr, |leaf, $tmax| {
+            $self.items[leaf.first as usize..(leaf.first + leaf.count) as usize].iter().all(|&$id| $item)
         });
     }};
 }
@@ -242,11 +300,11 @@ impl Tracer for WideBvh {
     fn closest_hit(&self, ray: &Ray<f64>) -> Option<Hit> {
         let (a, b) = Bvh::range(ray);
         let c = self.frame.clip(ray, a, b)?;
-        let mut r = c.ray;
+        let r = c.ray;
         let margin = 8.0 * self.frame.pad;
         let (dn, len) = Bvh::unit(ray);
         let mut best: Option<Hit> = None;
-        walk!(self, r, item, {
+        walk!(self, r, tmax, item, {
             if item & WHOLE != 0 {
                 let id = (item & !WHOLE) as usize;
                 if let Some(h) = self.prims[id].first_hit_unit(ray, dn, len) {
@@ -265,10 +323,11 @@ impl Tracer for WideBvh {
             // Cull by the best hit so far, loosened by the box margin (module docs).
             if let Some(h) = best {
                 let tb = (((h.t - c.t0) * c.len + margin) * c.scale) as f32;
-                if tb < r.tmax {
-                    r.tmax = tb;
+                if tb < *tmax {
+                    *tmax = tb;
                 }
             }
+            true
         });
         best
     }
@@ -281,17 +340,13 @@ impl Tracer for WideBvh {
         let r = c.ray;
         let (dn, len) = Bvh::unit(ray);
         let mut found = false;
-        walk!(self, r, item, {
-            // (`break` may leave only the macro's inner loop: never test again once found.)
-            found = found
-                || if item & WHOLE != 0 {
-                    self.prims[(item & !WHOLE) as usize].meets_unit(ray, dn, len)
-                } else {
-                    !self.clusters.hits(self.piece(item), ray, dn, len, |_, _| false)
-                };
-            if found {
-                break;
-            }
+        walk!(self, r, _tmax, item, {
+            found = if item & WHOLE != 0 {
+                self.prims[(item & !WHOLE) as usize].meets_unit(ray, dn, len)
+            } else {
+                !self.clusters.hits(self.piece(item), ray, dn, len, |_, _| false)
+            };
+            !found
         });
         found
     }
@@ -303,7 +358,7 @@ impl Tracer for WideBvh {
         let line = Ray::with_range(ray.o, ray.d, f64::NEG_INFINITY, f64::INFINITY);
         let (dn, len) = Bvh::unit(&line);
         let r = c.ray;
-        walk!(self, r, item, {
+        walk!(self, r, _tmax, item, {
             if item & WHOLE != 0 {
                 let id = item & !WHOLE;
                 self.prims[id as usize].pieces(&line, |iv| out.push(Tagged { iv, id }));
@@ -315,12 +370,12 @@ impl Tracer for WideBvh {
                     true
                 });
             }
+            true
         });
     }
 
     fn memory_bytes(&self) -> usize {
-        self.bvh.nodes.capacity() * std::mem::size_of::<obvhs::cwbvh::node::CwBvhNode>()
-            + self.bvh.primitive_indices.capacity() * 4
+        self.tree.memory_bytes()
             + self.items.capacity() * 4
             + self.prims.capacity() * std::mem::size_of::<Prim>()
             + self.clusters.bytes()
