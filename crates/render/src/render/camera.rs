@@ -196,6 +196,83 @@ impl Camera {
         Self::look_at(c + dir * dist, c, up, fov_deg, width, height)
     }
 
+    /// This camera's view (direction, up, field of view, image size) moved so that the spheres
+    /// `(centre, radius)` fill the image: the point looked at is the middle of their extent
+    /// across the view, and the eye as close as keeps every sphere inside the image with 5% to
+    /// spare on the side that limits (an orthographic camera: the image's half-height set
+    /// likewise, the eye in front of every sphere). A box fitted from its corners leaves a
+    /// scene that does not fill its box far smaller than the image; this fits what is there.
+    /// `None` when there is no sphere or the extent is empty or not finite.
+    ///
+    /// ```
+    /// use tubecast::V3;
+    /// use tubecast_render::render::Camera;
+    /// let cam = Camera::look_at(V3::new(0.0, 0.0, 10.0), V3::zero(), V3::new(0.0, 1.0, 0.0), 90.0, 100, 100).unwrap();
+    /// // A sphere of radius 1 at (5, 0, 0): looked at, and seen at 95% of the image.
+    /// let f = cam.framed([([5.0, 0.0, 0.0], 1.0)].into_iter()).unwrap();
+    /// assert!((f.eye.x - 5.0).abs() < 1e-12 && f.forward == cam.forward);
+    /// // tan 45° = 1: the sphere's silhouette, half-width 1/cos 45° = √2, is 0.95 of the view.
+    /// assert!((f.eye.z - 2f64.sqrt() / 0.95).abs() < 1e-12);
+    /// ```
+    pub fn framed<I: Iterator<Item = ([f64; 3], f64)> + Clone>(&self, spheres: I) -> Option<Self> {
+        const FILL: f64 = 0.95;
+        let axes = |p: [f64; 3]| {
+            let p = V3::from(p);
+            [p.dot(self.right), p.dot(self.up), p.dot(self.forward)]
+        };
+        // Extents along right, up and forward, spheres included.
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for (p, r) in spheres.clone() {
+            let q = axes(p);
+            for k in 0..3 {
+                lo[k] = lo[k].min(q[k] - r.max(0.0));
+                hi[k] = hi[k].max(q[k] + r.max(0.0));
+            }
+        }
+        let mid: [f64; 3] = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
+        let size = (0..2).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+        if !(mid.iter().all(|m| m.is_finite()) && size.is_finite() && size > 0.0) {
+            return None;
+        }
+        let centre = self.right * mid[0] + self.up * mid[1] + self.forward * mid[2];
+        let aspect = self.width as f64 / self.height as f64;
+        let tv = (self.fov_deg * 0.5).to_radians().tan();
+        let th = tv * aspect;
+        if self.ortho > 0.0 {
+            // Parallel rays: the half-height that holds both extents, the eye in front of all.
+            let half = ((hi[1] - lo[1]) * 0.5).max((hi[0] - lo[0]) * 0.5 / aspect) / FILL;
+            let back = (mid[2] - lo[2]) + 0.05 * size;
+            return Some(Self { eye: centre - self.forward * back, ortho: half, ..*self });
+        }
+        // A sphere (x, y, z) about the centre, radius r, stays inside the horizontal field when
+        // |x| + r·√(1 + th²) ≤ FILL·th·(dist + z): its silhouette's edge leans out by 1/cos of
+        // the field's half-angle at most. Likewise vertically; and in front of the eye.
+        let (kh, kv) = ((1.0 + th * th).sqrt(), (1.0 + tv * tv).sqrt());
+        let mut dist: f64 = 0.0;
+        for (p, r) in spheres {
+            let q = axes(p);
+            let (x, y, z, r) = (q[0] - mid[0], q[1] - mid[1], q[2] - mid[2], r.max(0.0));
+            let need = ((x.abs() + r * kh) / (FILL * th)).max((y.abs() + r * kv) / (FILL * tv)) - z;
+            dist = dist.max(need).max(r - z + 1e-3 * size);
+        }
+        dist.is_finite().then(|| Self { eye: centre - self.forward * dist, ..*self })
+    }
+
+    /// The camera whose ray for pixel `(x, y)` runs through the point `(dx, dy)` pixels off
+    /// that pixel's centre (`dx` to the right, `dy` down): the view direction turned (or, for an
+    /// orthographic camera, the eye moved) by that much. `forward` is then no longer of unit
+    /// length; it is for sampling within pixels (antialiasing), not for framing.
+    pub(super) fn offset(&self, dx: f64, dy: f64) -> Self {
+        let th = (self.fov_deg * 0.5).to_radians().tan();
+        let aspect = self.width as f64 / self.height as f64;
+        let (sx, sy) = (2.0 * dx / self.width as f64 * th * aspect, -2.0 * dy / self.height as f64 * th);
+        if self.ortho > 0.0 {
+            let k = self.ortho / th;
+            return Self { eye: self.eye + self.right * (sx * k) + self.up * (sy * k), ..*self };
+        }
+        Self { forward: self.forward + self.right * sx + self.up * sy, ..*self }
+    }
+
     /// The primary ray through the centre of pixel `(x, y)` (`y = 0` is the top row). Its
     /// direction is `forward + sx·right + sy·up` (not unit length); `t` is measured in it.
     pub fn ray(&self, x: u32, y: u32) -> Ray<f64> {

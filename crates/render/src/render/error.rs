@@ -27,6 +27,8 @@ pub enum RenderError {
     Opacity(f64),
     /// More than 1024 ambient-occlusion rays.
     AoRays(u32),
+    /// Antialiasing samples per side outside `1..=16`.
+    Antialiasing(u32),
     /// A background component outside `[0, 1]`.
     Background,
     /// A solid-colour component outside `[0, 1]`.
@@ -46,6 +48,7 @@ impl fmt::Display for RenderError {
             Self::EmptyBounds => f.write_str("scene bounds are empty or not finite"),
             Self::Opacity(a) => write!(f, "opacity {a} must be in (0, 1]"),
             Self::AoRays(n) => write!(f, "ambient-occlusion rays {n} exceed 1024"),
+            Self::Antialiasing(n) => write!(f, "antialiasing {n} samples per side must be in 1..=16"),
             Self::Background => f.write_str("background components must be in [0, 1]"),
             Self::Colour => f.write_str("colour components must be in [0, 1]"),
             Self::Io(e) => e.fmt(f),

@@ -40,15 +40,50 @@ pub fn label(v: f64) -> String {
     }
 }
 
-/// Text at `(x, y)` (top left), each glyph pixel an `s × s` block of `color`.
+/// WCAG relative luminance of a linear RGB colour.
+fn luminance(c: [f32; 3]) -> f32 {
+    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+}
+
+/// WCAG contrast ratio of two linear RGB colours, `(L₁ + 0.05) / (L₂ + 0.05)` with `L₁ ≥ L₂`:
+/// from 1 (the same luminance) to 21 (black on white).
+pub fn contrast_ratio(a: [f32; 3], b: [f32; 3]) -> f32 {
+    let (la, lb) = (luminance(a), luminance(b));
+    (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
+}
+
+/// Black or white, whichever contrasts more with `background` (linear RGB). The two ratios
+/// multiply to 21 (`(1.05 / (L + 0.05)) · ((L + 0.05) / 0.05)`), so the larger is at least
+/// √21 ≈ 4.58 on any background: above WCAG's 4.5 for text.
+///
+/// ```
+/// use tubecast_render::render::contrasting_ink;
+/// assert_eq!(contrasting_ink([0.0; 3]), [1.0; 3]);
+/// assert_eq!(contrasting_ink([1.0; 3]), [0.0; 3]);
+/// ```
+pub fn contrasting_ink(background: [f32; 3]) -> [f32; 3] {
+    let (black, white) = ([0.0; 3], [1.0; 3]);
+    if contrast_ratio(white, background) > contrast_ratio(black, background) {
+        white
+    } else {
+        black
+    }
+}
+
+/// Text at `(x, y)` (top left), each glyph pixel an `s × s` block of `color`, over a halo one
+/// block wide in the colour that contrasts with it, so the text reads over tubes as well as
+/// over the background (and over whatever shows through a transparent one).
 fn text(img: &mut Image, x: i64, y: i64, s: i64, t: &str, color: [f32; 3]) {
-    for (k, c) in t.chars().enumerate() {
-        let Some(g) = glyph(c) else { continue };
-        for (row, bits) in g.iter().enumerate() {
-            for col in 0..3 {
-                if bits >> (2 - col) & 1 == 1 {
-                    let (px, py) = (x + (4 * k as i64 + col) * s, y + row as i64 * s);
-                    fill(img, px, py, s, s, color);
+    let halo = contrasting_ink(color);
+    for (ink, grow) in [(halo, s), (color, 0)] {
+        for (k, c) in t.chars().enumerate() {
+            let Some(g) = glyph(c) else { continue };
+            for (row, bits) in g.iter().enumerate() {
+                for col in 0..3 {
+                    if bits >> (2 - col) & 1 == 1 {
+                        let (px, py) = (x + (4 * k as i64 + col) * s, y + row as i64 * s);
+                        fill(img, px - grow, py - grow, s + 2 * grow, s + 2 * grow, ink);
+                    }
                 }
             }
         }
@@ -69,7 +104,9 @@ fn fill(img: &mut Image, x: i64, y: i64, w: i64, h: i64, color: [f32; 3]) {
 
 impl Image {
     /// Draw a vertical colour bar of `map` at the right edge, `lo` at its bottom and `hi` at
-    /// its top, with both values written beside it in `ink` (linear RGB). The bar spans the
+    /// its top, with both values written beside it in `ink` (linear RGB; [`contrasting_ink`]
+    /// of the background reads on any background), each glyph haloed in the colour that
+    /// contrasts with `ink`. The bar spans the
     /// middle 60 % of the height, is `max(6, width/40)` pixels wide, framed in `ink`; text is
     /// scaled with the image (3×5 glyphs, `max(1, height/200)` pixels each).
     ///

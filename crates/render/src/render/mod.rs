@@ -11,6 +11,10 @@
 //!   per connected piece to the union, so the joints between sub-segments and between
 //!   segments (where neighbouring sweeps overlap in the joint sphere) add no boundary.
 //!
+//! * Antialiasing (`Options::aa = N > 1`): `N²` samples per pixel, one per cell of an `N × N`
+//!   grid, jittered within the cell; their premultiplied colours and alphas are averaged and
+//!   the depth is the nearest any sample sees.
+//!
 //! Every pixel is composited front to back over transparent black (premultiplied colour and an
 //! alpha: the accumulated opacity, including the coverage of faded thin tubes), then over
 //! `Options::background` into [`Image::rgb`]; [`Image::alpha`] keeps the alpha for an RGBA PNG
@@ -34,7 +38,7 @@ pub use camera::{Camera, Preset, View};
 pub use colormap::{value_range, Colormap};
 pub use error::RenderError;
 pub use image::Image;
-pub use legend::label as legend_label;
+pub use legend::{contrasting_ink, label as legend_label};
 pub use options::{ColorBy, Options, Shading};
 pub use thin::clamp_thin;
 
@@ -67,23 +71,65 @@ pub fn render(scene: &Scene, bvh: &dyn Tracer, cam: &Camera, opts: &Options) -> 
         AoMethod::Cone => Some(ConeAo::build(scene, ao_dist, &cp)),
         AoMethod::Lod => Some(ConeAo::build_lod(scene, ao_dist, &cp)),
     };
-    let ctx = Ctx { scene, bvh, cam, opts, pal: Palette::new(scene), light, ao_dist, cone };
-    let bar = if opts.progress { indicatif::ProgressBar::new(h as u64) } else { indicatif::ProgressBar::hidden() };
+    let cams = sample_cameras(cam, opts.aa);
+    let bar = match opts.progress {
+        true => indicatif::ProgressBar::new(h as u64 * cams.len() as u64),
+        false => indicatif::ProgressBar::hidden(),
+    };
     let n = (w * h) as usize;
-    let (mut rgb, mut alpha, mut depth) = (vec![[0.0f32; 3]; n], vec![0.0f32; n], vec![f64::INFINITY; n]);
-    let bg = opts.background;
-    let rows =
-        rgb.par_chunks_mut(w as usize).zip(alpha.par_chunks_mut(w as usize)).zip(depth.par_chunks_mut(w as usize));
-    rows.enumerate().for_each(|(y, ((row, arow), drow))| {
-        for x in 0..w as usize {
-            let p = ctx.pixel(x as u32, y as u32);
-            // Over the background: premultiplied colour + (1 − α)·background.
-            row[x] = std::array::from_fn(|k| p.premul[k] + (1.0 - p.alpha) * bg[k]);
-            arow[x] = p.alpha;
-            drow[x] = p.depth;
-        }
-        bar.inc(1);
-    });
+    // Per pixel, summed over the samples: premultiplied colour, alpha; the nearest depth.
+    let (mut premul, mut alpha, mut depth) = (vec![[0.0f32; 3]; n], vec![0.0f32; n], vec![f64::INFINITY; n]);
+    let (mut pal, mut cone) = (Palette::new(scene), cone);
+    for c in &cams {
+        let ctx = Ctx { scene, bvh, cam: c, opts, pal, light, ao_dist, cone };
+        let rows = premul
+            .par_chunks_mut(w as usize)
+            .zip(alpha.par_chunks_mut(w as usize))
+            .zip(depth.par_chunks_mut(w as usize));
+        rows.enumerate().for_each(|(y, ((row, arow), drow))| {
+            for x in 0..w as usize {
+                let p = ctx.pixel(x as u32, y as u32);
+                row[x] = std::array::from_fn(|k| row[x][k] + p.premul[k]);
+                arow[x] += p.alpha;
+                drow[x] = drow[x].min(p.depth);
+            }
+            bar.inc(1);
+        });
+        (pal, cone) = (ctx.pal, ctx.cone);
+    }
     bar.finish_and_clear();
+    let bg = opts.background;
+    let share = 1.0 / cams.len() as f32;
+    let rgb = premul
+        .iter()
+        .zip(alpha.iter_mut())
+        .map(|(p, a)| {
+            *a *= share;
+            // Over the background: premultiplied colour + (1 − α)·background.
+            std::array::from_fn(|k| p[k] * share + (1.0 - *a) * bg[k])
+        })
+        .collect();
     Ok(Image { width: w, height: h, rgb, alpha, depth, background: bg })
+}
+
+/// The cameras of the `aa × aa` samples of every pixel: one per cell of an `aa × aa` grid over
+/// the pixel, at a point of the cell drawn by SplitMix64 (the same for every pixel, so the
+/// image is deterministic and free of per-pixel noise); `aa = 1`: the camera itself (pixel
+/// centres).
+fn sample_cameras(cam: &Camera, aa: u32) -> Vec<Camera> {
+    use rand_xoshiro::rand_core::{RngCore, SeedableRng};
+    if aa <= 1 {
+        return vec![*cam];
+    }
+    let mut rng = rand_xoshiro::SplitMix64::seed_from_u64(u64::from(aa));
+    // 53 random bits as a number in [0, 1).
+    let mut unit = || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+    let n = aa as f64;
+    (0..aa * aa)
+        .map(|s| {
+            let (i, j) = ((s % aa) as f64, (s / aa) as f64);
+            let (dx, dy) = ((i + unit()) / n - 0.5, (j + unit()) / n - 0.5);
+            cam.offset(dx, dy)
+        })
+        .collect()
 }

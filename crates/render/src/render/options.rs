@@ -55,6 +55,9 @@ pub struct Options {
     pub shadows: bool,
     /// Background colour (linear RGB).
     pub background: [f32; 3],
+    /// Antialiasing: `aa × aa` samples per pixel in `1..=16`, one per cell of an `aa × aa`
+    /// grid over the pixel, jittered within its cell; 1 traces the pixel's centre.
+    pub aa: u32,
     /// Show a progress bar on stderr.
     pub progress: bool,
 }
@@ -69,19 +72,24 @@ impl Default for Options {
             ao_method: super::AoMethod::Rays,
             shadows: false,
             background: [1.0, 1.0, 1.0],
+            aa: 1,
             progress: false,
         }
     }
 }
 
 impl Options {
-    /// Check the settings: opacity in `(0, 1]`, AO rays ≤ 1024, finite background in `[0, 1]`.
+    /// Check the settings: opacity in `(0, 1]`, AO rays ≤ 1024, finite background in `[0, 1]`,
+    /// antialiasing in `1..=16`.
     pub fn validate(&self) -> Result<(), RenderError> {
         if !(self.opacity > 0.0 && self.opacity <= 1.0) {
             return Err(RenderError::Opacity(self.opacity));
         }
         if self.ao > 1024 {
             return Err(RenderError::AoRays(self.ao));
+        }
+        if !(1..=16).contains(&self.aa) {
+            return Err(RenderError::Antialiasing(self.aa));
         }
         if self.background.iter().any(|c| !(0.0..=1.0).contains(c)) {
             return Err(RenderError::Background);
