@@ -24,11 +24,21 @@ use tubecast_render::scene::choice::{choose, choose_with, Tolerance};
 use tubecast_render::scene::simplify::{simplify_polyline, simplify_swc};
 use tubecast_render::scene::{LoadOptions, Scene};
 
-/// The counts of the automatic choice on `scene` at `eps`, links only and with splines.
-fn print_choice(scene: &Scene, eps: f64) {
+/// The automatic choice on `scene` at `eps`, links only and with splines, as a line of text
+/// or JSON.
+fn choice(scene: &Scene, eps: f64, json: bool) -> String {
     let t = Tolerance::Absolute(eps);
     let (l, s) = (choose(scene, &t), choose_with(scene, &t, true));
-    println!(
+    if json {
+        return serde_json::json!({
+            "links": scene.links.len(),
+            "links_only": {"primitives": l.prims.len(), "worst": l.worst},
+            "with_splines": {"primitives": s.prims.len(), "spline_pieces": s.splines, "merged": s.merged,
+                             "fitted": s.fitted, "worst": s.worst},
+        })
+        .to_string();
+    }
+    format!(
         "choice at {eps:e}: {} links → {} primitives with links only (worst {:e}); {} with quadratic splines: \
          {} spline pieces, {} links merged, {} fitted (worst {:e}; render/info --tolerance only, not written)",
         scene.links.len(),
@@ -39,41 +49,44 @@ fn print_choice(scene: &Scene, eps: f64) {
         s.merged,
         s.fitted,
         s.worst
-    );
+    )
 }
 
+/// `tubecast simplify`.
 pub fn simplify(a: &SimplifyArgs) -> Result<(), CliError> {
-    let eps = a.io.tolerance;
-    if !(eps.is_finite() && eps >= 0.0) {
-        return Err(CliError::Tolerance(eps));
-    }
-    let name = a.io.input.display().to_string();
-    let ext = |p: &Path| p.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
-    let (kind, out_kind) = (ext(&a.io.input), ext(&a.io.out));
-    if kind != out_kind {
-        return Err(
-            IoError::file(&a.io.out.display().to_string(), format!("must have the input's extension .{kind}")).into()
-        );
-    }
-    if !matches!(kind.as_str(), "swc" | "trk" | "tck" | "obj") {
-        return Err(IoError::file(&name, "simplify reads .swc, .trk, .tck or .obj").into());
-    }
-    let part = PathBuf::from(format!("{}.partial", a.io.out.display()));
-    let done = write_simplified(a, &kind, &part);
+    crate::options::simplify(a)?;
+    crate::progress::configure(a.run.progress, a.run.quiet);
+    let eps = a.tolerance;
+    let kind = crate::options::extension(&a.input);
+    let (min, all) = (a.radius.min_radius, Selection::default());
+    // The radius of formats without radii, at least --min-radius.
+    let radius = crate::setup::resolve_radius(&a.input, a.radius.radius, min, &all)?.max(min.unwrap_or(0.0));
+    let part = PathBuf::from(format!("{}.partial", a.out.display()));
+    let done = crate::setup::with_threads(a.run.threads, || write_simplified(a, radius, &kind, &part))?;
     let renamed = done.and_then(|r| {
-        let err = |e: std::io::Error| IoError::file(&a.io.out.display().to_string(), format!("cannot write: {e}"));
-        std::fs::rename(&part, &a.io.out).map_err(err)?;
+        let err = |e: std::io::Error| IoError::file(&a.out.display().to_string(), format!("cannot write: {e}"));
+        std::fs::rename(&part, &a.out).map_err(err)?;
         Ok(r)
     });
     let (before, after, d, swc_scene) = renamed.inspect_err(|_| drop(std::fs::remove_file(&part)))?;
-    println!("{}: {after} of {before} nodes kept, largest merge bound {d:e} (tolerance {eps:e})", a.io.out.display());
     let scene = swc_scene.or_else(|| {
-        let opts = LoadOptions { default_radius: a.io.radius, min_radius: None };
+        let opts = LoadOptions { default_radius: radius, min_radius: min };
         let hidden = indicatif::ProgressBar::hidden();
-        Scene::load_selected(&a.io.input, &opts, &Selection::default(), false, &hidden).ok().map(|s| s.0)
+        Scene::load_selected(&a.input, &opts, &all, false, &hidden).ok().map(|s| s.0)
     });
-    if let Some(scene) = scene {
-        print_choice(&scene, eps);
+    let choice = scene.map(|s| choice(&s, eps, a.json));
+    if a.json {
+        let choice: serde_json::Value = choice.and_then(|c| serde_json::from_str(&c).ok()).unwrap_or_default();
+        let j = serde_json::json!({
+            "file": a.out.display().to_string(), "nodes_before": before, "nodes_after": after,
+            "largest_merge_bound": d, "tolerance": eps, "choice": choice,
+        });
+        println!("{j}");
+        return Ok(());
+    }
+    println!("{}: {after} of {before} nodes kept, largest merge bound {d:e} (tolerance {eps:e})", a.out.display());
+    if let Some(c) = choice {
+        println!("{c}");
     }
     Ok(())
 }
@@ -82,20 +95,25 @@ pub fn simplify(a: &SimplifyArgs) -> Result<(), CliError> {
 type Counts = (usize, usize, f64, Option<Scene>);
 
 /// Simplify the input (of extension `kind`) into `path`.
-fn write_simplified(a: &SimplifyArgs, kind: &str, path: &Path) -> Result<Counts, IoError> {
-    let name = a.io.input.display().to_string();
-    let (r, len) = open(&a.io.input)?;
+fn write_simplified(a: &SimplifyArgs, radius: f64, kind: &str, path: &Path) -> Result<Counts, IoError> {
+    let name = a.input.display().to_string();
+    let (r, len) = open(&a.input)?;
+    let min = a.radius.min_radius;
     if kind == "swc" {
-        let rows = io::swc::read_from(r, &name, None)?.nodes;
-        let (out, d) = simplify_swc(&rows, a.io.tolerance);
+        let rows = io::swc::read_from(r, &name, min)?.nodes;
+        let (out, d) = simplify_swc(&rows, a.tolerance);
         io::write_bytes(path, io::swc::write(&out).as_bytes())?;
         return Ok((rows.len(), out.len(), d, Scene::from_swc(&rows, &name).ok()));
     }
-    let (mut out, out_name) = (Out::create(path, kind, &a.io.input)?, path.display().to_string());
+    let (mut out, out_name) = (Out::create(path, kind, &a.input)?, path.display().to_string());
     let (mut before, mut after, mut worst, mut failed) = (0, 0, 0.0f64, None);
     let mut each = |points: &[[f64; 3]], radii: Vec<f64>| {
+        let radii = match min {
+            Some(m) => radii.into_iter().map(|r| r.max(m)).collect(),
+            None => radii,
+        };
         let line = Polyline { points: points.to_vec(), radii };
-        let (s, d) = simplify_polyline(&line, a.io.radius, a.io.tolerance);
+        let (s, d) = simplify_polyline(&line, radius, a.tolerance);
         (before, after, worst) = (before + line.points.len(), after + s.points.len(), worst.max(d));
         match out.push(&s, &out_name) {
             Ok(()) => Flow::Continue,

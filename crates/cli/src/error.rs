@@ -1,7 +1,6 @@
-//! The one error type of the command line.
+//! The one error type of the command line. A leaf: it imports nothing of the crate.
 
 use std::fmt;
-use std::path::PathBuf;
 use tubecast_render::io::IoError;
 use tubecast_render::mesh::MeshError;
 use tubecast_render::render::RenderError;
@@ -10,50 +9,49 @@ use tubecast_render::scene::SceneError;
 /// Why a command failed; printed as `tubecast: error: {self}`.
 #[derive(Debug)]
 pub enum CliError {
+    /// The command line asks for something impossible (a value out of range, flags that do
+    /// not go together, an output format the command does not write): exit status 2, found
+    /// before any work.
+    Usage(String),
     /// Reading or writing a file.
     Io(IoError),
     /// Loading or modelling the scene.
     Scene(SceneError),
     /// Camera, render options or the PNG.
     Render(RenderError),
-    /// `generate`: `--count × --segments` outside `1..=max`.
-    SceneSize {
-        /// The largest product.
-        max: usize,
-    },
-    /// `generate neurons`: `--n` outside `1..=40`.
-    NeuronsPerSide,
-    /// `generate neurons` to a file that is not `.swc`.
-    NeuronsNeedSwc(PathBuf),
     /// `--threads`: the worker pool could not be started.
     Threads(rayon::ThreadPoolBuildError),
     /// Tessellating the scene (`mesh`, `render --model mesh`).
     Mesh(MeshError),
-    /// `render --model mesh` without `--tolerance`.
-    MeshTolerance,
-    /// `simplify --tolerance` not a finite number ≥ 0.
-    Tolerance(f64),
     /// The scene would not fit in memory (estimated before loading).
     Memory(tubecast_render::estimate::TooLarge),
-    /// `--model quantized` options.
-    Quantized(crate::cmd_quantized::QuantError),
+}
+
+impl CliError {
+    /// A usage error: `flag` and `value` named, and what is allowed.
+    pub fn usage(msg: impl Into<String>) -> Self {
+        Self::Usage(msg.into())
+    }
+
+    /// The process exit status: 2 for usage, 1 for a job that failed.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            Self::Usage(_) => 2,
+            _ => 1,
+        }
+    }
 }
 
 impl fmt::Display for CliError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
+            Self::Usage(m) => f.write_str(m),
             Self::Io(e) => e.fmt(f),
             Self::Scene(e) => e.fmt(f),
             Self::Render(e) => e.fmt(f),
-            Self::SceneSize { max } => write!(f, "--count × --segments must be between 1 and {max}"),
-            Self::NeuronsPerSide => f.write_str("--n must be in 1..=40"),
-            Self::NeuronsNeedSwc(p) => write!(f, "{}: neuron assemblies branch; write them as .swc", p.display()),
             Self::Threads(e) => write!(f, "--threads: {e}"),
             Self::Mesh(e) => e.fmt(f),
-            Self::MeshTolerance => f.write_str("--model mesh needs --tolerance EPS"),
-            Self::Tolerance(t) => write!(f, "--tolerance {t} must be a finite number ≥ 0"),
             Self::Memory(e) => e.fmt(f),
-            Self::Quantized(e) => e.fmt(f),
         }
     }
 }
@@ -85,12 +83,6 @@ impl From<SceneError> for CliError {
 impl From<RenderError> for CliError {
     fn from(e: RenderError) -> Self {
         Self::Render(e)
-    }
-}
-
-impl From<crate::cmd_quantized::QuantError> for CliError {
-    fn from(e: crate::cmd_quantized::QuantError) -> Self {
-        Self::Quantized(e)
     }
 }
 

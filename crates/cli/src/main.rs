@@ -1,75 +1,70 @@
-//! The `tubecast` command line: render, info, intersect, generate.
+//! The `tubecast` command line: render, info, intersect, generate, mesh, simplify.
+//!
+//! One direction of imports: [`args`] (what clap reads, with [`values`] parsed and
+//! range-checked) → [`options`] (the checks that need several flags or the file system, made
+//! before any work) → one `cmd_*` file per command → [`setup`] (loading, accelerators,
+//! threads, warnings), [`choice`], [`quantized`], [`hits_io`] and [`progress`]; [`error`] and
+//! [`values`] import nothing of the crate.
 
-mod ao_opts;
 mod args;
+mod choice;
+mod cmd_generate;
+mod cmd_info;
 mod cmd_intersect;
-mod cmd_load;
 mod cmd_mesh;
-mod cmd_quantized;
+mod cmd_render;
 mod cmd_simplify;
-mod commands;
 mod error;
 mod hits_io;
+mod options;
 mod progress;
-mod render_opts;
+mod quantized;
+mod setup;
+mod values;
 
-use args::{GenerateArgs, InfoArgs, IntersectArgs, MeshArgs, RenderArgs, SimplifyArgs};
-use clap::{Parser, Subcommand};
+use args::{Cli, Cmd};
+use clap::error::ErrorKind;
+use clap::Parser;
 use std::process::ExitCode;
 
-#[derive(Parser)]
-#[command(name = "tubecast", version, about = "Exact ray–tube intersection and a minimal tube renderer")]
-struct Cli {
-    #[command(subcommand)]
-    cmd: Cmd,
-}
-
-#[derive(Subcommand)]
-// Parsed once per process: the size of the largest variant costs nothing worth a Box.
-#[allow(clippy::large_enum_variant)]
-enum Cmd {
-    /// Render a scene (.swc, .trk, .tck, .trx, .obj) to a PNG.
-    Render(RenderArgs),
-    /// Print counts of nodes, links and primitives, bounds and memory.
-    Info(InfoArgs),
-    /// Intersect rays (N×6 float32/float64 .npy, C or Fortran order: origin, direction; `-`:
-    /// stdin) with a scene; write N×8 hits (.npy, or CSV with --csv or a .csv name; `-`: stdout).
-    ///
-    /// `--query hit` (default), the closest crossing: t, exit t of the hit primitive, normal
-    /// (x, y, z), link, u, flag (1 entry, −1 the ray starts inside). `--query piece`, the first
-    /// component of the union of all tubes along the line that meets t ≥ 0: t_in (< 0 when the
-    /// ray starts inside), t_out, entry normal, link, u, 1. Misses (both): t = +inf, +inf,
-    /// normal 0, link −1, u 0, flag 0. `--query all`: one row per union boundary: ray index,
-    /// t, normal, link, u, 1 entry / −1 exit.
-    Intersect(IntersectArgs),
-    /// Generate a procedural test scene (.swc, .tck, .obj or .trk by extension; neurons: .swc).
-    Generate(GenerateArgs),
-    /// Tessellate a scene within a certified tolerance; write .ply, .obj or .glb.
-    Mesh(MeshArgs),
-    /// Merge consecutive links while the merged tube stays within --tolerance; same format out.
-    ///
-    /// Writes merged links only, each certified within ε of the links it replaces (both ways).
-    /// SWC, TRK, TCK and OBJ hold nodes, not quadratic pieces, so the spline fitting of the
-    /// automatic choice is not written: it applies where the model stays in memory
-    /// (`render`/`info --tolerance`), and this command prints its counts at the same ε.
-    Simplify(SimplifyArgs),
-}
-
 fn main() -> ExitCode {
-    let r = match Cli::parse().cmd {
-        Cmd::Render(a) => commands::render(&a),
-        Cmd::Info(a) => commands::info(&a),
-        Cmd::Intersect(a) => cmd_intersect::intersect(&a),
-        Cmd::Generate(a) => commands::generate(&a),
-        Cmd::Mesh(a) => cmd_mesh::mesh(&a),
-        Cmd::Simplify(a) => cmd_simplify::simplify(&a),
+    restore_sigpipe();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) => e.exit(),
+        Err(e) => {
+            // clap's own message ("error: invalid value '0' for '--ao-samples <N>': ...") under
+            // the prefix every other error has; usage errors exit 2.
+            eprint!("tubecast: {}", e.render());
+            return ExitCode::from(2);
+        }
+    };
+    let r = match &cli.cmd {
+        Cmd::Render(a) => cmd_render::render(a),
+        Cmd::Info(a) => cmd_info::info(a),
+        Cmd::Intersect(a) => cmd_intersect::intersect(a),
+        Cmd::Generate(a) => cmd_generate::generate(a),
+        Cmd::Mesh(a) => cmd_mesh::mesh(a),
+        Cmd::Simplify(a) => cmd_simplify::simplify(a),
     };
     progress::report_peak(None);
     match r {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("tubecast: error: {e}");
-            ExitCode::FAILURE
+            ExitCode::from(e.exit_code())
         }
+    }
+}
+
+/// Die of SIGPIPE when a reader closes our stdout (`tubecast info --json | head -1`), as
+/// command-line tools do: Rust ignores the signal, so the next write to the closed pipe would
+/// fail and `println!` would panic.
+fn restore_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: called first thing in main, before any thread is started; setting a signal's
+    // disposition to its default has no other precondition.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
 }

@@ -1,8 +1,7 @@
 //! `tubecast intersect --splines` (issue 10) and the spline fidelity line of `info --splines`.
 
-mod common;
-
-use common::{bin, tmp};
+use crate::common::bin;
+crate::common::tmp_fn!();
 use tubecast_render::io::npy::{read, write, Array2};
 
 #[test]

@@ -2,8 +2,8 @@
 //! lower it, for what `render` holds besides `info` (the thin-tube clamp, the list of
 //! primitives, a tracer built whole with `--accel bvh2`).
 
-mod common;
-use common::{bin, tmp};
+use crate::common::bin;
+crate::common::tmp_fn!();
 use std::process::Output;
 
 /// The GiB figure of "needs about X GiB".

@@ -1,4 +1,4 @@
-//! `render --model quantized` and `intersect --model quantized`: the scene replaced by Kanzler
+//! `--model quantized` (`render`, `intersect`, `info`): the scene replaced by Kanzler
 //! et al.'s quantized lines ("model no more than the scene needs"), traced through the
 //! ordinary accelerators.
 //!
@@ -11,55 +11,11 @@
 //! other way round; with one radius the same holds between the two tube surfaces. Isolated
 //! nodes (spheres) have no line and are dropped.
 
-use crate::args::Surface;
+use crate::args::{QuantArgs, Surface};
 use crate::error::CliError;
-use clap::Args;
 use std::fmt;
-use std::ops::RangeInclusive;
 use tubecast_render::quantized::{scene_lines, QuantizedLines};
 use tubecast_render::scene::Scene;
-
-/// Bins per face side that `--quant-bins` accepts (Kanzler et al.'s range).
-pub const BINS: RangeInclusive<u32> = 8..=64;
-/// Most voxels along the longest side (`--quant-voxels`).
-pub const MAX_VOXELS: u32 = 4096;
-
-/// The quantization options of `render` and `intersect`.
-#[derive(Args, Clone, Copy, Debug)]
-pub struct QuantArgs {
-    /// With --model quantized: bins per voxel-face side Q (8 to 64) that line ends snap to.
-    #[arg(long, value_name = "Q", default_value_t = 16)]
-    pub quant_bins: u32,
-    /// With --model quantized: voxels along the longest side of the scene (1 to 4096).
-    #[arg(long, value_name = "N", default_value_t = 64)]
-    pub quant_voxels: u32,
-}
-
-/// Why the quantized model cannot be built.
-#[derive(Debug, Clone, PartialEq)]
-pub enum QuantError {
-    /// `--quant-bins` outside [`BINS`].
-    Bins(u32),
-    /// `--quant-voxels` outside `1..=MAX_VOXELS`.
-    Voxels(u32),
-    /// `--color scalar:/property:` with the quantized model (its lines carry no data).
-    Data(String),
-    /// `intersect --model mesh`.
-    MeshIntersect,
-}
-
-impl fmt::Display for QuantError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::Bins(q) => write!(f, "--quant-bins {q} must be in {}..={}", BINS.start(), BINS.end()),
-            Self::Voxels(v) => write!(f, "--quant-voxels {v} must be in 1..={MAX_VOXELS}"),
-            Self::Data(k) => write!(f, "--color {k}: the quantized lines carry no data fields; use direction or solid"),
-            Self::MeshIntersect => f.write_str("intersect traces --model exact or quantized; mesh is for render"),
-        }
-    }
-}
-
-impl std::error::Error for QuantError {}
 
 /// What the quantization did, for the summary line.
 #[derive(Clone, Copy, Debug)]
@@ -136,14 +92,9 @@ fn grid(scene: &Scene, cells: u32) -> ([f64; 3], f64, [u32; 3]) {
     (lo, h, dims)
 }
 
-/// The quantized lines of `scene`'s chains as a scene, and what it cost ([`Summary`]).
+/// The quantized lines of `scene`'s chains as a scene, and what it cost ([`Summary`]); the
+/// resolution was range-checked as it was parsed ([`QuantArgs`]).
 pub fn quantize(scene: &Scene, a: &QuantArgs) -> Result<(Scene, Summary), CliError> {
-    if !BINS.contains(&a.quant_bins) {
-        return Err(QuantError::Bins(a.quant_bins).into());
-    }
-    if a.quant_voxels == 0 || a.quant_voxels > MAX_VOXELS {
-        return Err(QuantError::Voxels(a.quant_voxels).into());
-    }
     let (lines, radius) = scene_lines(scene);
     let (lo, h, dims) = grid(scene, a.quant_voxels);
     let ql = QuantizedLines::new(&lines, lo, h, dims, a.quant_bins);

@@ -1,9 +1,8 @@
 //! `render --color scalar:NAME / property:NAME --colormap MAP` on nibabel's own complex.trk
 //! (scalars "fa", "colors"; properties "mean_curvature", ...) and a trx-python TRX file.
 
-mod common;
-
-use common::{bin, tmp};
+use crate::common::bin;
+crate::common::tmp_fn!();
 use std::path::Path;
 
 fn reference(rel: &str) -> std::path::PathBuf {

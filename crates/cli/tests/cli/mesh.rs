@@ -1,7 +1,7 @@
 //! `tubecast mesh` and `render --model mesh` end to end, and their errors.
 
-mod common;
-use common::{bin, tmp};
+use crate::common::bin;
+crate::common::tmp_fn!();
 
 #[test]
 fn mesh_exports_and_mesh_render() {

@@ -2,8 +2,8 @@
 //! stays a fraction of a run that loads it), `--max-streamlines` / `--subsample` on the
 //! command line, and progress bars only where asked for (never in a piped stderr).
 
-mod common;
-use common::{bin, tmp};
+use crate::common::bin;
+crate::common::tmp_fn!();
 use std::path::Path;
 use std::process::Output;
 

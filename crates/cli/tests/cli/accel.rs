@@ -1,9 +1,8 @@
 //! `--accel grid|bvh`: `intersect` writes the same hit table through either structure (same
 //! kernels, only the culling differs), and `render --accel grid` writes an image.
 
-mod common;
-
-use common::{bin, tmp};
+use crate::common::bin;
+crate::common::tmp_fn!();
 use tubecast_render::io::npy::{read, write, Array2};
 
 #[test]

@@ -1,8 +1,7 @@
 //! `intersect` with float32 Fortran-order rays from stdin and CSV hits to stdout.
 
-mod common;
-
-use common::{bin, tmp};
+use crate::common::bin;
+crate::common::tmp_fn!();
 use std::io::Write;
 use std::process::Stdio;
 use tubecast_render::io::{tck, Polyline};

@@ -1,9 +1,8 @@
 //! Render options: --background (colour, transparent RGBA), solid:#rrggbb, --view presets,
 //! --ortho, --depth OUT.npy, --force, --radius N% ; info --json with units.
 
-mod common;
-
-use common::{bin, tmp};
+use crate::common::bin;
+crate::common::tmp_fn!();
 use std::path::{Path, PathBuf};
 use tubecast_render::io::{npy, tck, Polyline};
 

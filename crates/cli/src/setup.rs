@@ -1,6 +1,8 @@
-//! Loading a scene for `render`, `info` and `intersect`: the selection of streamlines
-//! (`--max-streamlines`, `--subsample`), the memory estimate checked before anything large is
-//! allocated (`--memory-limit`), and the load progress bar (`--progress`, `--quiet`).
+//! The set-up every command shares: loading a scene (the selection of streamlines,
+//! `--max-streamlines`, `--subsample`; the memory estimate checked before anything large is
+//! allocated, `--memory-limit`; the load progress bar), the accelerator over it, the worker
+//! pool (`-j`), and warnings. It imports the argument types and leaf modules only; every
+//! command imports it, and it imports no command.
 //!
 //! # The estimate
 //! [`check_memory`] counts the links from the file's header and size
@@ -12,65 +14,121 @@
 //! per link depend on the link count, so the estimate asks the grid's own resolution what it
 //! will build over the whole scene ([`estimate::grid_footprint`], with the command's rays).
 
-use crate::args::Accel;
+use crate::args::{Accel, RadiusArgs, RunArgs, SelectArgs};
 use crate::error::CliError;
-use crate::render_opts::Radius;
-use clap::Args;
+use crate::values::Radius;
 use std::path::Path;
-use tubecast_render::accel::grid::{padded_extent, Footprint, GridParams, SceneSums};
-use tubecast_render::accel::WideBvh;
+use tubecast_render::accel::grid::{padded_extent, Footprint, Grid, GridParams, SceneSums};
+use tubecast_render::accel::{Bvh, Tracer, WideBvh};
 use tubecast_render::estimate::{self, PerLink, Work};
+use tubecast_render::io::data::Field;
 use tubecast_render::io::stream::Selection;
-use tubecast_render::scene::{generate, LoadOptions, Model, Scene};
+use tubecast_render::scene::{generate, LoadOptions, LoadReport, Model, Prim, Scene};
 
 /// Streamlines the memory estimate's sample holds at most.
 pub const SAMPLE_STREAMLINES: usize = 200;
 
-/// What every command that loads a scene accepts about memory and progress.
-#[derive(Args, Clone, Debug, Default)]
-pub struct LoadArgs {
-    /// Keep only the first N streamlines (after --subsample); the rest of the file is not
-    /// read. Not for SWC files (one tree).
-    #[arg(long, value_name = "N")]
-    pub max_streamlines: Option<usize>,
-    /// Keep about a fraction F of the streamlines, 0 < F ≤ 1: streamline i (file order) is
-    /// kept when SplitMix64 seeded with i draws below F·2⁶⁴ (deterministic, the same on every
-    /// run; no aliasing of an interleaved file as a stride would). Not for SWC files.
-    #[arg(long, value_name = "F")]
-    pub subsample: Option<f64>,
-    /// Refuse a scene whose estimated peak memory exceeds BYTES (suffixes K, M, G, T: powers
-    /// of 1024) instead of the memory available (MemAvailable, or the cgroup's limit).
-    #[arg(long, value_name = "BYTES", value_parser = parse_bytes)]
-    pub memory_limit: Option<u64>,
-    /// Show the progress bars even where stderr is not a terminal.
-    #[arg(long)]
-    pub progress: bool,
-    /// Hide the progress bars.
-    #[arg(long)]
-    pub quiet: bool,
+/// Print `tubecast: warning: {msg}` on stderr.
+pub fn warn(msg: &str) {
+    eprintln!("tubecast: warning: {msg}");
 }
 
-impl LoadArgs {
-    /// The selection of streamlines.
-    pub fn selection(&self) -> Selection {
-        Selection { max_streamlines: self.max_streamlines, subsample: self.subsample }
+/// The selection of streamlines `--max-streamlines` and `--subsample` ask for.
+pub fn selection(s: &SelectArgs) -> Selection {
+    let max = s.max_streamlines.map(|n| usize::try_from(n).unwrap_or(usize::MAX));
+    Selection { max_streamlines: max, subsample: s.subsample }
+}
+
+/// Run `f` on a rayon pool of `threads` threads (`None`: one per core, rayon's default).
+pub fn with_threads<R: Send>(threads: Option<u16>, f: impl FnOnce() -> R + Send) -> Result<R, CliError> {
+    match threads {
+        None => Ok(f()),
+        Some(n) => {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(n.into()).build().map_err(CliError::Threads)?;
+            Ok(pool.install(f))
+        }
     }
 }
 
-/// `1234`, `512K`, `1.5G`, ...: bytes, with binary suffixes.
-pub fn parse_bytes(s: &str) -> Result<u64, String> {
-    let t = s.trim();
-    let (num, mult) = match t.chars().last().map(|c| c.to_ascii_uppercase()) {
-        Some('K') => (&t[..t.len() - 1], 1u64 << 10),
-        Some('M') => (&t[..t.len() - 1], 1 << 20),
-        Some('G') => (&t[..t.len() - 1], 1 << 30),
-        Some('T') => (&t[..t.len() - 1], 1 << 40),
-        _ => (t, 1),
-    };
-    match num.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() && v >= 0.0 && v * (mult as f64) < 1.8e19 => Ok((v * mult as f64) as u64),
-        _ => Err(format!("{s:?} is not a byte count (e.g. 8G, 512M, 1000000)")),
+/// Links, or with `splines` the spline model.
+pub fn model(splines: bool) -> Model {
+    if splines {
+        Model::Splines
+    } else {
+        Model::Links
     }
+}
+
+/// A scene as a command loads it: the data fields of the file too when asked.
+pub struct Loaded {
+    /// The scene.
+    pub scene: Scene,
+    /// The file's data fields (empty unless asked for).
+    pub fields: Vec<Field>,
+}
+
+/// Load the scene at `input` ([`load_scene`]); warn about radii raised to `--min-radius` and,
+/// with `empty` (what the command does then), about a scene without nodes; with `data`, keep
+/// the file's data fields.
+pub fn load(
+    input: &Path,
+    radius: &RadiusArgs,
+    (select, run): (&SelectArgs, &RunArgs),
+    plan: Plan,
+    empty: &str,
+    data: bool,
+) -> Result<Loaded, CliError> {
+    let (scene, rep, fields) = load_scene(input, radius, (select, run), plan, data)?;
+    if let (Some(r), true) = (radius.min_radius, rep.replaced > 0) {
+        warn(&format!(
+            "{}: {} of {} radii were below --min-radius {r} ({} of them ≤ 0) and were set to {r}",
+            input.display(),
+            rep.replaced,
+            scene.nodes.len(),
+            rep.placeholders
+        ));
+    }
+    if scene.nodes.is_empty() {
+        warn(&format!("{}: no streamlines or nodes (empty scene); {empty}", input.display()));
+    }
+    Ok(Loaded { scene, fields })
+}
+
+/// The chosen acceleration structure over `prims` (under a progress spinner). `rays`: how many
+/// rays the command will trace through it (`None`: unknown), which the grid's resolution
+/// weighs against its build (`GridParams::rays_per_build`; a command builds once).
+pub fn tracer(accel: Accel, prims: Vec<Prim>, rays: Option<f64>) -> Box<dyn Tracer> {
+    crate::progress::step(&format!("building the accelerator over {} primitives", prims.len()), || match accel {
+        Accel::Bvh => Box::new(WideBvh::build(prims)) as Box<dyn Tracer>,
+        Accel::Bvh2 => Box::new(Bvh::build(prims)),
+        Accel::Grid => {
+            let params = GridParams { rays_per_build: rays, ..GridParams::default() };
+            Box::new(Grid::build_with(prims, &params))
+        }
+    })
+}
+
+/// The chosen acceleration structure over the scene's own primitives of model `m` (`prims`, or
+/// none yet: `None` computes them): the 8-wide BVH keeps the links model compact
+/// ([`WideBvh::from_scene`]), the others trace the same primitives
+/// ([`WideBvh::scene_primitives`]), so every `--accel` gives the same answers.
+pub fn scene_tracer(
+    accel: Accel,
+    scene: &Scene,
+    m: Model,
+    prims: Option<Vec<Prim>>,
+    rays: Option<f64>,
+) -> Result<Box<dyn Tracer>, CliError> {
+    if matches!(accel, Accel::Bvh) && m == Model::Links {
+        drop(prims);
+        let bvh = crate::progress::step("building the compact 8-wide BVH", || WideBvh::from_scene(scene, m))?;
+        return Ok(Box::new(bvh));
+    }
+    if m == Model::Links {
+        drop(prims); // the tracer's own list replaces the caller's: not two lists at once
+        return Ok(tracer(accel, WideBvh::scene_primitives(scene), rays));
+    }
+    Ok(tracer(accel, prims.map_or_else(|| scene.model_primitives(m), Ok)?, rays))
 }
 
 /// How a command will build its scene: model and accelerator (for the sample), and what
@@ -113,7 +171,7 @@ impl Plan {
         Work { compact, prim_list: r.list, thin_nodes, pixels: r.pixels, grid, rays }
     }
 
-    /// The grid's parameters as [`crate::commands::tracer`] sets them.
+    /// The grid's parameters as [`tracer`] sets them.
     fn grid_params(&self) -> GridParams {
         GridParams { rays_per_build: self.rays, ..GridParams::default() }
     }
@@ -123,21 +181,20 @@ impl Plan {
 /// resolve a relative radius, then stream the file in (with the data fields when `data`).
 pub fn load_scene(
     input: &Path,
-    radius: Radius,
-    min_radius: Option<f64>,
-    load: &LoadArgs,
+    radius: &RadiusArgs,
+    (select, run): (&SelectArgs, &RunArgs),
     plan: Plan,
     data: bool,
-) -> Result<(Scene, tubecast_render::scene::LoadReport, Vec<tubecast_render::io::data::Field>), CliError> {
-    crate::progress::configure(load.progress, load.quiet);
-    let sel = load.selection();
-    let sample_radius = match radius {
+) -> Result<(Scene, LoadReport, Vec<Field>), CliError> {
+    crate::progress::configure(run.progress, run.quiet);
+    let (sel, min_radius) = (selection(select), radius.min_radius);
+    let sample_radius = match radius.radius {
         Radius::Absolute(r) => r,
         Radius::Relative(_) => 1.0,
     };
-    check_memory(input, &LoadOptions { default_radius: sample_radius, min_radius }, &sel, load.memory_limit, plan)?;
-    let radius = resolve_radius(input, radius, min_radius, &sel)?;
-    let opts = LoadOptions { default_radius: radius, min_radius };
+    check_memory(input, &LoadOptions { default_radius: sample_radius, min_radius }, &sel, select.memory_limit, plan)?;
+    let r = resolve_radius(input, radius.radius, min_radius, &sel)?;
+    let opts = LoadOptions { default_radius: r, min_radius };
     let len = std::fs::metadata(input).map(|m| m.len()).unwrap_or(0);
     let bar = crate::progress::bytes(len, &format!("loading {}", input.display()));
     let r = Scene::load_selected(input, &opts, &sel, data, &bar);
@@ -211,14 +268,14 @@ fn sample(input: &Path, opts: &LoadOptions, sel: &Selection, plan: Plan) -> Opti
     }
     let per = |b: usize| b as f64 / links as f64;
     let (tracer, grid) = if matches!(plan.accel, Accel::Grid) {
-        // The grid's own primitives ([`crate::commands::scene_tracer`]), for their sums and box.
+        // The grid's own primitives ([`scene_tracer`]), for their sums and box.
         let prims = match plan.model {
             Model::Links => WideBvh::scene_primitives(&scene),
             m => scene.model_primitives(m).ok()?,
         };
         (0.0, Some((SceneSums::of(&prims), padded_extent(&prims))))
     } else {
-        let tracer = crate::commands::scene_tracer(plan.accel, &scene, plan.model, None, None).ok()?;
+        let tracer = scene_tracer(plan.accel, &scene, plan.model, None, None).ok()?;
         (per(tracer.memory_bytes()), None)
     };
     let per_link = PerLink { scene: per(scene.memory_bytes()), tracer };
@@ -229,7 +286,7 @@ fn sample(input: &Path, opts: &LoadOptions, sel: &Selection, plan: Plan) -> Opti
 
 /// The default radius: absolute, or the fraction of the diagonal of the bounding box of the
 /// points kept (read once more to measure it; a file of one point: the fraction of 1 unit).
-fn resolve_radius(input: &Path, r: Radius, min_radius: Option<f64>, sel: &Selection) -> Result<f64, CliError> {
+pub fn resolve_radius(input: &Path, r: Radius, min_radius: Option<f64>, sel: &Selection) -> Result<f64, CliError> {
     let f = match r {
         Radius::Absolute(v) => return Ok(v),
         Radius::Relative(f) => f,

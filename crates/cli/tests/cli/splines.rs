@@ -1,8 +1,7 @@
 //! `tubecast info --splines` and `tubecast render --splines` end to end, and their errors.
 
-mod common;
-
-use common::{bin, tmp};
+use crate::common::bin;
+crate::common::tmp_fn!();
 
 fn png_size(bytes: &[u8]) -> (u32, u32) {
     assert_eq!(&bytes[1..4], b"PNG");
@@ -83,7 +82,7 @@ fn huge_spline_scenes_render_and_bad_options_are_errors() {
         .arg(&png)
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(out.status.code(), Some(2), "a value out of range is a usage error");
     let e = String::from_utf8_lossy(&out.stderr);
-    assert!(e.starts_with("tubecast: error: ") && e.contains("opacity"), "{e}");
+    assert!(e.starts_with("tubecast: error: ") && e.contains("'0' for '--opacity"), "{e}");
 }

@@ -1,8 +1,7 @@
 //! The `tubecast` binary end to end: generate → info → intersect → render, and errors.
 
-mod common;
-
-use common::{bin, tmp};
+use crate::common::bin;
+crate::common::tmp_fn!();
 use tubecast_render::io::npy::{read, write, Array2};
 
 #[test]
@@ -60,23 +59,27 @@ fn generate_info_intersect_render() {
 fn errors_exit_nonzero_with_a_message() {
     let bad = tmp("bad.swc");
     std::fs::write(&bad, "1 1 0 0 0 1\n").unwrap();
-    let cases: Vec<Vec<String>> = vec![
-        vec!["info".into(), bad.display().to_string()],
-        vec!["info".into(), tmp("missing.swc").display().to_string()],
-        vec!["info".into(), tmp("x.xyz").display().to_string()],
-        vec!["generate".into(), "neurons".into(), "-o".into(), tmp("n.tck").display().to_string()],
-        vec![
-            "generate".into(),
-            "bundle".into(),
-            "--count".into(),
-            "0".into(),
-            "-o".into(),
-            tmp("b.tck").display().to_string(),
-        ],
+    // A file that fails the job exits 1; a command line that cannot work as written exits 2.
+    let cases: Vec<(Vec<String>, i32)> = vec![
+        (vec!["info".into(), bad.display().to_string()], 1),
+        (vec!["info".into(), tmp("missing.swc").display().to_string()], 1),
+        (vec!["info".into(), tmp("x.xyz").display().to_string()], 1),
+        (vec!["generate".into(), "neurons".into(), "-o".into(), tmp("n.tck").display().to_string()], 2),
+        (
+            vec![
+                "generate".into(),
+                "bundle".into(),
+                "--count".into(),
+                "0".into(),
+                "-o".into(),
+                tmp("b.tck").display().to_string(),
+            ],
+            2,
+        ),
     ];
-    for args in cases {
+    for (args, code) in cases {
         let out = bin().args(&args).output().unwrap();
-        assert_eq!(out.status.code(), Some(1), "{args:?}");
+        assert_eq!(out.status.code(), Some(code), "{args:?}");
         let e = String::from_utf8_lossy(&out.stderr);
         assert!(e.starts_with("tubecast: error: "), "{args:?}: {e}");
     }
@@ -86,7 +89,7 @@ fn errors_exit_nonzero_with_a_message() {
     // before anything is allocated, naming the cap.
     let big = ["generate", "bundle", "--count", "200000001", "--segments", "1", "-o"];
     let out = bin().args(big).arg(tmp("big.tck")).output().unwrap();
-    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("between 1 and 200000000"));
     // Bad rays: a zero direction is rejected with its row.
     let swc = tmp("h2.swc");
@@ -98,7 +101,7 @@ fn errors_exit_nonzero_with_a_message() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("row 0: ray direction is zero"));
     // Bad render options.
     let out = bin().arg("render").arg(&swc).args(["--opacity", "2", "-o"]).arg(tmp("o.png")).output().unwrap();
-    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(out.status.code(), Some(2), "a value out of range is a usage error");
     let out = bin().arg("render").arg(&swc).args(["--eye", "1,2", "-o"]).arg(tmp("o.png")).output().unwrap();
     assert_eq!(out.status.code(), Some(2), "clap rejects a malformed vector");
 }

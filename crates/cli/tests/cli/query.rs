@@ -1,8 +1,7 @@
 //! `tubecast intersect --query hit|piece|all --threads N` end to end.
 
-mod common;
-
-use common::{bin, tmp};
+use crate::common::bin;
+crate::common::tmp_fn!();
 use tubecast_render::io::npy::{read, write, Array2};
 
 fn run(swc: &std::path::Path, rays: &std::path::Path, extra: &[&str], name: &str) -> Array2 {

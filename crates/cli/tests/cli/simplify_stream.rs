@@ -1,10 +1,10 @@
 //! `simplify` streams: its output equals, byte for byte, what the command wrote before it
 //! streamed (files in `tests/data/simplify/`, written by main at 09f0319 with the same
 //! arguments: `*.simplified.*` and the printed `*.stdout`); a truncated or malformed input is
-//! an error that leaves no output behind; the output may be the input itself.
+//! an error that leaves no output behind; the output may be the input itself (with --force).
 
-mod common;
-use common::{bin, tmp};
+use crate::common::bin;
+crate::common::tmp_fn!();
 use std::path::{Path, PathBuf};
 
 fn data(name: &str) -> PathBuf {
@@ -73,7 +73,12 @@ fn a_truncated_or_malformed_input_leaves_no_output() {
 fn the_output_may_be_the_input() {
     let p = tmp("in_place.tck");
     std::fs::copy(repo("reference/readers/nibabel/standard.tck"), &p).unwrap();
+    // Overwriting the input is overwriting a file: refused without --force, the input intact.
     let run = bin().arg("simplify").arg(&p).args(["--tolerance", "0.5", "-o"]).arg(&p).output().unwrap();
+    assert_eq!(run.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("--force"));
+    assert!(std::fs::read(&p).unwrap() == std::fs::read(repo("reference/readers/nibabel/standard.tck")).unwrap());
+    let run = bin().arg("simplify").arg(&p).args(["--tolerance", "0.5", "--force", "-o"]).arg(&p).output().unwrap();
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     assert!(std::fs::read(&p).unwrap() == std::fs::read(data("standard.simplified.tck")).unwrap());
 }

@@ -13,8 +13,8 @@
 //! nearest to there (within `p√2/2`) has `d_X ≤ r`: X covers a pixel within
 //! `ε/p + √2` pixels of every pixel where the two differ.
 
-mod common;
-use common::{bin, tmp};
+use crate::common::bin;
+crate::common::tmp_fn!();
 use std::path::Path;
 
 /// Image size, camera distance, field of view (degrees), tube radius.
@@ -153,9 +153,9 @@ fn bad_quantization_options_are_errors() {
     let tck = tmp("quant_bad.tck");
     assert!(bin().args(["generate", "helix", "--segments", "10", "-o"]).arg(&tck).status().unwrap().success());
     for (args, says) in [
-        (vec!["--quant-bins", "7"], "--quant-bins 7 must be in 8..=64"),
-        (vec!["--quant-bins", "65"], "--quant-bins 65 must be in 8..=64"),
-        (vec!["--quant-voxels", "0"], "--quant-voxels 0 must be in 1..=4096"),
+        (vec!["--quant-bins", "7"], "'7' for '--quant-bins <Q>': 7 is not in 8..=64"),
+        (vec!["--quant-bins", "65"], "'65' for '--quant-bins <Q>': 65 is not in 8..=64"),
+        (vec!["--quant-voxels", "0"], "'0' for '--quant-voxels <N>': 0 is not in 1..=4096"),
         (vec!["--color", "scalar:x"], "no data fields"),
     ] {
         let out = bin()

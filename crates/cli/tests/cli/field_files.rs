@@ -3,9 +3,8 @@
 //! placeholder radii (refused at their line with a `--min-radius` hint; replaced and counted
 //! with `--min-radius`).
 
-mod common;
-
-use common::{bin, tmp};
+use crate::common::bin;
+crate::common::tmp_fn!();
 use tubecast_render::io::npy::{read, write, Array2};
 
 /// nibabel's own test file `name` (committed under `reference/readers/nibabel`, MIT).
@@ -88,6 +87,7 @@ fn intersect_on_an_empty_file_writes_misses() {
     std::fs::write(&rp, write(&rays)).unwrap();
     for f in empty_files("intersect") {
         let hp = tmp("empty-hits.npy");
+        let _ = std::fs::remove_file(&hp);
         let out = bin().arg("intersect").arg(&f).arg("--rays").arg(&rp).arg("--out").arg(&hp).output().unwrap();
         assert!(out.status.success(), "{}: {}", f.display(), String::from_utf8_lossy(&out.stderr));
         assert!(String::from_utf8_lossy(&out.stderr).contains("every ray misses"));

@@ -1,9 +1,8 @@
 //! `render --ao cone|rays|off` with `--ao-samples N`: each writes an image, the older
 //! `--ao N` is `--ao rays --ao-samples N` byte for byte, and a bad value is refused by name.
 
-mod common;
-
-use common::{bin, tmp};
+use crate::common::bin;
+crate::common::tmp_fn!();
 
 #[test]
 fn ao_methods_render_and_bad_values_are_refused() {
