@@ -14,7 +14,7 @@ pub use crate::kernel::obb::Obb;
 ///
 /// Primitives' boxes ([`crate::Primitive::aabb`]) are formed from their defining data with a
 /// few roundings to nearest, so they can be short of the exact box by a few ulps of the
-/// coordinates: pad them for conservative culling (see `tests/primitive.rs` for the bound).
+/// coordinates: pad them for conservative culling (see `tests/kernels/primitive.rs` for the bound).
 ///
 /// ```
 /// use tubecast::{Aabb, Primitive, RoundCone, Sphere, V3};

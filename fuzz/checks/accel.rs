@@ -1,5 +1,5 @@
 // Differential check of the accelerators (they must agree bit for bit), shared by fuzz/fuzz_targets/accel.rs and
-// crates/render/tests/fuzz_corpus_io.rs: on a scene decoded from the input, every accelerator
+// crates/render/tests/io/fuzz_corpus.rs: on a scene decoded from the input, every accelerator
 // (`tracers`) gives exactly what a brute-force loop over the same primitives gives — the same
 // kernels run on the same rays, so the bound is zero: the closest hit's t (and whether there is
 // one), any-hit, and the CSG union of all line intervals, bit for bit. Culling may only skip

@@ -1,4 +1,4 @@
-// Shared by fuzz/fuzz_targets/csg.rs and tests/fuzz_corpus_kernels.rs.
+// Shared by fuzz/fuzz_targets/csg.rs and tests/kernels/fuzz_corpus.rs.
 // Bytes -> up to 6 links and a ray; the CSG union of their intervals must be sorted, alternate
 // entry/exit, lie in [t_min, t_max], carry unit normals and no NaN, and never report more
 // boundaries than 2 × intervals.

@@ -1,7 +1,7 @@
 // Differential check (the methods of one primitive held to each other's bounds), shared by
 // fuzz/fuzz_targets/differential.rs and
-// tests/fuzz_corpus_kernels.rs: every link method on the same input must agree within the
-// bounds derived in tests/link_props.rs (E = tubecast_oracle::link_error_bound):
+// tests/kernels/fuzz_corpus.rs: every link method on the same input must agree within the
+// bounds derived in tests/kernels/link/properties.rs (E = tubecast_oracle::link_error_bound):
 // 1. lanes (f32x8, f64x4) equal the scalar calls bit for bit (same IEEE operations, in order);
 // 2. f32 and f64 stable kernels on the same (f32-rounded) problem: the same hit/miss outside
 //    the band |gap| ≤ E₃₂ + E₆₄, and entry/exit t within the E-band of the line (`same_t`);
@@ -78,7 +78,7 @@ fn olink(l: &RoundCone<f64>) -> tubecast_oracle::Link {
     tubecast_oracle::Link { a: ov(l.a), ra: l.ra, b: ov(l.b), rb: l.rb }
 }
 
-/// `E` of tests/link_props.rs for precision `eps`, and the oracle's signed line gap.
+/// `E` of tests/kernels/link/properties.rs for precision `eps`, and the oracle's signed line gap.
 fn bound_and_gap(link: &RoundCone<f64>, ray: &Ray<f64>, eps: f64) -> (f64, f64) {
     let ov = |v: V3<f64>| tubecast_oracle::Vec3::new(v.x, v.y, v.z);
     let size = (link.b - link.a).length().max(link.ra).max(link.rb);
@@ -165,7 +165,7 @@ fn f32_agrees_with_f64(link: &RoundCone<f64>, ray: &Ray<f64>) -> Result<(), Stri
 
 /// Two answers `a`, `b` for `link` and `ray`, each within `e` of the sweep (`gap`: the oracle's
 /// signed line gap): hit and miss may differ only inside the band `|gap| ≤ e` (or for a
-/// crossing at the ray's start, which may round either way, as in tests/link_props.rs), and
+/// crossing at the ray's start, which may round either way, as in tests/kernels/link/properties.rs), and
 /// both hits' entry and exit lie in the E-band of the line (`same_t`).
 fn within_band(
     a: &Interval<f64>,

@@ -1,8 +1,8 @@
-// Shared by fuzz/fuzz_targets/link.rs and tests/fuzz_corpus_kernels.rs.
+// Shared by fuzz/fuzz_targets/link.rs and tests/kernels/fuzz_corpus.rs.
 // Bytes -> (link, ray) in f64; invalid input must be rejected by the validators (no panic);
 // valid input must give, for the stable, Han precomputed and Han on-the-fly kernels in f64 and
 // f32: no NaN, t_in <= t_out, unit normals; and for the stable kernel hit points on the surface
-// within E = 64ε(S + D) + 8εS/max(c², 32ε) (the bound derived in tests/link_props.rs).
+// within E = 64ε(S + D) + 8εS/max(c², 32ε) (the bound derived in tests/kernels/link/properties.rs).
 #[allow(unused_imports)]
 use tubecast::{HanLink, Primitive, Ray, RoundCone, V3};
 include!("decode.rs");
@@ -30,7 +30,7 @@ pub fn check(data: &[u8]) {
     let hi = lens.iter().cloned().fold(0.0, f64::max);
     let lo = lens.iter().cloned().filter(|x| *x > 0.0).fold(f64::INFINITY, f64::min);
     if st.hit && hi / lo < 1e12 {
-        // E of tests/link_props.rs, from the oracle crate (size S = max(L, ra, rb)).
+        // E of tests/kernels/link/properties.rs, from the oracle crate (size S = max(L, ra, rb)).
         let ov = |v: V3<f64>| tubecast_oracle::Vec3::new(v.x, v.y, v.z);
         let ol = tubecast_oracle::Link { a: ov(link.a), ra: link.ra, b: ov(link.b), rb: link.rb };
         let size = (link.b - link.a).length().max(link.ra).max(link.rb);

@@ -1,5 +1,5 @@
 // Replays a committed fuzz corpus through its check on stable Rust; shared by
-// tests/fuzz_corpus_kernels.rs and crates/render/tests/fuzz_corpus_io.rs (each `include!`s it).
+// tests/kernels/fuzz_corpus.rs and crates/render/tests/io/fuzz_corpus.rs (each `include!`s it).
 
 /// Runs `check` on every file of `corpus/<name>`; an input that panics fails the test with its
 /// path (the check's own message is printed above it). At least `min` inputs must be there.

@@ -1,4 +1,4 @@
-// Shared by fuzz/fuzz_targets/sphere.rs and tests/fuzz_corpus_kernels.rs.
+// Shared by fuzz/fuzz_targets/sphere.rs and tests/kernels/fuzz_corpus.rs.
 // Bytes -> (centre, radius, ray). Valid input (finite, r² normal, ray validated) must give in
 // f64, f32 and f64x4/f32x8 lanes: no NaN, t_in <= t_out, unit normals, and for f64 hit points
 // within E = 16ε(|o − c| + r) of the sphere (re-centred formulation: ≤ 8 roundings on vectors of

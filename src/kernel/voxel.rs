@@ -21,7 +21,7 @@
 //! box of Algorithm 1. With equal radii this is Kraaijeveld's capsule box, except their
 //! projected radius `r/√(1 − (dᵢ/|d|)²)` (Eq. 1), which is smaller than `ρᵢ` when all three
 //! components of `d` are non-zero (for `d ∝ (1, 1, 1)`: `1.22·r` against `1.41·r`) and then
-//! misses voxels the solid meets; `tests/voxel_conservative.rs` counts them.
+//! misses voxels the solid meets; `tests/kernels/voxel/conservative.rs` counts them.
 //!
 //! # Rounding
 //! Inputs (`f32` or `f64`) are converted to `f64` exactly and every bound is computed in `f64`.

@@ -6,7 +6,7 @@ use crate::link::{line_gap, line_interval, sweep_dist, sweep_normal, Link};
 use crate::rng::{splitmix, FloatRng, SplitMix64};
 use crate::vec::{Line, Vec3};
 
-/// Failure regions of the link kernels (the case mix of `tests/link_props.rs`).
+/// Failure regions of the link kernels (the case mix of `tests/kernels/link/properties.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum LinkRegion {
     /// Rays aimed near a random link.
@@ -189,7 +189,7 @@ pub fn link_case(seed: u64, region: LinkRegion) -> LinkCase {
     LinkCase { link, ray, region, size }
 }
 
-/// The distance bound `E` of `tests/link_props.rs` (derived in that file's module docs) for a
+/// The distance bound `E` of `tests/kernels/link/properties.rs` (derived in that file's module docs) for a
 /// stable-link hit point, for a kernel of unit roundoff `eps`: `64·ε·(S + D)` with `S = size`
 /// and `D = |o − m|` (`m` the link's midpoint), plus the nearly-flat-stump term
 /// `8·ε·S′/max(c², 32ε)` with `c² = 1 − sin²θ`, `sin θ = (ra − rb)/L` and `S′ = max(L, ra, rb)`
@@ -230,7 +230,7 @@ pub fn link_tip_term(l: &Link, e: f64) -> f64 {
     2.0 * e * (1.0 + 1.0 / s)
 }
 
-/// The `t` tolerance of `tests/link_props.rs` for a kernel of unit roundoff `eps`:
+/// The `t` tolerance of `tests/kernels/link/properties.rs` for a kernel of unit roundoff `eps`:
 /// the hit-point distance bound `E` ([`link_error_bound`]) plus the same for the `f64` oracle,
 /// converted to `t` through the incidence cosine `γ`: `(E + E₆₄)/(γ·|d|)`. Also returns `E`
 /// itself (the classification band).

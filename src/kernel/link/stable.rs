@@ -84,7 +84,7 @@ struct StableFrame<T: Real> {
     ca: V3<T>,
     cb: V3<T>,
     /// `S + D`: the link's size `max(L, ra, rb)` plus the ray origin's distance to the
-    /// midpoint, the scale of the kernel's error bound `E = 64ε(S + D) + …` (`tests/link_props.rs`).
+    /// midpoint, the scale of the kernel's error bound `E = 64ε(S + D) + …` (`tests/kernels/link/properties.rs`).
     sd: T,
 }
 

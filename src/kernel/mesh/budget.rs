@@ -55,7 +55,7 @@
 //!   within the certified bound of the mesh. A ray therefore never meets the mesh before it
 //!   enters `K`. Not derived: that a ray cannot slip between the mesh and `∂K` into a fold's
 //!   pocket deeper than the bound (each pocket is enclosed by mesh sheets; checked by ray
-//!   tests, `crates/render/tests/mesh_tracer.rs`).
+//!   tests, `crates/render/tests/accel/mesh_tracer.rs`).
 //! * **Axial (spline tubes)** — a quadratic sweep `(p(t), r(t))` is replaced by the links
 //!   between samples `h` apart in `t`; linear interpolation of a quadratic is off by at most
 //!   `h²/8·|p''| = h²/4·|b₀ − 2b₁ + b₂|` (likewise `r`), and the signed distance of a union of

@@ -134,7 +134,7 @@ pub fn tessellate_chain<T: Scalar>(nodes: &[(V3<T>, T)], eps: T) -> Result<Mesh,
 /// before the exact surface; and every point of the exact surface is within the certified
 /// bound (ring and arc terms, ε/2 each; joints spaced to stay within them) of the mesh. Not
 /// derived: that a ray cannot slip past the mesh into a fold's pocket deeper than the bound
-/// (checked by ray tests, `crates/render/tests/mesh_tracer.rs`). Joints still split where a
+/// (checked by ray tests, `crates/render/tests/accel/mesh_tracer.rs`). Joints still split where a
 /// cone would not emerge from the fold (see `budget.rs`) and at zero radii.
 ///
 /// ```

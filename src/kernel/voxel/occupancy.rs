@@ -5,7 +5,7 @@
 //! # What Alg. 3 estimates
 //! `occ(c) = clamp(½ − s(c), 0, 1)·(r/r_c)²` at a voxel centre `c`, `s` the SDF of the tube
 //! with its radii clamped to `r_c = max(r, r_min)`. Two facts bound it (tests in
-//! `tests/voxel_occupancy.rs`):
+//! `tests/kernels/voxel/occupancy.rs`):
 //! * `s` is 1-Lipschitz and every point of a unit voxel is within `√3/2` of its centre, so
 //!   `s(c) ≥ √3/2` means the voxel is empty and `s(c) ≤ −√3/2` that it is full; the estimate
 //!   is then 0 resp. 1 (unclamped radius) — exact.

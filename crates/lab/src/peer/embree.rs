@@ -457,7 +457,7 @@ mod tests {
         // the start sphere at t=9 (Embree renders it because the segment has no left
         // neighbour); one along -x from x=14 enters the end sphere at t=9.5. A ray across the
         // cone is compared with our stable kernel (itself checked against the oracle by
-        // tests/link_props.rs), within f32 rounding of both.
+        // tests/kernels/link/properties.rs), within f32 rounding of both.
         let l = RoundCone::new(V3::new(0.0f32, 0.0, 0.0), 1.0, V3::new(4.0, 0.0, 0.0), 0.5).unwrap();
         let dev = Device::new().unwrap();
         let s = Scene::round_linear(&dev, &[l]).unwrap();

@@ -366,7 +366,7 @@ pub struct Score {
     pub err_r: Vec<f64>,
     /// The same errors in ulps of `t` in the method's precision.
     pub err_ulp: Vec<f64>,
-    /// Error divided by the `tests/link_props.rs` bound for the method's precision (links only;
+    /// Error divided by the `tests/kernels/link/properties.rs` bound for the method's precision (links only;
     /// empty for splines and where the surface has no normal).
     pub bound_ratio: Vec<f64>,
 }
@@ -431,7 +431,7 @@ impl Score {
 }
 
 /// Score link outcomes against the oracle. The classification band is the
-/// `tests/link_props.rs` hit-point bound `E` for the method's precision: outside it a correct
+/// `tests/kernels/link/properties.rs` hit-point bound `E` for the method's precision: outside it a correct
 /// kernel must classify the case right.
 pub fn score_links(prec: Precision, cases: &[LinkCase], truth: &[LinkTruth], out: &[Outcome]) -> Score {
     let mut s = Score { n: cases.len(), ..Score::default() };

@@ -315,7 +315,7 @@ pub fn run_stability(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Re
     let mdp = out.join("stability.md");
     write_text(&mdp, &md)?;
 
-    // Charts: scalar methods only (lanes give bit-identical answers, see tests/link_props.rs).
+    // Charts: scalar methods only (lanes give bit-identical answers, see tests/kernels/link/properties.rs).
     let scalar = |p: Precision| matches!(p, Precision::F32 | Precision::F64);
     let lregions: Vec<&str> = oracle::LINK_REGIONS.iter().map(|r| r.name()).collect();
     let lidx = |r: LinkRegion| oracle::LINK_REGIONS.iter().position(|x| *x == r).unwrap_or(0);

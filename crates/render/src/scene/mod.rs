@@ -105,7 +105,7 @@ pub const MAX_COORD: f64 = 1e18;
 /// never (`r² − |l|² ≤ −3r²`), otherwise only where `||l| − r| ≤ (13u + 2⁻⁶⁰)·r`, a line
 /// within `≈ 13u·r` of the surface (`≈ 2u·r` where `|l| ≈ r`). Underflow adds `2⁻⁶⁰·r`, nothing
 /// against the link kernels' band `E = 64ε·S ≥ 2⁻¹⁷·r` (`ε = 2⁻²³`; the kernel crate's
-/// `tests/link_props.rs`).
+/// `tests/kernels/link/properties.rs`).
 ///
 /// **Link lengths.** The link kernel normalises its axis by `L = √|b − a|²`, formed in `f32`; for
 /// `L < 2⁻⁶³` that square is subnormal, `L` loses up to all its digits, and the stump's sine
