@@ -155,7 +155,9 @@ impl From<TraceSurface> for Surface {
 /// Minimum pixel footprint for thin tubes (`--thin`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Thin {
-    /// Tubes thinner than --min-pixels are drawn that wide and faded by their coverage.
+    /// Tubes thinner than --min-pixels are drawn that wide and faded by their coverage (`auto`,
+    /// the older default, means the same now that every format gets it).
+    #[value(alias = "auto")]
     On,
     /// Tubes keep their radii: thinner than a pixel they alias (look dotted).
     Off,
