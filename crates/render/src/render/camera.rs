@@ -197,9 +197,9 @@ impl Camera {
     }
 
     /// This camera's view (direction, up, field of view, image size) moved so that the spheres
-    /// `(centre, radius)` fill the image: the point looked at is the middle of their extent
-    /// across the view, and the eye as close as keeps every sphere inside the image with 5% to
-    /// spare on the side that limits (an orthographic camera: the image's half-height set
+    /// `(centre, radius)` fill the image: their image centred (perspective draws the near side
+    /// larger, so the eye moves sideways until it is), and the eye as close as keeps every
+    /// sphere inside the image with 5% to spare on the side that limits (an orthographic camera: the image's half-height set
     /// likewise, the eye in front of every sphere). A box fitted from its corners leaves a
     /// scene that does not fill its box far smaller than the image; this fits what is there.
     /// `None` when there is no sphere or the extent is empty or not finite.
@@ -229,32 +229,58 @@ impl Camera {
                 hi[k] = hi[k].max(q[k] + r.max(0.0));
             }
         }
-        let mid: [f64; 3] = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
+        let mut mid: [f64; 3] = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
         let size = (0..2).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
         if !(mid.iter().all(|m| m.is_finite()) && size.is_finite() && size > 0.0) {
             return None;
         }
-        let centre = self.right * mid[0] + self.up * mid[1] + self.forward * mid[2];
         let aspect = self.width as f64 / self.height as f64;
         let tv = (self.fov_deg * 0.5).to_radians().tan();
         let th = tv * aspect;
         if self.ortho > 0.0 {
             // Parallel rays: the half-height that holds both extents, the eye in front of all.
+            let centre = self.right * mid[0] + self.up * mid[1] + self.forward * mid[2];
             let half = ((hi[1] - lo[1]) * 0.5).max((hi[0] - lo[0]) * 0.5 / aspect) / FILL;
             let back = (mid[2] - lo[2]) + 0.05 * size;
             return Some(Self { eye: centre - self.forward * back, ortho: half, ..*self });
         }
-        // A sphere (x, y, z) about the centre, radius r, stays inside the horizontal field when
-        // |x| + r·√(1 + th²) ≤ FILL·th·(dist + z): its silhouette's edge leans out by 1/cos of
-        // the field's half-angle at most. Likewise vertically; and in front of the eye.
+        // A sphere (x, y, z) about the point looked at, radius r, stays inside the horizontal
+        // field when |x| + r·√(1 + th²) ≤ FILL·th·(dist + z): its silhouette's edge leans out by
+        // 1/cos of the field's half-angle at most. Likewise vertically; and in front of the eye.
         let (kh, kv) = ((1.0 + th * th).sqrt(), (1.0 + tv * tv).sqrt());
-        let mut dist: f64 = 0.0;
-        for (p, r) in spheres {
+        let local = |p: [f64; 3], r: f64, mid: &[f64; 3]| {
             let q = axes(p);
-            let (x, y, z, r) = (q[0] - mid[0], q[1] - mid[1], q[2] - mid[2], r.max(0.0));
-            let need = ((x.abs() + r * kh) / (FILL * th)).max((y.abs() + r * kv) / (FILL * tv)) - z;
-            dist = dist.max(need).max(r - z + 1e-3 * size);
+            (q[0] - mid[0], q[1] - mid[1], q[2] - mid[2], r.max(0.0))
+        };
+        let distance = |mid: &[f64; 3]| {
+            let mut dist: f64 = 0.0;
+            for (p, r) in spheres.clone() {
+                let (x, y, z, r) = local(p, r, mid);
+                let need = ((x.abs() + r * kh) / (FILL * th)).max((y.abs() + r * kv) / (FILL * tv)) - z;
+                dist = dist.max(need).max(r - z + 1e-3 * size);
+            }
+            dist
+        };
+        let mut dist = distance(&mid);
+        // Perspective draws the near side larger: centre the image of the spheres (their
+        // silhouettes' extent in tangent units) rather than their extent, and fit again; each
+        // round moves the eye sideways by the offset at the point looked at.
+        for _ in 0..3 {
+            let (mut u, mut v) = ([f64::INFINITY, f64::NEG_INFINITY], [f64::INFINITY, f64::NEG_INFINITY]);
+            for (p, r) in spheres.clone() {
+                let (x, y, z, r) = local(p, r, &mid);
+                let d = dist + z;
+                (u[0], u[1]) = (u[0].min((x - r * kh) / d), u[1].max((x + r * kh) / d));
+                (v[0], v[1]) = (v[0].min((y - r * kv) / d), v[1].max((y + r * kv) / d));
+            }
+            let shift = [0.5 * (u[0] + u[1]) * dist, 0.5 * (v[0] + v[1]) * dist];
+            if !(shift[0].is_finite() && shift[1].is_finite()) {
+                return None;
+            }
+            (mid[0], mid[1]) = (mid[0] + shift[0], mid[1] + shift[1]);
+            dist = distance(&mid);
         }
+        let centre = self.right * mid[0] + self.up * mid[1] + self.forward * mid[2];
         dist.is_finite().then(|| Self { eye: centre - self.forward * dist, ..*self })
     }
 
