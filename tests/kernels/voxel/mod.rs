@@ -1,0 +1,4 @@
+//! Voxelization of round cones: conservative cover and occupancy fractions.
+
+mod conservative;
+mod occupancy;
