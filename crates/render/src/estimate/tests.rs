@@ -82,7 +82,7 @@ fn the_estimate_covers_each_command() {
 
 /// What the CLI estimates for `--accel grid` on `links` links of `generate bundle
 /// --segments 84` with `rays` rays per build: the sample of its first 200 streamlines
-/// (`cmd_load`'s `SAMPLE_STREAMLINES`; the generator's first tubes do not depend on the
+/// (the CLI's `setup::SAMPLE_STREAMLINES`; the generator's first tubes do not depend on the
 /// count), the grid's primitives ([`crate::accel::WideBvh::scene_primitives`]), their sums
 /// and box scaled to `links` ([`grid_footprint`]).
 fn grid_work(links: u64, rays: f64, work: Work) -> (PerLink, Work) {
