@@ -11,7 +11,7 @@
 //! reports and where.
 
 mod accel {
-    include!("../../../fuzz/checks/accel.rs");
+    include!("../../../../fuzz/checks/accel.rs");
 }
 
 use tubecast::{Ray, RoundCone, V3};
@@ -41,7 +41,7 @@ fn decode(data: &[u8]) -> (Vec<RoundCone<f64>>, Vec<Ray<f64>>) {
 
 /// Brute force: the closest hit's `t` over `prims`.
 fn brute(prims: &[Prim], ray: &Ray<f64>) -> Option<f64> {
-    prims.iter().filter_map(|p| p.first_hit(ray)).map(|h| h.0).reduce(f64::min)
+    prims.iter().filter_map(|p| p.first_hit(ray)).map(|h| h.t).reduce(f64::min)
 }
 
 /// The finding: ray 1 hits link 1 (brute force, t = 5.7994…); the wide tree answered no hit.
@@ -50,7 +50,7 @@ fn brute(prims: &[Prim], ray: &Ray<f64>) -> Option<f64> {
 /// against the oracle: the primitive stores its ends in `f32` relative to its midpoint
 /// (`≤ 2⁻²⁴·|end − mid|` per coordinate, `|end − mid| ≤ 1.4`, radii `≤ 2⁻²⁴·0.3`), so its surface
 /// is within `s = 2⁻²⁴·(√3·1.4 + 0.3)` of the link's; the `f32` kernel's own hit-point error is
-/// `E` of [`link_error_bound`] with `2⁻²⁴` (the bound `tests/link_props.rs` holds the kernels
+/// `E` of [`link_error_bound`] with `2⁻²⁴` (the bound `tests/kernels/link/properties.rs` holds the kernels
 /// to), the oracle's the same with `2⁻⁵³`; along the ray these move the entry by `(s + E + E₆₄)/(γ·|d|)`,
 /// `γ` the incidence cosine at the oracle's entry.
 #[test]
@@ -62,7 +62,7 @@ fn the_long_link_finding_is_hit_by_every_accelerator() {
     let prims: Vec<Prim> = links.iter().enumerate().map(|(k, l)| Prim::from_link(l, k as u32)).collect();
     let ray = rays[1];
     let t = brute(&prims, &ray).expect("brute force hits");
-    let hit_link = prims.iter().find(|p| p.first_hit(&ray).map(|h| h.0) == Some(t)).unwrap().link as usize;
+    let hit_link = prims.iter().find(|p| p.first_hit(&ray).map(|h| h.t) == Some(t)).unwrap().link as usize;
     assert_eq!(hit_link, 1);
 
     let o = |v: V3<f64>| Vec3::new(v.x, v.y, v.z);

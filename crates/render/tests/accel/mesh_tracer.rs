@@ -58,13 +58,13 @@ fn mesh_hits_lie_within_the_bound() {
                     let d = exact_sdf(&scene, ray.at(h.t));
                     assert!(d.abs() <= tol, "ε {eps}: mesh hit at sdf {d}");
                     assert!(h.entering && (h.n.length() - 1.0).abs() < 1e-9);
-                    assert_eq!(tracer.prims()[h.prim as usize].link, h.link);
+                    assert_eq!(tracer.prims()[h.id as usize], tracer.prim(h.id));
                     both += usize::from(e.is_some());
                 }
                 (None, Some(e)) => {
                     // The mesh holds the exact solid eroded by its bound: a missed chord is shallow.
-                    let iv = scene.link(e.link as usize).intersect(&ray);
-                    let mid = ray.at(0.5 * (iv.t_in + iv.t_out));
+                    let iv = scene.link(exact.prim(e.id).link as usize).intersect(&ray);
+                    let mid = ray.at(0.5 * (iv.entry.t + iv.exit.t));
                     assert!(exact_sdf(&scene, mid) >= -tol, "ε {eps}: mesh missed a deep chord");
                     grazing += 1;
                 }
@@ -86,11 +86,11 @@ fn intervals_agree_with_the_closest_hit_and_shadow_rays() {
         tracer.line_intervals(&ray, &mut ivs);
         let hit = tracer.closest_hit(&ray);
         assert_eq!(hit.is_some(), tracer.any_hit(&ray));
-        let first = ivs.iter().map(|t| t.iv.t_in).filter(|&t| t >= 0.0).fold(f64::INFINITY, f64::min);
+        let first = ivs.iter().map(|t| t.iv.entry.t).filter(|&t| t >= 0.0).fold(f64::INFINITY, f64::min);
         if let Some(h) = hit {
             // Same triangle plane arithmetic on both paths: equal to rounding of t (scene ≤ 10).
             assert!((first - h.t).abs() <= 1e-9 * (1.0 + h.t), "interval entry {first} vs hit {}", h.t);
-            assert!(ivs.iter().all(|t| t.iv.t_in <= t.iv.t_out && (t.id as usize) < tracer.prims().len()));
+            assert!(ivs.iter().all(|t| t.iv.entry.t <= t.iv.exit.t && (t.id as usize) < tracer.prims().len()));
         } else {
             assert!(first.is_infinite());
         }

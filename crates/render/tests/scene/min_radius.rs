@@ -16,7 +16,7 @@
 //! * `s`: the storage rounding, `2⁻²⁴` of each stored coordinate and radius:
 //!   `s = 2⁻²⁴·(√3·max(|a|∞, |b|∞) + max(ra, rb))` for the stored offsets `a`, `b`;
 //! * `E₃₂ = link_error_bound(link, foot, S, 2⁻²³)`: the kernel's own band (the one the kernel
-//!   crate's `tests/link_props.rs` holds it to), with `D = |foot − m|`, `foot` the local ray's
+//!   crate's `tests/kernels/link/properties.rs` holds it to), with `D = |foot − m|`, `foot` the local ray's
 //!   origin (the line's point nearest the primitive's origin) — `64ε(S + D)` plus a cone term;
 //!   the local origin's and direction's rounding to `f32` (`2⁻²⁴` of `|foot − origin|` and of the
 //!   unit direction, over `τ ≲ S + D`) is inside it.
@@ -34,7 +34,7 @@
 //! finding shows the claim failing below the limit (a gap of `8·10³` radii, far outside `B`).
 
 mod accel {
-    include!("../../../fuzz/checks/accel.rs");
+    include!("../../../../fuzz/checks/accel.rs");
 }
 
 use tubecast::{Primitive, Ray, RoundCone, Sphere, V3};
@@ -96,7 +96,7 @@ fn the_finding_is_a_miss_that_the_f32_primitive_touched() {
     let prim = Prim::from_link(&sphere, 0);
     assert_eq!(prim.kind(), PrimKind::Sphere);
     let iv = prim.intersect(&Ray::with_range(ray.o, ray.d, f64::NEG_INFINITY, f64::INFINITY));
-    assert!(iv.hit && iv.t_in == iv.t_out, "the f32 primitive's answer: {iv:?}");
+    assert!(iv.hit && iv.entry.t == iv.exit.t, "the f32 primitive's answer: {iv:?}");
     // The f64 kernel (squares of 1e-61 are normal in f64) misses.
     assert!(!sphere.line_interval(&ray).hit);
 
@@ -285,7 +285,7 @@ fn judge(p: &Prim, l: &RoundCone<f64>, ray: &Ray<f64>, deep: &mut usize, worst: 
     *deep += 1;
     let dl = ray.d.length();
     let tip = link_tip_term(&link, band) / dl;
-    for (a, b, n) in [(got.t_in, want.t_in, want.n_in), (got.t_out, want.t_out, want.n_out)] {
+    for (a, b, n) in [(got.entry.t, want.entry.t, want.entry.n), (got.exit.t, want.exit.t, want.exit.n)] {
         let gamma = n.dot(ray.d).abs() / dl;
         let tol = band / (gamma * dl) + tip + 16.0 * f64::EPSILON * b.abs();
         *worst = worst.max((a - b).abs() / tol);

@@ -2,28 +2,28 @@
 //! through the same checks the fuzz targets run (fuzz/checks/*.rs), on stable Rust.
 
 mod swc {
-    include!("../../../fuzz/checks/swc.rs");
+    include!("../../../../fuzz/checks/swc.rs");
 }
 mod trk {
-    include!("../../../fuzz/checks/trk.rs");
+    include!("../../../../fuzz/checks/trk.rs");
 }
 mod tck {
-    include!("../../../fuzz/checks/tck.rs");
+    include!("../../../../fuzz/checks/tck.rs");
 }
 mod obj {
-    include!("../../../fuzz/checks/obj.rs");
+    include!("../../../../fuzz/checks/obj.rs");
 }
 mod npy {
-    include!("../../../fuzz/checks/npy.rs");
+    include!("../../../../fuzz/checks/npy.rs");
 }
 mod accel {
-    include!("../../../fuzz/checks/accel.rs");
+    include!("../../../../fuzz/checks/accel.rs");
 }
 mod trx {
-    include!("../../../fuzz/checks/trx.rs");
+    include!("../../../../fuzz/checks/trx.rs");
 }
 
-include!("../../../fuzz/checks/replay.rs");
+include!("../../../../fuzz/checks/replay.rs");
 
 fn replay(name: &str, check: fn(&[u8])) {
     let corpus = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/corpus");

@@ -109,9 +109,9 @@ fn float32_in_both_orders() {
 #[test]
 fn headers_other_than_a_plain_dict_are_refused_before_parsing() {
     let slow: [&[u8]; 3] = [
-        include_bytes!("../../../fuzz/corpus/npy/regression-nested-brackets"),
-        include_bytes!("../../../fuzz/corpus/npy/regression-quote-maze"),
-        include_bytes!("../../../fuzz/corpus/npy/regression-quote-maze-slow"),
+        include_bytes!("../../../../fuzz/corpus/npy/regression-nested-brackets"),
+        include_bytes!("../../../../fuzz/corpus/npy/regression-quote-maze"),
+        include_bytes!("../../../../fuzz/corpus/npy/regression-quote-maze-slow"),
     ];
     for d in slow {
         let e = read(d, "slow.npy", None).unwrap_err().to_string();

@@ -168,7 +168,7 @@ fn streamed_scene_with_a_selection_keeps_its_own_values() {
 /// declared one, so this is a clear error naming the entry and both sizes.
 #[test]
 fn an_entry_shorter_than_its_directory_record_is_an_error() {
-    let d = include_bytes!("../../../fuzz/corpus/trx/regression-entry-shorter-than-directory.trx");
+    let d = include_bytes!("../../../../fuzz/corpus/trx/regression-entry-shorter-than-directory.trx");
     let e = read(d, "short.trx").expect_err("the offsets entry holds no data");
     assert!(
         e.problem.contains("offsets") && e.problem.contains("holds 0 bytes where the zip directory says 16"),

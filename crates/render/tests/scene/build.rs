@@ -82,7 +82,7 @@ fn far_from_origin_keeps_precision_and_naive_f32_does_not() {
             let link = RoundCone { a: a.cast::<f32>(), ra: r as f32, b: b.cast::<f32>(), rb: r as f32 };
             let r32 = Ray::new(o.cast::<f32>(), V3::new(0.0f32, 1.0, 0.0));
             let e = match link.intersect(&r32).first_hit(0.0, f32::INFINITY) {
-                Some((t, _, _)) => (t as f64 - reference_t(z, r)).abs(),
+                Some(h) => (h.t as f64 - reference_t(z, r)).abs(),
                 None => f64::INFINITY,
             };
             if c.x != 0.0 {

@@ -1,5 +1,4 @@
 //! Helpers shared by the render tests.
-#![allow(dead_code)] // each test binary uses some of them
 
 use tubecast::{Ray, V3};
 use tubecast_render::accel::Bvh;

@@ -2,9 +2,7 @@
 //! kernels, BVH queries against brute force (including grazing rays), and transparent
 //! compositing of two crossing tubes against an analytic expectation (no interior surfaces).
 
-mod common;
-
-use common::{compare_depth, flat, render_links};
+use crate::common::{compare_depth, flat, render_links};
 use tubecast::{Primitive, Ray, V3};
 use tubecast_render::accel::Bvh;
 use tubecast_render::io::Polyline;
@@ -18,7 +16,7 @@ fn depth_buffer_equals_direct_f64_kernel_calls() {
     let reference = |_, _, ray: &Ray<f64>| {
         let mut best: Option<(f64, V3<f64>)> = None;
         for k in 0..scene.links.len() {
-            if let Some((t, n, _)) = scene.link(k).intersect(ray).first_hit(0.0, f64::INFINITY) {
+            if let Some(tubecast::Hit { t, n, .. }) = scene.link(k).intersect(ray).first_hit(0.0, f64::INFINITY) {
                 if best.map_or(true, |b| t < b.0) {
                     best = Some((t, n));
                 }
@@ -61,7 +59,7 @@ fn bvh_closest_and_any_hit_equal_brute_force_including_grazing_rays() {
         let ray = Ray::new(target - dir * 300.0, dir);
         let mut best: Option<f64> = None;
         for q in &bvh.prims {
-            if let Some((t, _, _)) = q.intersect(&ray).first_hit(0.0, f64::INFINITY) {
+            if let Some(tubecast::Hit { t, .. }) = q.intersect(&ray).first_hit(0.0, f64::INFINITY) {
                 best = Some(best.map_or(t, |b: f64| b.min(t)));
             }
         }
@@ -245,7 +243,7 @@ fn bvh_queries_equal_brute_force_bitwise(bvh: &Bvh, centre: impl Fn(&tubecast_re
         // Closest hit.
         let mut best: Option<(f64, V3<f64>, f64, u32)> = None;
         for (k, q) in bvh.prims.iter().enumerate() {
-            if let Some((t, n, u, _)) = q.first_hit(&ray) {
+            if let Some(tubecast::Hit { t, n, u, .. }) = q.first_hit(&ray) {
                 if best.map_or(true, |b| t < b.0) {
                     best = Some((t, n, u, k as u32));
                 }
@@ -255,10 +253,9 @@ fn bvh_queries_equal_brute_force_bitwise(bvh: &Bvh, centre: impl Fn(&tubecast_re
         assert_eq!(got.map(|h| h.t), best.map(|b| b.0), "ray {i}: closest t");
         if let (Some(h), Some(b)) = (got, best) {
             // A tie in t between two primitives may pick either; compare that primitive's own result.
-            let own = bvh.prims[h.prim as usize].first_hit(&ray).unwrap();
-            assert_eq!((h.t, h.n, h.u), (own.0, own.1, own.2), "ray {i}: hit data of its primitive");
-            assert_eq!(h.link, bvh.prims[h.prim as usize].link, "ray {i}: link of the hit primitive");
-            if h.prim != b.3 {
+            let own = bvh.prims[h.id as usize].first_hit(&ray).unwrap();
+            assert_eq!((h.t, h.n, h.u), (own.t, own.n, own.u), "ray {i}: hit data of its primitive");
+            if h.id != b.3 {
                 assert_eq!(h.t, b.0, "ray {i}: a different primitive only on a tie");
             }
             hits += 1;
@@ -266,7 +263,11 @@ fn bvh_queries_equal_brute_force_bitwise(bvh: &Bvh, centre: impl Fn(&tubecast_re
         assert_eq!(bvh.any_hit(&ray), best.is_some(), "ray {i}: any-hit");
         // Line intervals, as sets of (id, bits of every field).
         let key = |id: u32, iv: &tubecast::Interval<f64>| {
-            (id, [iv.t_in, iv.t_out, iv.u_in, iv.u_out, iv.n_in.x, iv.n_in.y, iv.n_in.z, iv.n_out.x].map(f64::to_bits))
+            (
+                id,
+                [iv.entry.t, iv.exit.t, iv.entry.u, iv.exit.u, iv.entry.n.x, iv.entry.n.y, iv.entry.n.z, iv.exit.n.x]
+                    .map(f64::to_bits),
+            )
         };
         let mut ivs = Vec::new();
         bvh.line_intervals(&ray, &mut ivs);

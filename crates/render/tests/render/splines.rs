@@ -4,9 +4,7 @@
 //! certified distance), a straight polyline against its link rendering, and transparent
 //! compositing without interior surfaces at joints.
 
-mod common;
-
-use common::{compare_depth, flat};
+use crate::common::{self, compare_depth, flat};
 use tubecast::csg::{union, Tagged};
 use tubecast::{HermiteSegment, Primitive, QuadTube, Ray, V3};
 use tubecast_oracle::{golden_min, line_dist, sphere_crossing, Line, Vec3};
@@ -36,7 +34,7 @@ fn catmull_rom(l: &Polyline) -> Vec<HermiteSegment<f64>> {
 }
 
 /// The pieces the faithful model traces, computed here from the independently built segments
-/// with the kernel's certified split (tested against the cubic in `tests/spline_hermite.rs`),
+/// with the kernel's certified split (tested against the cubic in `tests/kernels/spline/hermite.rs`),
 /// in `f64`, and the greatest certified distance to the cubic's sweep among them.
 fn pieces(segs: &[HermiteSegment<f64>]) -> (Vec<QuadTube<f64>>, f64) {
     let mut out = Vec::new();
@@ -55,7 +53,7 @@ fn pieces(segs: &[HermiteSegment<f64>]) -> (Vec<QuadTube<f64>>, f64) {
 fn reference_hit(pieces: &[QuadTube<f64>], ray: &Ray<f64>) -> Option<(f64, V3<f64>)> {
     let mut best: Option<(f64, V3<f64>)> = None;
     for q in pieces {
-        if let Some((t, n, _)) = q.intersect(ray).first_hit(0.0, f64::INFINITY) {
+        if let Some(tubecast::Hit { t, n, .. }) = q.intersect(ray).first_hit(0.0, f64::INFINITY) {
             if best.map_or(true, |b| t < b.0) {
                 best = Some((t, n));
             }
@@ -127,7 +125,7 @@ fn cubic_hit(segs: &[HermiteSegment<f64>], ray: &Ray<f64>) -> Option<(f64, V3<f6
 /// * Storing the controls in `f32` relative to the sub-segment midpoint and moving the ray
 ///   there: offsets ≤ `s` are rounded by ≤ `ε·s` (ε = 2⁻²³, generous for round-to-nearest),
 ///   moving the surface by a few `ε·s`.
-/// * The `f32` kernel (bound of `tests/spline_kernel.rs`): `g(t*)` carries an absolute error
+/// * The `f32` kernel (bound of `tests/kernels/spline/kernel.rs`): `g(t*)` carries an absolute error
 ///   ≤ 64ε·s², `h` ≤ 8ε·s. At an entry with `|n·d̂| ≥ c`, `√g = r(t*)·|n·d̂| ≥ r_min·c` (the
 ///   half chord of the entry sphere), so `√g` errs by ≤ 64ε·s²/(2·r_min·c).
 ///
@@ -259,8 +257,8 @@ fn straight_polyline_with_splines_matches_links() {
     let link_ref = |r: &Ray<f64>| {
         (0..scene.links.len())
             .filter_map(|k| scene.link(k).intersect(r).first_hit(0.0, f64::INFINITY))
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-            .map(|(t, n, _)| (t, n))
+            .min_by(|a, b| a.t.total_cmp(&b.t))
+            .map(|h| (h.t, h.n))
     };
     // Both renders are within their rounding of the exact (same) surface: the link path by
     // a few ε·s (ε = 2⁻²³, s ≤ 1.4: half a link ≤ 0.75 plus radius ≤ 0.65), head-on or not,
