@@ -1,0 +1,261 @@
+// Closest-hit and any-hit queries over the CPU's wide BVH, appended to link.wgsl: a port of
+// `crates/render/src/accel/tree.rs` (Tree::entries, Tree::walk) and of the leaf work of
+// `WideBvh::closest_hit` / `any_hit` (`crates/render/src/accel/wide.rs`) with `Prim::local_origin`
+// and `Prim::to_world` (`crates/render/src/scene/prim.rs`) done in f32 from the ray's restart
+// point (see `crate::scene` for the error this adds). `STACK_SIZE` is substituted at build.
+
+struct Params {
+    n_rays: u32,
+    n_items: u32,
+    // 8·pad in world units (the CPU's `margin`) and the tree frame's scale.
+    margin: f32,
+    scale: f32,
+}
+
+// tree.rs: Node (256 bytes): lo[axis][child] as 6 vec4, hi likewise, child, count.
+struct Node {
+    lo: array<vec4f, 6>,
+    hi: array<vec4f, 6>,
+    child: array<vec4u, 2>,
+    count: array<vec4u, 2>,
+}
+
+// crate::scene::GpuPrim: a link (kind 0) or a sphere (kind 1, radius ra) relative to `org`,
+// the primitive's origin relative to the tree centre.
+struct Prim {
+    a: vec3f,
+    ra: f32,
+    b: vec3f,
+    rb: f32,
+    org: vec3f,
+    kind: u32,
+}
+
+// crate::scene::GpuRay: the ray restarted before the scene box (Frame::clip).
+struct Ray {
+    // Restart point − centre (world units) and the range in distance from it.
+    o: vec3f,
+    s_min: f32,
+    // The unit direction rounded to f32 (the CPU's `dn.cast::<f32>()`).
+    d: vec3f,
+    s_max: f32,
+    // The same ray in the tree frame: origin, and the obvhs ray's t_max.
+    to: vec3f,
+    tmax: f32,
+    // Direction with −0 turned to +0 (Frame::clip's `+ 0.0`).
+    td: vec3f,
+    valid: u32,
+}
+
+// crate::scene::GpuHit
+struct HitOut {
+    n: vec3f,
+    s: f32,
+    u: f32,
+    item: u32,
+    entering: u32,
+    _pad: u32,
+}
+
+@group(0) @binding(0) var<uniform> params: Params;
+@group(0) @binding(1) var<storage, read> nodes: array<Node>;
+@group(0) @binding(2) var<storage, read> prims: array<Prim>;
+@group(0) @binding(3) var<storage, read> rays: array<Ray>;
+@group(0) @binding(4) var<storage, read_write> out: array<HitOut>;
+
+const NONE: u32 = 0xffffffffu;
+const STACK: u32 = STACK_SIZEu;
+
+// The first crossing of item `it` in [s_min, s_max], as distance from the restart point
+// (Prim::intersect_unit + Interval::first_hit); `item == NONE` when there is none.
+fn test_item(r: Ray, it: u32) -> HitOut {
+    var h: HitOut;
+    h.item = NONE;
+    let p = prims[it];
+    // Prim::local_origin: tc = (org − o)·dn, o_local = o + dn·tc − org.
+    let tc = dot3(p.org - r.o, r.d);
+    let lo = r.o + r.d * tc - p.org;
+    var iv: Iv;
+    if p.kind == 1u {
+        iv = sphere_line(lo, r.d, vec3f(0.0), p.ra, 0.0);
+    } else {
+        iv = stable_line(Cone(p.a, p.ra, p.b, p.rb), lo, r.d);
+    }
+    if !iv.hit {
+        return h;
+    }
+    let s_in = tc + iv.t_in;
+    let s_out = tc + iv.t_out;
+    if s_in >= r.s_min && s_in <= r.s_max {
+        h.item = it;
+        h.s = s_in;
+        h.n = iv.n_in;
+        h.u = iv.u_in;
+        h.entering = 1u;
+    } else if s_out >= r.s_min && s_out <= r.s_max {
+        h.item = it;
+        h.s = s_out;
+        h.n = iv.n_out;
+        h.u = iv.u_out;
+        h.entering = 0u;
+    }
+    return h;
+}
+
+fn closer(a: HitOut, b: HitOut) -> bool {
+    return a.item != NONE && (b.item == NONE || a.s < b.s || (a.s == b.s && a.item < b.item));
+}
+
+fn plane(v: array<vec4f, 6>, axis: u32, i: u32) -> f32 {
+    return v[axis * 2u + i / 4u][i % 4u];
+}
+
+// Tree::walk with the leaf work of WideBvh::closest_hit (any_only = false) or any_hit (true).
+fn walk(r: Ray, any_only: bool) -> HitOut {
+    var best: HitOut;
+    best.item = NONE;
+    if r.valid == 0u {
+        return best;
+    }
+    // TreeRay::new: 1/d clamped to ±2²³ where |d| ≤ 2⁻²³.
+    var inv: vec3f;
+    for (var a = 0u; a < 3u; a++) {
+        let x = r.td[a];
+        inv[a] = select(1.0 / x, select(1.0, -1.0, x < 0.0) / EPS, abs(x) <= EPS);
+    }
+    var tmax = r.tmax;
+    var st_c: array<vec2u, STACK>;
+    var st_t: array<f32, STACK>;
+    var top = 0u;
+    var node = 0u;
+    loop {
+        // Tree::entries
+        let n = nodes[node];
+        var ot: array<f32, 8>;
+        var oi: array<u32, 8>;
+        var k = 0u;
+        for (var i = 0u; i < 8u; i++) {
+            var near = 0.0;
+            var far = tmax;
+            for (var a = 0u; a < 3u; a++) {
+                let neg = inv[a] < 0.0;
+                let lo = select(plane(n.lo, a, i), plane(n.hi, a, i), neg);
+                let hi = select(plane(n.hi, a, i), plane(n.lo, a, i), neg);
+                let t0 = (lo - r.to[a]) * inv[a];
+                let t1 = (hi - r.to[a]) * inv[a];
+                near = select(near, t0, t0 > near);
+                far = select(far, t1, t1 < far);
+            }
+            if near <= far {
+                // Insertion sort, nearest first.
+                var j = k;
+                while j > 0u && ot[j - 1u] > near {
+                    ot[j] = ot[j - 1u];
+                    oi[j] = oi[j - 1u];
+                    j--;
+                }
+                ot[j] = near;
+                oi[j] = i;
+                k++;
+            }
+        }
+        // Push all but the nearest, farthest first.
+        for (var j = k; j > 1u; j--) {
+            let i = oi[j - 1u];
+            st_c[top] = vec2u(n.child[i / 4u][i % 4u], n.count[i / 4u][i % 4u]);
+            st_t[top] = ot[j - 1u];
+            top++;
+        }
+        var have_next = k > 0u;
+        var next_c = vec2u(0u);
+        var next_t = 0.0;
+        if have_next {
+            let i = oi[0];
+            next_c = vec2u(n.child[i / 4u][i % 4u], n.count[i / 4u][i % 4u]);
+            next_t = ot[0];
+        }
+        var descend = false;
+        loop {
+            var c: vec2u;
+            var te: f32;
+            if have_next {
+                c = next_c;
+                te = next_t;
+                have_next = false;
+            } else if top > 0u {
+                top--;
+                c = st_c[top];
+                te = st_t[top];
+            } else {
+                break;
+            }
+            if te > tmax {
+                continue;
+            }
+            if c.y == 0u {
+                node = c.x;
+                descend = true;
+                break;
+            }
+            for (var it = c.x; it < c.x + c.y; it++) {
+                let h = test_item(r, it);
+                if closer(h, best) {
+                    best = h;
+                    if any_only {
+                        return best;
+                    }
+                    // Cull by the best hit so far, loosened by the box margin.
+                    let tb = (best.s + params.margin) * params.scale;
+                    if tb < tmax {
+                        tmax = tb;
+                    }
+                }
+            }
+        }
+        if !descend {
+            break;
+        }
+    }
+    return best;
+}
+
+fn ray_index(gid: vec3u, nwg: vec3u) -> u32 {
+    return gid.x + gid.y * nwg.x * 64u;
+}
+
+@compute @workgroup_size(64)
+fn closest_tree(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
+    let i = ray_index(gid, nwg);
+    if i < params.n_rays {
+        out[i] = walk(rays[i], false);
+    }
+}
+
+@compute @workgroup_size(64)
+fn any_tree(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
+    let i = ray_index(gid, nwg);
+    if i < params.n_rays {
+        out[i] = walk(rays[i], true);
+    }
+}
+
+// Every item against the ray, no tree: the reference the tree walk must equal.
+@compute @workgroup_size(64)
+fn closest_brute(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
+    let i = ray_index(gid, nwg);
+    if i >= params.n_rays {
+        return;
+    }
+    let r = rays[i];
+    var best: HitOut;
+    best.item = NONE;
+    if r.valid != 0u {
+        for (var it = 0u; it < params.n_items; it++) {
+            let h = test_item(r, it);
+            if closer(h, best) {
+                best = h;
+            }
+        }
+    }
+    out[i] = best;
+}

@@ -1,0 +1,101 @@
+//! The link and sphere kernels on their own: one primitive against one local ray per thread,
+//! for comparing the WGSL port with the CPU kernel on identical `f32` input.
+
+use crate::compute::Kernel;
+use crate::device::{Gpu, GpuError};
+use bytemuck::{Pod, Zeroable};
+use tubecast::{Crossing, Interval, Ray, RoundCone, V3};
+
+/// The WGSL source of the link and sphere kernels.
+pub const LINK_WGSL: &str = include_str!("../shaders/link.wgsl");
+const PAIRS_WGSL: &str = include_str!("../shaders/pairs.wgsl");
+
+/// A primitive of a kernel test: a link, or a sphere at the origin.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Local {
+    /// The stable round-cone link.
+    Link(RoundCone<f32>),
+    /// The sphere of this radius at the origin.
+    Sphere(f32),
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct PairIn {
+    a: [f32; 3],
+    ra: f32,
+    b: [f32; 3],
+    rb: f32,
+    o: [f32; 3],
+    kind: u32,
+    d: [f32; 3],
+    _pad: u32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct IvOut {
+    n_in: [f32; 3],
+    t_in: f32,
+    n_out: [f32; 3],
+    t_out: f32,
+    u_in: f32,
+    u_out: f32,
+    hit: u32,
+    _pad: u32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct Count {
+    n: u32,
+    _pad: [u32; 3],
+}
+
+/// The kernel pipeline of [`Gpu::line_intervals`].
+pub struct Pairs {
+    kernel: Kernel,
+}
+
+impl Pairs {
+    /// Compile the kernels for `gpu`.
+    pub fn new(gpu: &Gpu) -> Result<Self, GpuError> {
+        let src = format!("{LINK_WGSL}\n{PAIRS_WGSL}");
+        Ok(Self { kernel: gpu.kernel(&src, "pairs_main", 1)? })
+    }
+
+    /// The line interval of each primitive `prims[i]` with the ray `rays[i]` (origin and
+    /// direction; the range is ignored), as the CPU's `line_interval` gives it for `f32`.
+    pub fn line_intervals(
+        &self,
+        gpu: &Gpu,
+        prims: &[Local],
+        rays: &[Ray<f32>],
+    ) -> Result<Vec<Interval<f32>>, GpuError> {
+        let v = |x: V3<f32>| x.to_array();
+        let input: Vec<PairIn> = prims
+            .iter()
+            .zip(rays)
+            .map(|(p, r)| {
+                let (a, ra, b, rb, kind) = match *p {
+                    Local::Link(c) => (v(c.a), c.ra, v(c.b), c.rb, 0),
+                    Local::Sphere(r) => ([0.0; 3], r, [0.0; 3], r, 1),
+                };
+                PairIn { a, ra, b, rb, o: v(r.o), kind, d: v(r.d), _pad: 0 }
+            })
+            .collect();
+        let buf = gpu.upload("kernel inputs", &input)?;
+        let out: Vec<IvOut> =
+            gpu.run(&self.kernel, &Count { n: input.len() as u32, _pad: [0; 3] }, &[&buf], input.len())?;
+        Ok(out
+            .iter()
+            .map(|o| {
+                if o.hit == 0 {
+                    return Interval::miss();
+                }
+                let c = |t, n: [f32; 3], u| Crossing { t, n: V3::from(n), u };
+                Interval::new(c(o.t_in, o.n_in, o.u_in), c(o.t_out, o.n_out, o.u_out), true)
+            })
+            .collect())
+    }
+}

@@ -1,0 +1,120 @@
+//! `render --device gpu`: the CPU renderer's own shading ([`tubecast_render::render::render`]),
+//! with every ray it casts (primary, shadow, ambient-occlusion) answered on the GPU.
+//!
+//! The renderer asks one ray at a time through [`Tracer`]; a GPU answers batches. So the frame
+//! is rendered in rounds: each round runs the renderer against the answers known so far,
+//! records the rays it asked that have no answer yet (answering them "miss" for the moment),
+//! and sends them to the GPU as one batch. Round 1 gathers the primary rays, round 2 the shadow
+//! and AO rays from the surface points they found, round 3 finds every ray answered and is
+//! the image. The renderer is deterministic (AO seeds by pixel), so each round asks the same
+//! rays as the last plus those that its new answers open.
+
+use crate::device::GpuError;
+use crate::scene::{GpuScene, Walk};
+use std::collections::HashMap;
+use std::sync::Mutex;
+use tubecast::csg::Tagged;
+use tubecast::{Hit, Ray};
+use tubecast_render::accel::{Tracer, WideBvh};
+use tubecast_render::render::{render, Camera, Image, Options};
+use tubecast_render::scene::{Prim, Scene};
+
+/// Rounds before giving up: primary, secondary, final (one spare).
+const ROUNDS: usize = 4;
+
+/// A ray as a hash key: its bits.
+type Key = [u64; 8];
+
+fn key(r: &Ray<f64>) -> Key {
+    [r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.t_min, r.t_max].map(f64::to_bits)
+}
+
+/// A [`Tracer`] answering from the GPU's answers, recording the rays it cannot answer yet.
+struct Answers<'a> {
+    bvh: &'a WideBvh,
+    closest: HashMap<Key, Option<Hit<f64>>>,
+    any: HashMap<Key, bool>,
+    ask_closest: Mutex<Vec<Ray<f64>>>,
+    ask_any: Mutex<Vec<Ray<f64>>>,
+    /// A query the GPU does not answer (line intervals: transparency, faded thin tubes).
+    unsupported: Mutex<bool>,
+}
+
+impl Tracer for Answers<'_> {
+    fn prims(&self) -> &[Prim] {
+        self.bvh.prims()
+    }
+    fn prim(&self, id: u32) -> Prim {
+        self.bvh.prim(id)
+    }
+    fn prim_count(&self) -> usize {
+        self.bvh.prim_count()
+    }
+    fn closest_hit(&self, ray: &Ray<f64>) -> Option<Hit<f64>> {
+        match self.closest.get(&key(ray)) {
+            Some(h) => *h,
+            None => {
+                self.ask_closest.lock().expect("ray log").push(*ray);
+                None
+            }
+        }
+    }
+    fn any_hit(&self, ray: &Ray<f64>) -> bool {
+        match self.any.get(&key(ray)) {
+            Some(h) => *h,
+            None => {
+                self.ask_any.lock().expect("ray log").push(*ray);
+                false
+            }
+        }
+    }
+    fn line_intervals(&self, _: &Ray<f64>, _: &mut Vec<Tagged<f64>>) {
+        *self.unsupported.lock().expect("flag") = true;
+    }
+    fn memory_bytes(&self) -> usize {
+        self.bvh.memory_bytes()
+    }
+}
+
+/// Render `scene` through `cam` as [`render`] does, every ray answered by `gpu_scene` (uploaded
+/// from `bvh`). Errors: the GPU's, and [`GpuError::Unsupported`] for transparent renders
+/// (`opacity < 1`) and thin tubes faded by `--min-px` (both need line intervals, not on the GPU
+/// yet). Render-option errors are returned as [`GpuError::Unsupported`] with their message.
+pub fn render_gpu(
+    gpu_scene: &GpuScene<'_>,
+    scene: &Scene,
+    bvh: &WideBvh,
+    cam: &Camera,
+    opts: &Options,
+) -> Result<Image, GpuError> {
+    let mut ans = Answers {
+        bvh,
+        closest: HashMap::new(),
+        any: HashMap::new(),
+        ask_closest: Mutex::new(Vec::new()),
+        ask_any: Mutex::new(Vec::new()),
+        unsupported: Mutex::new(false),
+    };
+    let quiet = Options { progress: false, ..*opts };
+    for _ in 0..ROUNDS {
+        let img = render(scene, &ans, cam, &quiet).map_err(|e| GpuError::Unsupported(e.to_string()))?;
+        if *ans.unsupported.lock().expect("flag") {
+            return Err(GpuError::Unsupported("transparency and faded thin tubes (line intervals)".into()));
+        }
+        let mut closest = std::mem::take(&mut *ans.ask_closest.lock().expect("ray log"));
+        let mut any = std::mem::take(&mut *ans.ask_any.lock().expect("ray log"));
+        if closest.is_empty() && any.is_empty() {
+            return Ok(img);
+        }
+        // Rows run in parallel: the same ray may be logged twice, in any order.
+        for rays in [&mut closest, &mut any] {
+            rays.sort_unstable_by_key(key);
+            rays.dedup_by_key(|r| key(r));
+        }
+        let hits = gpu_scene.closest_hits(&closest, Walk::Tree)?;
+        ans.closest.extend(closest.iter().map(key).zip(hits));
+        let hits = gpu_scene.any_hits(&any)?;
+        ans.any.extend(any.iter().map(key).zip(hits));
+    }
+    Err(GpuError::Dispatch(format!("rays still unanswered after {ROUNDS} rounds")))
+}

@@ -1,0 +1,108 @@
+//! `render` on the GPU against the CPU render, pixel by pixel, on the shipped tractogram and a
+//! generated neuron assembly.
+//!
+//! Tolerance. Both renders shade with the same code (the GPU only answers the rays), so a
+//! pixel's colours differ only through its hit. Where the CPU and the GPU hit the same
+//! primitive, the colour `base·(0.25 + 0.75·n·l) + 0.35·(n·h)⁴⁸` (`Shading::Lit`, no shadow or AO)
+//! moves by at most `(0.75 + 0.35·48)·|Δn| < 18·|Δn|` per channel, and the two normals, taken
+//! on one primitive (curvature at most `1/r`) at hit points `|Δx| ≤ (E_gpu + E_cpu + 2δ)/γ` apart
+//! (the tree test's analysis; `γ` the incidence cosine), differ by `|Δx|/r` plus the kernels'
+//! own few-`ε` rounding of a unit vector: the per-pixel tolerance is
+//! `18·((E_gpu + E_cpu + 2δ)/(γ·r) + 64ε)`. Where the two hit different primitives or only one
+//! hits, the primary ray must graze (the tree test's band); those pixels are counted.
+
+use std::path::Path;
+use tubecast::V3;
+use tubecast_gpu::{render_gpu, GpuScene, Walk};
+use tubecast_oracle::{line_gap, link_error_bound, Line, Link, Vec3};
+use tubecast_render::accel::{Tracer, WideBvh};
+use tubecast_render::render::{render, Camera, Options};
+use tubecast_render::scene::generate;
+use tubecast_render::scene::{Model, Prim, Scene};
+
+fn ov(v: V3<f64>) -> Vec3 {
+    Vec3::new(v.x, v.y, v.z)
+}
+
+fn link_of(p: &Prim) -> Link {
+    let o = V3::from(p.origin);
+    let c = p.round_cone().expect("links and spheres only");
+    Link { a: ov(o + c.a.cast()), ra: f64::from(c.ra), b: ov(o + c.b.cast()), rb: f64::from(c.rb) }
+}
+
+/// `E` (ε = 2⁻²³) for primitive `p` and a ray from `o` along `d`.
+fn bound(p: &Prim, o: V3<f64>, d: V3<f64>) -> f64 {
+    let l = link_of(p);
+    let dn = d * (1.0 / d.length());
+    let m = V3::from(p.origin);
+    let foot = o + dn * (m - o).dot(dn);
+    let size = (l.b - l.a).length().max(l.ra).max(l.rb);
+    link_error_bound(&l, ov(foot), size, f64::from(f32::EPSILON))
+}
+
+fn check(scene: &Scene, name: &str) {
+    let Some(gpu) = crate::gpu(name) else { return };
+    let bvh = WideBvh::from_scene(scene, Model::Links).unwrap();
+    let gs = GpuScene::upload(&gpu, &bvh).unwrap();
+    let delta = gs.band();
+    let st = scene.stats();
+    let cam = Camera::fit(st.bounds.0, st.bounds.1, 40.0, 160, 120).unwrap();
+    let opts = Options::default();
+    let cpu = render(scene, &bvh, &cam, &opts).unwrap();
+    let img = render_gpu(&gs, scene, &bvh, &cam, &opts).unwrap();
+    let rays: Vec<_> = (0..cam.height).flat_map(|y| (0..cam.width).map(move |x| cam.ray(x, y))).collect();
+    let hits = gs.closest_hits(&rays, Walk::Tree).unwrap();
+    let (mut worst, mut grazes, mut covered) = (0.0f64, 0, 0);
+    for (i, ray) in rays.iter().enumerate() {
+        let (g, c) = (hits[i], bvh.closest_hit(ray));
+        let diff = (0..3).map(|k| (img.rgb[i][k] - cpu.rgb[i][k]).abs()).fold(0.0f32, f32::max) as f64;
+        match (g, c) {
+            (Some(g), Some(c)) if g.id == c.id => {
+                let p = bvh.prim(g.id);
+                let gamma = c.n.dot(ray.d * (1.0 / ray.d.length())).abs();
+                let e = 2.0 * bound(&p, ray.o, ray.d) + 2.0 * delta;
+                let tol = 18.0 * (e / (gamma * f64::from(p.max_radius())) + 64.0 * f64::from(f32::EPSILON));
+                assert!(diff <= tol, "{name} pixel {i}: colour differs by {diff:e} > {tol:e} (γ {gamma:e})");
+                worst = worst.max(diff);
+                covered += 1;
+            }
+            (None, None) => assert!(diff == 0.0, "{name} pixel {i}: background differs by {diff:e}"),
+            (g, c) => {
+                // Only a graze may change what the pixel sees: one of the hits' primitives is
+                // passed within the band.
+                let line = Line { o: ov(ray.o), d: ov(ray.d) };
+                let grazed = [g, c].iter().flatten().any(|h| {
+                    let p = bvh.prim(h.id);
+                    line_gap(&link_of(&p), &line).0.abs() <= 2.0 * bound(&p, ray.o, ray.d) + delta
+                });
+                let same_t = matches!((g, c), (Some(g), Some(c)) if (g.t - c.t).abs() * ray.d.length()
+                    <= 2.0 * (bound(&bvh.prim(g.id), ray.o, ray.d) + bound(&bvh.prim(c.id), ray.o, ray.d) + delta)
+                        / c.n.dot(ray.d * (1.0 / ray.d.length())).abs().max(1e-12));
+                assert!(grazed || same_t, "{name} pixel {i}: GPU {g:?} CPU {c:?} outside the band");
+                grazes += 1;
+            }
+        }
+    }
+    assert!(covered > 1000, "{name}: {covered} pixels on tubes");
+    eprintln!("{name}: {covered} tube pixels, max colour difference {worst:e} (linear); {grazes} graze pixels");
+    // Shadows and AO go through the GPU too: the image must come back, and mostly agree.
+    let full = Options { shadows: true, ao: 4, ..opts };
+    let cpu = render(scene, &bvh, &cam, &full).unwrap();
+    let img = render_gpu(&gs, scene, &bvh, &cam, &full).unwrap();
+    let off = cpu.rgb.iter().zip(&img.rgb).filter(|(a, b)| (0..3).any(|k| (a[k] - b[k]).abs() > 1.0 / 255.0)).count();
+    eprintln!("{name} with a shadow ray and 4 AO rays: {off} of {} pixels differ by over 1/255", cpu.rgb.len());
+}
+
+#[test]
+fn gpu_render_matches_the_cpu_on_standard_trk() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let scene = Scene::load(&root.join("reference/readers/nibabel/standard.trk"), 0.2).unwrap();
+    check(&scene, "standard.trk");
+}
+
+#[test]
+fn gpu_render_matches_the_cpu_on_neurons() {
+    let bases: Vec<_> = (0..2).map(generate::base_neuron).collect();
+    let scene = Scene::from_swc(&generate::neurons(1, &bases, 5), "neurons").unwrap();
+    check(&scene, "neurons");
+}
