@@ -1,4 +1,4 @@
-// Invariants of the SWC reader (shared by the fuzz target and tests/fuzz_corpus_io.rs):
+// Invariants of the SWC reader (shared by the fuzz target and crates/render/tests/io/fuzz_corpus.rs):
 // no panic; on success every value finite, radii ≥ 0, and building a scene either succeeds
 // with finite bounds or gives an error (never a panic).
 pub fn check(data: &[u8]) {

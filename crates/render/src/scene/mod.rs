@@ -111,7 +111,7 @@ pub const MAX_COORD: f64 = 1e18;
 /// `L < 2⁻⁶³` that square is subnormal, `L` loses up to all its digits, and the stump's sine
 /// `(ra − rb)/L` and unit axis go wrong by a share of the radius: measured, hit points up to
 /// `1,400·E` off for links `2⁻⁷⁵…2⁻⁷¹` long with radii `2⁻⁵¹…2⁻³⁰` (this crate's
-/// `tests/scene_min_radius.rs`). So [`Prim::from_link`] (and the compact tree's clusters) store
+/// `tests/scene/min_radius.rs`). So [`Prim::from_link`] (and the compact tree's clusters) store
 /// a link shorter than [`SHORT_LINK`] `= 2⁻⁶²` as its larger end sphere. That is within
 /// `L` of the link (the hull lies in `B(a, ra + L)` for `ra ≥ rb`, since `B(b, rb) ⊂ B(a, ra + L)`,
 /// and contains `B(a, ra)`), and a short link has a non-zero radius at both ends (one 0 needs
@@ -119,7 +119,7 @@ pub const MAX_COORD: f64 = 1e18;
 /// for `2⁻⁴⁴` rather than the kernels' `2⁻⁵¹·⁵`. A link `≥ 2⁻⁶²` long has a normal `f32` squared
 /// length (its stored offsets round by `≤ u` relative), accurate to `≈ 4u` like any other.
 ///
-/// `tests/scene_min_radius.rs` checks the `f32` primitives (spheres, cylinders, cones, zero
+/// `tests/scene/min_radius.rs` checks the `f32` primitives (spheres, cylinders, cones, zero
 /// tips, links `2⁻⁹⁰` to `2⁶` of their radius long, far ray origins; per link and the compact
 /// tree's) against the `f64` kernels within that band over scenes scaled by `2ᵏ` down to this
 /// limit, and shows them leaving it below.
