@@ -1,10 +1,10 @@
 //! The stability report: per-region numbers read back from the markdown match what the
-//! error analysis predicts (`tests/link_props.rs`): the stable kernel never misclassifies outside
+//! error analysis predicts (`tests/kernels/link/properties.rs`): the stable kernel never misclassifies outside
 //! its band and stays within its bound in every region; the faithful (apex-based) kernel loses
 //! digits where the apex goes to infinity (near-equal radii: apex distance p₂ = L·r/|Δr| ≈ 10⁷·L,
 //! so its coefficient errors grow like ε·p₂² instead of ε·S²).
 
-mod common;
+use crate::common;
 
 use tubecast_lab::report::{self, parse_num, table_rows, ReportOptions};
 

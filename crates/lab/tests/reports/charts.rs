@@ -1,7 +1,7 @@
 //! Chart readability: zero and infinity marked, precision series by shape in the legend,
 //! long category labels cut, colliding point labels moved apart; markdown tables as JSON.
 
-mod common;
+use crate::common;
 
 use tubecast_lab::report::chart::{precision_shape, write_svg, Chart, Marker, Pt, Series, Shape, XAxis};
 use tubecast_lab::report::{tables_json, write_tables_json};

@@ -1,7 +1,7 @@
 //! The accuracy report: a tiny seeded run writes its files; the numbers read back from the
-//! markdown obey the error analysis of `tests/link_props.rs`; seeded runs reproduce them.
+//! markdown obey the error analysis of `tests/kernels/link/properties.rs`; seeded runs reproduce them.
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 use tubecast_lab::report::{self, parse_num, table_rows, ReportOptions};
@@ -61,7 +61,7 @@ fn accuracy_report_writes_files_and_sane_numbers() {
     let c_ns = col(&md, "method", "ns/test");
     for m in ["stable/f64", "stable/f32", "stable/f64x4", "stable/f32x8"] {
         let r = row(&rows, m);
-        // The stable kernel is within the proven bound of tests/link_props.rs on every case.
+        // The stable kernel is within the proven bound of tests/kernels/link/properties.rs on every case.
         let b = parse_num(&r[c_bound]).unwrap();
         assert!(b > 0.0 && b <= 1.0, "{m}: max err/bound {b}");
         assert_eq!(r[c_fm], "0", "{m}: false misses");
