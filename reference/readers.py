@@ -3,7 +3,7 @@
 nibabel (TrackVis .trk, MRtrix .tck) and trx-python (.trx) read every input under
 reference/readers/ and this script writes what they read as JSON (reference/readers/fixture.json):
 point counts, points, per-point data, per-streamline data, the affine, or the error.
-crates/render/tests/io_reference_readers.rs reads the same inputs with our readers and compares.
+crates/render/tests/io/reference_readers.rs reads the same inputs with our readers and compares.
 
 Inputs (committed, so `cargo test` needs no Python):
 * readers/nibabel/: nibabel's own test files (nibabel/tests/data in the wheel; nibabel is MIT

@@ -187,7 +187,7 @@ pub fn run_peers(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
         "Embree `ROUND_LINEAR_CURVE` segments with flags 0 (no neighbours) are the convex hull of the two \
          end spheres — the same solid as our links (see `crates/lab/src/peer/mod.rs`). Both sides get the same `f32` link \
          and ray. Compared: the first surface crossing in `[0, ∞)`. `must-hit`/`must-miss`: oracle verdicts \
-         outside the `f32` error band of `tests/link_props.rs`. Errors in units of the link's largest radius.\n\n\
+         outside the `f32` error band of `tests/kernels/link/properties.rs`. Errors in units of the link's largest radius.\n\n\
          ## Per-ray agreement and error against the f64 oracle\n\n",
     );
     md.push_str(

@@ -139,7 +139,7 @@ pub fn run_accuracy(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Rep
         "Error of the line interval's entry and exit `t` (the larger of the two) against an independent `f64` \
          oracle, on rays that robustly hit (outside the method's error band). `r`: units of the primitive's largest \
          radius (distance along the ray); `ulp`: spacings of `t` in the method's precision. `max err/bound`: error \
-         divided by the `tests/link_props.rs` bound for that precision (≤ 1 means within the proven bound). All \
+         divided by the `tests/kernels/link/properties.rs` bound for that precision (≤ 1 means within the proven bound). All \
          inputs are `f32`-representable, so every precision solves the same problem. ns: best of the timing \
          repetitions, single thread.\n\n## Links\n\n",
     );
@@ -297,7 +297,7 @@ pub fn run_stability(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Re
     let mut md = header("Stability per failure region", opts, "cargo run --release -p tubecast-lab -- stability");
     md.push_str(
         "Per region and method: cases the oracle says must hit / must miss (outside the method's error band \
-         `E` of `tests/link_props.rs` for links, `1024·ε·R + 8·ε·|o − p(½)|` for splines (`src/kernel/spline.rs`)), how many of them were answered \
+         `E` of `tests/kernels/link/properties.rs` for links, `1024·ε·R + 8·ε·|o − p(½)|` for splines (`src/kernel/spline.rs`)), how many of them were answered \
          wrongly, and the distribution of the `t` error on robust hits (units of the largest radius, and ulps). \
          `max err/bound` > 1 means the method exceeds the stable kernel's proven bound in that region.\n\n## Links\n\n",
     );

@@ -146,7 +146,7 @@ pub fn run_thin(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, ReportE
     );
     let _ = write!(
         md,
-        "The eleven thin-tube families of `tests/spline_conditioning.rs` (unit, bulge, cusp, taper, grazing, far \
+        "The eleven thin-tube families of `tests/kernels/spline/conditioning.rs` (unit, bulge, cusp, taper, grazing, far \
          origin, inside, inside beside an end crossed at right angles, pinched, scale 2^±50, direction ratio \
          2⁴⁰), {seeds} seeds each per ratio, every solver \
          in `f32` and `f64`, against the independent thin-tube oracle. Band `E = 1024·ε·R + 8·ε·|o − p(½)|` \

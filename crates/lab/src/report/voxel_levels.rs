@@ -56,7 +56,7 @@ pub(super) fn ablation(sizes: &[usize], opts: &ReportOptions, pool: &rayon::Thre
         "\n## Grid ablations (same run)\n\nOpaque {0}×{0} frames (primary rays, lit) through grids built from the same \
          primitives at the default resolution (the cost model, next section), {1} thread(s), process CPU time, best of {REPS}: the walk with every coarse skip level (each 4³ cells of the \
          one below, up to ≤ 4 cells per axis) against the single level of 4³ blocks and against a plain DDA \
-         (answers are bit-identical: `crates/render/tests/grid_levels.rs`); and the build voxelizing each link once \
+         (answers are bit-identical: `crates/render/tests/accel/grid_levels.rs`); and the build voxelizing each link once \
          (pairs sorted by voxel) against voxelizing it twice (count, then fill). Ratios below 1 favour the new \
          variant. *Two bundles apart*: half the links each, 300 units apart along y and z (mostly empty \
          space).\n\n\

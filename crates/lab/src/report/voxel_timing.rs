@@ -142,7 +142,7 @@ pub fn run_voxel_timing(out: &Path, opts: &ReportOptions) -> Result<ReportFiles,
         md,
         "\nPyramid: Russig's *Bundle* (seed {}), 128 cells along its longest side; the base level's contributions \
          are computed in parallel (rayon) in chunks of links and added in link order, so the result is the same \
-         bits on any number of threads (`crates/render/tests/grid_pyramid_parallel.rs`).\n",
+         bits on any number of threads (`crates/render/tests/accel/grid_pyramid_parallel.rs`).\n",
         opts.seed
     );
     let mdp = out.join("voxel_timing.md");

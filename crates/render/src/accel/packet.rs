@@ -6,7 +6,7 @@
 //! radii relative to the link's own `f64` local origin. A query moves the ray to each lane's
 //! local origin in `f64` with the very operations of the scalar path
 //! ([`Prim::local_origin`]), so each lane sees the same `f32` ray as the scalar kernel would;
-//! the lane kernel equals the scalar one bit for bit (`tests/link_props.rs`,
+//! the lane kernel equals the scalar one bit for bit (`tests/kernels/link/properties.rs`,
 //! `lanes_equal_scalar_bitwise`), and each lane's interval is mapped back to the world ray by
 //! the scalar path's [`Prim::to_world`]. A packet's result per link is therefore
 //! bit-identical to [`Prim::intersect`]. Unused lanes repeat the packet's first link (a valid

@@ -28,7 +28,7 @@
 //! `s₀ + t·(aᵢ·n)` above it, and `s₀ ≥ √3·h + h/2` makes the near samples blind to it; far
 //! samples are blind to it when `aᵢ·n ≥ tan θ − (s₀ − h/2)/D` (the two sides are linear in
 //! `t`). So on a convex tube only the cones near the horizon can report occlusion, and their
-//! share shrinks to 0 as `N` grows (`tan θ ~ √(2/N)`); `tests/ao_cone.rs` checks the bound.
+//! share shrinks to 0 as `N` grows (`tan θ ~ √(2/N)`); `tests/render/ao_cone.rs` checks the bound.
 //! The price is contact occlusion: tubes within `s₀` of `q` are seen only through coarse
 //! samples. *Full voxels:* a base voxel whose centre is at least `h/2` inside one tube reads
 //! 1, so a cone whose sample lies `(√3 + 1)·h/2` inside a tube is fully occluded.

@@ -26,7 +26,7 @@
 //! from the origin it is the larger one. Without it a scene of one point of radius 2.4·10⁻³⁹ at
 //! `|x| ≈ 1` had `D = 0` (the `f64` box of `origin ± r` is the origin), a zero-volume box, and a
 //! fallback voxel of side 1 with the point on its corner, which rays through the point from the
-//! other seven octants never entered (`tests/accel_long_link.rs`). The box always has positive
+//! other seven octants never entered (`tests/accel/long_link.rs`). The box always has positive
 //! extent now, and the resolution is computed in units of the padded box's diagonal (no
 //! under- or overflow of the volume at any scale).
 //!
@@ -41,7 +41,7 @@
 //! the minimum, intervals are deduplicated). Every level's DDA runs on the grid coordinates
 //! scaled by a power of two (`4⁻ᵏ`), so its boundary `t = (plane − o·s)/(d·s)` is bit for bit
 //! the finest walk's `t` at the same plane: the levels change which voxels are skipped, never
-//! the answers (`tests/grid_levels.rs` checks hits, any-hits and intervals bit for bit).
+//! the answers (`tests/accel/grid_levels.rs` checks hits, any-hits and intervals bit for bit).
 //!
 //! # Resolution
 //! Cubic voxels of side `h` over the padded scene box of volume `V` (each extent floored at
