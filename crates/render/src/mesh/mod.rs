@@ -9,8 +9,10 @@
 
 pub mod export;
 mod tracer;
+mod union;
 
 pub use tracer::MeshTracer;
+pub use union::{tessellate_union, UnionReport};
 
 use crate::scene::{Model, Scene, SPLINE_MAX_DEPTH, SPLINE_TOLERANCE};
 use std::fmt;

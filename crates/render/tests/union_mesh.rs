@@ -1,0 +1,272 @@
+//! The union mesh (`tessellate_union`) checked independently: closed, oriented, embedded
+//! 2-manifold; every vertex within the certified bound of the exact union surface (the
+//! minimum of the links' exact round-cone SDFs); every sampled point of that surface (crease
+//! points included) within the bound of the mesh; the enclosed volume against a Monte-Carlo
+//! volume of the union; on built scenes, shipped files and generated trees.
+
+#[path = "union_mesh/checks.rs"]
+mod checks;
+#[path = "union_mesh/trees.rs"]
+mod trees;
+
+use checks::{sdf, tubes, P};
+use tubecast::V3;
+use tubecast_render::io::Polyline;
+use tubecast_render::mesh::{tessellate_union, SceneMesh, UnionReport};
+use tubecast_render::scene::Scene;
+
+/// Every check on one scene; returns the mesh and report for case-specific assertions.
+/// `bound_holds`: whether the certified bound must also meet `eps` (cases with gaps narrower
+/// than the grid only promise a closed surface and an honest bound).
+fn check(scene: &Scene, eps: f64, bound_holds: bool) -> (SceneMesh, UnionReport) {
+    let (m, rep) = tessellate_union(scene, eps).unwrap();
+    checks::closed_manifold(&m);
+    checks::embedded(&m);
+    let ts = tubes(scene);
+    let cert = m.mesh.certified;
+    assert_eq!(cert, rep.certified());
+    if bound_holds {
+        assert!(cert <= eps, "certified {cert:e} > eps {eps:e} ({rep:?})");
+    }
+    // Vertices: on the surface up to the certified bound (in fact to the root tolerance).
+    let worst_v = m.mesh.positions.iter().map(|&p| sdf(&ts, p).abs()).fold(0.0, f64::max);
+    assert!(worst_v <= cert, "a vertex is {worst_v:e} off the surface, certified {cert:e}");
+    // Points inside triangles (centroids and edge midpoints): within the bound too.
+    for k in 0..m.mesh.triangles.len() {
+        let c = m.mesh.corners(k);
+        for p in [(c[0] + c[1] + c[2]) * (1.0 / 3.0), (c[0] + c[1]) * 0.5] {
+            let f = sdf(&ts, p).abs();
+            assert!(f <= cert * (1.0 + 1e-9) + 1e-12, "triangle {k} strays {f:e} > certified {cert:e}");
+        }
+    }
+    // Surface → mesh.
+    if cert.is_finite() {
+        let samples = checks::surface_samples(&ts, 1500, 7);
+        assert!(samples.len() > 100, "too few surface samples");
+        let far = checks::farthest_from_mesh(&m, &samples, 4.0 * rep.step + cert);
+        if bound_holds {
+            assert!(far <= cert * (1.0 + 1e-6), "a surface point is {far:e} from the mesh, certified {cert:e}");
+        }
+    }
+    (m, rep)
+}
+
+fn line(points: &[[f64; 3]], radii: &[f64]) -> Polyline {
+    Polyline { points: points.to_vec(), radii: radii.to_vec() }
+}
+
+#[test]
+fn bent_chain_is_one_closed_surface_within_eps() {
+    let s = Scene::from_polylines(
+        &[line(&[[0.0; 3], [4.0, 0.0, 0.0], [6.0, 2.0, 0.0], [6.5, 4.0, 1.0]], &[0.5, 0.6, 0.4, 0.45])],
+        0.5,
+        "t",
+    )
+    .unwrap();
+    let (m, rep) = check(&s, 1e-2, true);
+    assert_eq!(checks::components(&m), 1);
+    assert_eq!(m.mesh.parts.len(), 1);
+    assert!(rep.crease_splits > 0, "the bends' creases are split");
+    // Genus 0: V − E + F = 2.
+    let (v, f) = (m.mesh.positions.len() as i64, m.mesh.triangles.len() as i64);
+    assert_eq!(v - 3 * f / 2 + f, 2);
+}
+
+#[test]
+fn disjoint_tubes_are_separate_components() {
+    let s = Scene::from_polylines(
+        &[line(&[[0.0; 3], [3.0, 0.0, 0.0]], &[]), line(&[[0.0, 3.0, 0.0], [3.0, 3.0, 0.0]], &[])],
+        0.5,
+        "t",
+    )
+    .unwrap();
+    let (m, _) = check(&s, 2e-2, true);
+    assert_eq!(checks::components(&m), 2);
+    assert_eq!(m.mesh.parts.len(), 2);
+}
+
+/// A 'T' and a 'Y' of three links on one node, and crossing tubes: creases of several
+/// openings, and triple points.
+#[test]
+fn bifurcations_and_crossings() {
+    let lines = [
+        line(&[[0.0; 3], [2.0, 0.0, 0.0], [4.0, 0.5, 0.0]], &[0.5, 0.5, 0.4]),
+        line(&[[2.0, 0.0, 0.0], [2.5, 2.0, 0.3]], &[0.5, 0.3]),
+        line(&[[1.0, -2.0, 0.2], [1.2, 2.0, -0.1]], &[0.25, 0.35]),
+    ];
+    let s = Scene::from_polylines(&lines, 0.5, "t").unwrap();
+    let (m, _) = check(&s, 1e-2, true);
+    assert_eq!(checks::components(&m), 1);
+}
+
+/// The enclosed volume against the union's Monte-Carlo volume. Every point between the two
+/// surfaces is within the certified bound ε of the exact surface (two-sided Hausdorff), so
+/// the volumes differ by at most the volume of the ε-shell of the exact surface,
+/// ≤ 2·ε·A·(1 + ε/r_min) (A the exact area, bounded here by the mesh's area plus its own
+/// ε-share), plus the Monte-Carlo error (5 standard deviations, fixed seed).
+#[test]
+fn ply_volume_matches_monte_carlo_volume_of_the_union() {
+    use rand::{Rng, SeedableRng};
+    let lines = [
+        line(&[[0.0; 3], [2.0, 0.0, 0.0], [3.0, 1.5, 0.0]], &[0.6, 0.5, 0.4]),
+        line(&[[2.0, 0.0, 0.0], [2.5, -1.5, 0.5]], &[0.5, 0.3]),
+    ];
+    let s = Scene::from_polylines(&lines, 0.5, "t").unwrap();
+    let eps = 1e-2;
+    let (m, _) = check(&s, eps, true);
+    let (v_mesh, area) = checks::volume_area(&m);
+    // The PLY holds f32 positions: read the volume back from the written bytes' vertices.
+    let ply = tubecast_render::mesh::export::ply(&m);
+    let body = &ply[ply.windows(11).position(|w| w == b"end_header\n").unwrap() + 11..];
+    let pos: Vec<P> = (0..m.mesh.positions.len())
+        .map(|i| {
+            let f = |j: usize| f32::from_le_bytes(body[12 * i + 4 * j..12 * i + 4 * j + 4].try_into().unwrap()) as f64;
+            V3::new(f(0), f(1), f(2))
+        })
+        .collect();
+    let v_ply: f64 = m
+        .mesh
+        .triangles
+        .iter()
+        .map(|t| pos[t[0] as usize].dot(pos[t[1] as usize].cross(pos[t[2] as usize])) / 6.0)
+        .sum();
+    assert!((v_ply - v_mesh).abs() <= 1e-5 * v_mesh, "f32 positions moved the volume: {v_ply} vs {v_mesh}");
+    let ts = tubes(&s);
+    let (lo, hi) = s.stats().bounds;
+    let (lo, hi) = (V3::from(lo) - V3::new(0.7, 0.7, 0.7), V3::from(hi) + V3::new(0.7, 0.7, 0.7));
+    let box_v = (hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z);
+    let n = 400_000;
+    let mut rng = rand::rngs::StdRng::seed_from_u64(11);
+    let inside = (0..n)
+        .filter(|_| {
+            let p = V3::new(rng.gen_range(lo.x..hi.x), rng.gen_range(lo.y..hi.y), rng.gen_range(lo.z..hi.z));
+            sdf(&ts, p) < 0.0
+        })
+        .count();
+    let q = inside as f64 / n as f64;
+    let v_mc = box_v * q;
+    let sigma = box_v * (q * (1.0 - q) / n as f64).sqrt();
+    let bound = 2.0 * eps * (area + 2.0 * eps * area / 0.3) * (1.0 + eps / 0.3) + 5.0 * sigma;
+    assert!(
+        (v_ply - v_mc).abs() <= bound,
+        "mesh volume {v_ply} vs Monte-Carlo {v_mc} (bound {bound:e}, sigma {sigma:e})"
+    );
+}
+
+/// Every shipped scene file that loads: the union mesh is closed, oriented and embedded, or
+/// the mesher refuses the scene with an error (radius 0), never a panic. The tolerance is a
+/// tenth of the scene's least radius (the files' radii span two orders of magnitude; this
+/// keeps the test to seconds).
+#[test]
+fn every_shipped_file_meshes_watertight() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut files = Vec::new();
+    for dir in [
+        "crates/cli/tests/data/simplify",
+        "fuzz/corpus/swc",
+        "fuzz/corpus/tck",
+        "fuzz/corpus/trk",
+        "fuzz/corpus/trx",
+        "fuzz/corpus/obj",
+    ] {
+        for e in std::fs::read_dir(root.join(dir)).unwrap() {
+            let p = e.unwrap().path();
+            if !p.to_string_lossy().ends_with(".stdout") {
+                files.push(p);
+            }
+        }
+    }
+    files.sort();
+    let (mut meshed, mut refused) = (0, 0);
+    for p in &files {
+        let Ok(scene) = Scene::load(p, 0.2) else { continue };
+        if scene.links.len() == 0 {
+            continue;
+        }
+        let r_min = (0..scene.nodes.len()).map(|i| scene.radius(i)).filter(|&r| r > 0.0).fold(f64::INFINITY, f64::min);
+        match tessellate_union(&scene, 0.1 * r_min) {
+            Ok((m, rep)) => {
+                checks::closed_manifold(&m);
+                checks::embedded(&m);
+                let ts = tubes(&scene);
+                let worst = m.mesh.positions.iter().map(|&x| sdf(&ts, x).abs()).fold(0.0, f64::max);
+                assert!(
+                    worst <= m.mesh.certified,
+                    "{}: vertex {worst:e} off, certified {:e} ({rep:?})",
+                    p.display(),
+                    m.mesh.certified
+                );
+                meshed += 1;
+            }
+            Err(e) => {
+                assert!(e.to_string().contains("radius 0"), "{}: {e}", p.display());
+                refused += 1;
+            }
+        }
+    }
+    assert!(meshed >= 10, "only {meshed} shipped files meshed ({refused} refused)");
+}
+
+/// Radius 0, NaN positions and bad tolerances are errors; a tube inside another adds nothing.
+#[test]
+fn bad_input_is_an_error_or_absorbed() {
+    let zero = Scene::from_polylines(&[line(&[[0.0; 3], [2.0, 0.0, 0.0]], &[0.5, 0.0])], 0.5, "t").unwrap();
+    let e = tessellate_union(&zero, 1e-2).unwrap_err().to_string();
+    assert!(e.contains("radius 0"), "{e}");
+    let ok = Scene::from_polylines(&[line(&[[0.0; 3], [2.0, 0.0, 0.0]], &[])], 0.5, "t").unwrap();
+    for eps in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        assert!(tessellate_union(&ok, eps).is_err(), "eps {eps}");
+    }
+    let mut nan = ok.clone();
+    nan.nodes[1].pos[0] = f64::NAN;
+    assert!(tessellate_union(&nan, 1e-2).is_err());
+    // Nested: a small tube inside a large one; the union is the large one alone.
+    let nested = Scene::from_polylines(
+        &[line(&[[0.0; 3], [2.0, 0.0, 0.0]], &[1.0, 1.0]), line(&[[0.5, 0.1, 0.0], [1.5, -0.1, 0.2]], &[0.3, 0.2])],
+        0.5,
+        "t",
+    )
+    .unwrap();
+    let (m, _) = check(&nested, 2e-2, true);
+    let alone = Scene::from_polylines(&[line(&[[0.0; 3], [2.0, 0.0, 0.0]], &[1.0, 1.0])], 0.5, "t").unwrap();
+    let (v1, _) = checks::volume_area(&m);
+    let (v2, _) = checks::volume_area(&tessellate_union(&alone, 2e-2).unwrap().0);
+    assert!((v1 - v2).abs() <= 1e-9 * v2, "the nested tube changed the volume: {v1} vs {v2}");
+}
+
+/// The GLB: a valid container whose accessors an independent reader (gltf) reads back to the
+/// mesh's counts, indices in range, bounds that hold every position.
+#[test]
+fn glb_reads_back() {
+    let s = Scene::from_polylines(&[line(&[[0.0; 3], [3.0, 0.0, 0.0], [4.0, 2.0, 0.0]], &[0.5, 0.4, 0.3])], 0.5, "t")
+        .unwrap();
+    let (m, _) = tessellate_union(&s, 2e-2).unwrap();
+    let bytes = tubecast_render::mesh::export::glb(&m);
+    let g = gltf::Gltf::from_slice(&bytes).unwrap();
+    let blob = g.blob.as_deref().unwrap();
+    let prim = g.meshes().next().unwrap().primitives().next().unwrap();
+    // Read an accessor's elements from the blob by its view (the gltf crate's reader needs a
+    // feature this workspace does not enable).
+    let raw = |a: &gltf::Accessor, width: usize| -> Vec<[u8; 4]> {
+        let v = a.view().unwrap();
+        assert_eq!(v.buffer().index(), 0);
+        let start = v.offset() + a.offset();
+        (0..a.count() * width).map(|k| blob[start + 4 * k..start + 4 * k + 4].try_into().unwrap()).collect()
+    };
+    let acc = prim.get(&gltf::Semantic::Positions).unwrap();
+    let idx_acc = prim.indices().unwrap();
+    assert_eq!(acc.data_type(), gltf::accessor::DataType::F32);
+    assert_eq!(idx_acc.data_type(), gltf::accessor::DataType::U32);
+    let flat: Vec<f32> = raw(&acc, 3).into_iter().map(f32::from_le_bytes).collect();
+    let pos: Vec<[f32; 3]> = flat.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
+    let idx: Vec<u32> = raw(&idx_acc, 1).into_iter().map(u32::from_le_bytes).collect();
+    assert_eq!(pos.len(), m.mesh.positions.len());
+    assert_eq!(idx.len(), 3 * m.mesh.triangles.len());
+    assert!(idx.iter().all(|&i| (i as usize) < pos.len()));
+    let (lo, hi) = (acc.min().unwrap(), acc.max().unwrap());
+    for p in &pos {
+        for k in 0..3 {
+            assert!(p[k] >= lo[k].as_f64().unwrap() as f32 && p[k] <= hi[k].as_f64().unwrap() as f32);
+        }
+    }
+}

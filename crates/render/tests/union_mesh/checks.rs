@@ -1,0 +1,306 @@
+//! Independent checks of a union mesh: topology (closed, oriented, 2-manifold), embedding (no
+//! two triangles cross), and geometry against the exact union SDF (the minimum of the links'
+//! round-cone SDFs, computed here from the scene, not from the mesher's hash).
+
+use rand::{Rng, SeedableRng};
+use std::collections::HashMap;
+use tubecast::{Primitive, RoundCone, V3};
+use tubecast_render::mesh::SceneMesh;
+use tubecast_render::scene::Scene;
+
+pub type P = V3<f64>;
+
+/// The scene's links.
+pub fn tubes(scene: &Scene) -> Vec<RoundCone<f64>> {
+    (0..scene.links.len()).map(|k| scene.link(k)).collect()
+}
+
+/// The exact union SDF.
+pub fn sdf(tubes: &[RoundCone<f64>], x: P) -> f64 {
+    tubes.iter().map(|t| t.sdf(x)).fold(f64::INFINITY, f64::min)
+}
+
+/// Every undirected edge in exactly two triangles, each directed edge in exactly one
+/// (consistent winding), no repeated corner, and the triangles around every vertex one
+/// cycle (no pinched vertex). Panics with the offending element.
+pub fn closed_manifold(m: &SceneMesh) {
+    let tris = &m.mesh.triangles;
+    let mut directed: HashMap<(u32, u32), usize> = HashMap::new();
+    for (k, t) in tris.iter().enumerate() {
+        assert!(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], "triangle {k} repeats a corner: {t:?}");
+        for e in 0..3 {
+            let d = (t[e], t[(e + 1) % 3]);
+            assert!(
+                directed.insert(d, k).is_none(),
+                "directed edge {d:?} twice (inconsistent winding or a 3-way edge)"
+            );
+        }
+    }
+    for &(a, b) in directed.keys() {
+        assert!(directed.contains_key(&(b, a)), "edge ({a}, {b}) is on the border (open surface)");
+    }
+    // Around vertex v: the map a → b over its triangles (v, a, b) must be one cycle.
+    let mut around: HashMap<u32, HashMap<u32, u32>> = HashMap::new();
+    for t in tris {
+        for e in 0..3 {
+            around.entry(t[e]).or_default().insert(t[(e + 1) % 3], t[(e + 2) % 3]);
+        }
+    }
+    for (v, next) in &around {
+        let start = *next.keys().next().unwrap();
+        let (mut a, mut n) = (start, 0);
+        loop {
+            a = next[&a];
+            n += 1;
+            if a == start {
+                break;
+            }
+            assert!(n <= next.len(), "vertex {v}: its fan is not a cycle");
+        }
+        assert_eq!(n, next.len(), "vertex {v} is pinched: {} fans", next.len() as f64 / n as f64);
+    }
+}
+
+/// The number of connected components (by shared vertices).
+pub fn components(m: &SceneMesh) -> usize {
+    let n = m.mesh.positions.len();
+    let mut p: Vec<usize> = (0..n).collect();
+    fn f(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    for t in &m.mesh.triangles {
+        for e in 1..3 {
+            let (a, b) = (f(&mut p, t[0] as usize), f(&mut p, t[e] as usize));
+            p[a] = b;
+        }
+    }
+    let used: std::collections::HashSet<usize> =
+        m.mesh.triangles.iter().flatten().map(|&i| f(&mut p, i as usize)).collect();
+    used.len()
+}
+
+/// Segment `a–b` against triangle `t`: whether they cross (Möller–Trumbore, strict).
+fn seg_tri(a: P, b: P, t: [P; 3]) -> bool {
+    let d = b - a;
+    let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+    let p = d.cross(e2);
+    let det = e1.dot(p);
+    if det.abs() < 1e-300 {
+        return false;
+    }
+    let inv = 1.0 / det;
+    let s = a - t[0];
+    let u = s.dot(p) * inv;
+    let q = s.cross(e1);
+    let v = d.dot(q) * inv;
+    let w = e2.dot(q) * inv;
+    let eps = 1e-12;
+    u > eps && v > eps && u + v < 1.0 - eps && w > eps && w < 1.0 - eps
+}
+
+/// No two triangles that share no corner cross (an edge of one through the other), and no
+/// two that share one corner overlap along their opposite edges. Sweep over x.
+pub fn embedded(m: &SceneMesh) {
+    let tri = |k: usize| m.mesh.corners(k);
+    let boxes: Vec<(f64, f64, usize)> = (0..m.mesh.triangles.len())
+        .map(|k| {
+            let c = tri(k);
+            let lo = c.iter().map(|p| p.x).fold(f64::INFINITY, f64::min);
+            let hi = c.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max);
+            (lo, hi, k)
+        })
+        .collect();
+    let mut order = boxes.clone();
+    order.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let bb = |c: &[P; 3]| {
+        let lo = V3::new(
+            c.iter().map(|p| p.x).fold(f64::INFINITY, f64::min),
+            c.iter().map(|p| p.y).fold(f64::INFINITY, f64::min),
+            c.iter().map(|p| p.z).fold(f64::INFINITY, f64::min),
+        );
+        let hi = V3::new(
+            c.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max),
+            c.iter().map(|p| p.y).fold(f64::NEG_INFINITY, f64::max),
+            c.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max),
+        );
+        (lo, hi)
+    };
+    for (i, &(_, hi_i, ki)) in order.iter().enumerate() {
+        let (ti, ci) = (m.mesh.triangles[ki], tri(ki));
+        let (li, ui) = bb(&ci);
+        for &(lo_j, _, kj) in &order[i + 1..] {
+            if lo_j > hi_i {
+                break;
+            }
+            let (tj, cj) = (m.mesh.triangles[kj], tri(kj));
+            let (lj, uj) = bb(&cj);
+            if lj.y > ui.y || uj.y < li.y || lj.z > ui.z || uj.z < li.z {
+                continue;
+            }
+            let shared = ti.iter().filter(|v| tj.contains(v)).count();
+            if shared >= 2 {
+                continue;
+            }
+            // Edges not incident to a shared corner.
+            let edges = |t: [u32; 3], c: [P; 3]| {
+                (0..3)
+                    .filter(move |&e| {
+                        !(tj.contains(&t[e]) && ti.contains(&t[e]))
+                            && !(tj.contains(&t[(e + 1) % 3]) && ti.contains(&t[(e + 1) % 3]))
+                    })
+                    .map(move |e| (c[e], c[(e + 1) % 3]))
+            };
+            let hit = edges(ti, ci).any(|(a, b)| seg_tri(a, b, cj)) || edges(tj, cj).any(|(a, b)| seg_tri(a, b, ci));
+            assert!(!hit, "triangles {ki} {ti:?} and {kj} {tj:?} cross");
+        }
+    }
+}
+
+/// Distance from `p` to triangle `t` (Ericson's closest point).
+pub fn point_tri(p: P, t: [P; 3]) -> f64 {
+    let [a, b, c] = t;
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return ap.length();
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return bp.length();
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return (p - (a + ab * (d1 / (d1 - d3)))).length();
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return cp.length();
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return (p - (a + ac * (d2 / (d2 - d6)))).length();
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return (p - (b + (c - b) * w)).length();
+    }
+    let denom = 1.0 / (va + vb + vc);
+    let (v, w) = (vb * denom, vc * denom);
+    (p - (a + ab * v + ac * w)).length()
+}
+
+/// The largest distance from `samples` to the mesh (brute force over triangles within a
+/// search radius `r`; `r` when none is that close).
+pub fn farthest_from_mesh(m: &SceneMesh, samples: &[P], r: f64) -> f64 {
+    let cells = 1.0 / r;
+    let key = |p: P| [(p.x * cells).floor() as i64, (p.y * cells).floor() as i64, (p.z * cells).floor() as i64];
+    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+    for k in 0..m.mesh.triangles.len() {
+        let c = m.mesh.corners(k);
+        let lo = key(V3::new(
+            c.iter().map(|p| p.x).fold(f64::INFINITY, f64::min),
+            c.iter().map(|p| p.y).fold(f64::INFINITY, f64::min),
+            c.iter().map(|p| p.z).fold(f64::INFINITY, f64::min),
+        ));
+        let hi = key(V3::new(
+            c.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max),
+            c.iter().map(|p| p.y).fold(f64::NEG_INFINITY, f64::max),
+            c.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max),
+        ));
+        for i in lo[0]..=hi[0] {
+            for j in lo[1]..=hi[1] {
+                for l in lo[2]..=hi[2] {
+                    grid.entry([i, j, l]).or_default().push(k);
+                }
+            }
+        }
+    }
+    let mut worst = 0.0f64;
+    for &s in samples {
+        let c = key(s);
+        let mut d = r;
+        for i in -1..=1 {
+            for j in -1..=1 {
+                for l in -1..=1 {
+                    for &k in grid.get(&[c[0] + i, c[1] + j, c[2] + l]).map(|v| &v[..]).unwrap_or(&[]) {
+                        d = d.min(point_tri(s, m.mesh.corners(k)));
+                    }
+                }
+            }
+        }
+        worst = worst.max(d);
+    }
+    worst
+}
+
+/// Points of the union's surface: random points near a random tube projected onto its
+/// surface (Newton along the numerical gradient of that tube's SDF), kept where no other tube
+/// covers them; plus points of the creases between pairs of tubes, found the same way on
+/// both SDFs, which is where a mesh cut across the valley would be farthest.
+pub fn surface_samples(tubes: &[RoundCone<f64>], n: usize, seed: u64) -> Vec<P> {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let grad = |t: &RoundCone<f64>, x: P| {
+        let e = 1e-7 * (1.0 + t.ra.max(t.rb));
+        let g = V3::new(
+            t.sdf(x + V3::new(e, 0.0, 0.0)) - t.sdf(x - V3::new(e, 0.0, 0.0)),
+            t.sdf(x + V3::new(0.0, e, 0.0)) - t.sdf(x - V3::new(0.0, e, 0.0)),
+            t.sdf(x + V3::new(0.0, 0.0, e)) - t.sdf(x - V3::new(0.0, 0.0, e)),
+        );
+        g * (1.0 / g.length())
+    };
+    let mut out = Vec::new();
+    let mut tries = 0;
+    while out.len() < n && tries < 50 * n {
+        tries += 1;
+        let t = &tubes[rng.gen_range(0..tubes.len())];
+        let bb = t.aabb();
+        let mut x = V3::new(
+            rng.gen_range(bb.min.x..=bb.max.x),
+            rng.gen_range(bb.min.y..=bb.max.y),
+            rng.gen_range(bb.min.z..=bb.max.z),
+        );
+        for _ in 0..6 {
+            x = x - grad(t, x) * t.sdf(x);
+        }
+        // Every other sample: slide onto the crease with the nearest other tube.
+        if out.len() % 2 == 1 {
+            if let Some(u) = tubes.iter().filter(|u| !std::ptr::eq(*u, t)).min_by(|a, b| a.sdf(x).total_cmp(&b.sdf(x)))
+            {
+                if u.sdf(x).abs() < 0.3 * t.ra.max(t.rb) {
+                    for _ in 0..20 {
+                        let (fa, fb, ga, gb) = (t.sdf(x), u.sdf(x), grad(t, x), grad(u, x));
+                        let c = ga.dot(gb);
+                        let det = 1.0 - c * c;
+                        if det < 1e-6 {
+                            break;
+                        }
+                        x = x - ga * ((fa - c * fb) / det) - gb * ((fb - c * fa) / det);
+                    }
+                }
+            }
+        }
+        let f = sdf(tubes, x);
+        if f.abs() <= 1e-9 * (1.0 + t.ra.max(t.rb)) {
+            out.push(x);
+        }
+    }
+    out
+}
+
+/// The mesh's enclosed volume (divergence theorem) and area.
+pub fn volume_area(m: &SceneMesh) -> (f64, f64) {
+    let (mut v, mut a) = (0.0, 0.0);
+    for k in 0..m.mesh.triangles.len() {
+        let [p, q, r] = m.mesh.corners(k);
+        v += p.dot(q.cross(r)) / 6.0;
+        a += 0.5 * (q - p).cross(r - p).length();
+    }
+    (v, a)
+}
