@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# GPU against CPU closest-hit speed on Russig's bundle, 10⁵ to 10⁸ links (as memory allows):
+# run unchanged on a machine with a Vulkan GPU. On Mesa's lavapipe the GPU column measures the
+# CPU emulating a GPU. Override the sizes with TUBECAST_GPU_BENCH_LINKS=10000,100000.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp/xdg-runtime-$(id -u)}"
+mkdir -p "$XDG_RUNTIME_DIR" && chmod 700 "$XDG_RUNTIME_DIR"
+export TUBECAST_GPU_BENCH_LINKS="${TUBECAST_GPU_BENCH_LINKS:-100000,1000000,10000000,100000000}"
+cargo bench -p tubecast-gpu --bench gpu
