@@ -28,7 +28,7 @@ use crate::vec::V3;
 /// /// Index and `t` of the closest surface crossing in the ray's range.
 /// fn closest(prims: &[impl Primitive<f32>], ray: &Ray<f32>) -> Option<(usize, f32)> {
 ///     let hits = prims.iter().enumerate();
-///     let first = hits.filter_map(|(k, p)| Some((k, p.intersect(ray).first_hit(ray.t_min, ray.t_max)?.0)));
+///     let first = hits.filter_map(|(k, p)| Some((k, p.intersect(ray).first_hit(ray.t_min, ray.t_max)?.t)));
 ///     first.min_by(|a, b| a.1.total_cmp(&b.1))
 /// }
 ///
