@@ -112,3 +112,17 @@ impl Gpu {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn no_adapter_names_what_to_install() {
+        let msg = GpuError::NoAdapter("no suitable adapter".into()).to_string();
+        assert!(
+            msg.contains("apt-get install mesa-vulkan-drivers libvulkan1") && msg.contains("XDG_RUNTIME_DIR"),
+            "{msg}"
+        );
+    }
+}
