@@ -44,7 +44,7 @@ use crate::vec::V3;
 /// // Mixed kinds through trait objects.
 /// let ball = Sphere::new(v(0.0, 0.0, 1.0), 0.25)?;
 /// let scene: [&dyn Primitive<f32>; 3] = [&links[0], &links[1], &ball];
-/// let t = scene.iter().filter_map(|p| p.intersect(&ray).first_hit(0.0, f32::INFINITY)).map(|h| h.0);
+/// let t = scene.iter().filter_map(|p| p.intersect(&ray).first_hit(0.0, f32::INFINITY)).map(|h| h.t);
 /// assert_eq!(t.reduce(f32::min), Some(0.75));
 /// # Ok::<(), tubecast::GeometryError>(())
 /// ```
