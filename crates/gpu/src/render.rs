@@ -15,7 +15,7 @@ use std::collections::HashMap;
 use std::sync::Mutex;
 use tubecast::csg::Tagged;
 use tubecast::{Hit, Ray};
-use tubecast_render::accel::{Tracer, WideBvh};
+use tubecast_render::accel::{closest_table, Tracer, WideBvh, HIT_COLUMNS};
 use tubecast_render::render::{render, Camera, Image, Options};
 use tubecast_render::scene::{Prim, Scene};
 
@@ -38,6 +38,19 @@ struct Answers<'a> {
     ask_any: Mutex<Vec<Ray<f64>>>,
     /// A query the GPU does not answer (line intervals: transparency, faded thin tubes).
     unsupported: Mutex<bool>,
+}
+
+impl<'a> Answers<'a> {
+    fn new(bvh: &'a WideBvh) -> Self {
+        Self {
+            bvh,
+            closest: HashMap::new(),
+            any: HashMap::new(),
+            ask_closest: Mutex::new(Vec::new()),
+            ask_any: Mutex::new(Vec::new()),
+            unsupported: Mutex::new(false),
+        }
+    }
 }
 
 impl Tracer for Answers<'_> {
@@ -87,14 +100,7 @@ pub fn render_gpu(
     cam: &Camera,
     opts: &Options,
 ) -> Result<Image, GpuError> {
-    let mut ans = Answers {
-        bvh,
-        closest: HashMap::new(),
-        any: HashMap::new(),
-        ask_closest: Mutex::new(Vec::new()),
-        ask_any: Mutex::new(Vec::new()),
-        unsupported: Mutex::new(false),
-    };
+    let mut ans = Answers::new(bvh);
     let quiet = Options { progress: false, ..*opts };
     for _ in 0..ROUNDS {
         let img = render(scene, &ans, cam, &quiet).map_err(|e| GpuError::Unsupported(e.to_string()))?;
@@ -117,4 +123,22 @@ pub fn render_gpu(
         ans.any.extend(any.iter().map(key).zip(hits));
     }
     Err(GpuError::Dispatch(format!("rays still unanswered after {ROUNDS} rounds")))
+}
+
+/// The `intersect --query hit` table of `rays` ([`closest_table`]) with every closest hit found
+/// on the GPU by `gpu_scene` (uploaded from `bvh`); the exit column is the CPU kernel's exit of
+/// the primitive hit, as on the CPU path.
+pub fn closest_table_gpu(
+    gpu_scene: &GpuScene<'_>,
+    bvh: &WideBvh,
+    rays: &[Ray<f64>],
+) -> Result<Vec<[f64; HIT_COLUMNS]>, GpuError> {
+    let mut ans = Answers::new(bvh);
+    let hits = gpu_scene.closest_hits(rays, Walk::Tree)?;
+    ans.closest.extend(rays.iter().map(key).zip(hits));
+    let rows = closest_table(&ans, rays);
+    if !ans.ask_closest.lock().expect("ray log").is_empty() {
+        return Err(GpuError::Dispatch("a ray of the table went unanswered".into()));
+    }
+    Ok(rows)
 }

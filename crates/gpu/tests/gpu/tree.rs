@@ -176,3 +176,22 @@ fn empty_scene_misses() {
     assert_eq!(gs.closest_hits(&[ray], Walk::Tree).unwrap(), vec![None]);
     assert_eq!(gs.any_hits(&[ray]).unwrap(), vec![false]);
 }
+
+#[test]
+fn hit_table_rows_are_the_gpu_hits() {
+    let Some(gpu) = crate::gpu("hit_table_rows_are_the_gpu_hits") else { return };
+    let scene = Scene::from_polylines(&generate::bundle(20, 10, 4), 0.05, "bundle").unwrap();
+    let bvh = WideBvh::from_scene(&scene, Model::Links).unwrap();
+    let gs = GpuScene::upload(&gpu, &bvh).unwrap();
+    let mut rng = Rng::new(11);
+    let rays: Vec<Ray<f64>> = (0..500).map(|k| aim(&mut rng, &scene, k)).collect();
+    let rows = tubecast_gpu::closest_table_gpu(&gs, &bvh, &rays).unwrap();
+    let hits = gs.closest_hits(&rays, Walk::Tree).unwrap();
+    for (row, hit) in rows.iter().zip(&hits) {
+        match hit {
+            Some(h) => assert_eq!((row[0], row[5]), (h.t, f64::from(bvh.prim(h.id).link))),
+            None => assert_eq!(*row, tubecast_render::accel::MISS_ROW),
+        }
+    }
+    assert!(hits.iter().filter(|h| h.is_some()).count() > 100);
+}
