@@ -66,11 +66,9 @@ struct HitOut {
 const NONE: u32 = 0xffffffffu;
 const STACK: u32 = STACK_SIZEu;
 
-// The first crossing of item `it` in [s_min, s_max], as distance from the restart point
-// (Prim::intersect_unit + Interval::first_hit); `item == NONE` when there is none.
-fn test_item(r: Ray, it: u32) -> HitOut {
-    var h: HitOut;
-    h.item = NONE;
+// Item `it`'s line interval in distance from the restart point (Prim::intersect_unit's local
+// ray, then Prim::to_world's `tc + t`, unclipped).
+fn item_iv(r: Ray, it: u32) -> Iv {
     let p = prims[it];
     // Prim::local_origin: tc = (org − o)·dn, o_local = o + dn·tc − org.
     let tc = dot3(p.org - r.o, r.d);
@@ -81,25 +79,41 @@ fn test_item(r: Ray, it: u32) -> HitOut {
     } else {
         iv = stable_line(Cone(p.a, p.ra, p.b, p.rb), lo, r.d);
     }
+    iv.t_in = tc + iv.t_in;
+    iv.t_out = tc + iv.t_out;
+    return iv;
+}
+
+fn crossing(it: u32, s: f32, n: vec3f, u: f32, entering: bool) -> HitOut {
+    var h: HitOut;
+    h.item = it;
+    h.s = s;
+    h.n = n;
+    h.u = u;
+    h.entering = select(0u, 1u, entering);
+    return h;
+}
+
+// The first crossing of item `it` in [s_min, s_max] (Interval::first_hit); `item == NONE`
+// when there is none.
+fn test_item(r: Ray, it: u32) -> HitOut {
+    var h: HitOut;
+    h.item = NONE;
+    let iv = item_iv(r, it);
     if !iv.hit {
         return h;
     }
-    let s_in = tc + iv.t_in;
-    let s_out = tc + iv.t_out;
-    if s_in >= r.s_min && s_in <= r.s_max {
-        h.item = it;
-        h.s = s_in;
-        h.n = iv.n_in;
-        h.u = iv.u_in;
-        h.entering = 1u;
-    } else if s_out >= r.s_min && s_out <= r.s_max {
-        h.item = it;
-        h.s = s_out;
-        h.n = iv.n_out;
-        h.u = iv.u_out;
-        h.entering = 0u;
+    if iv.t_in >= r.s_min && iv.t_in <= r.s_max {
+        h = crossing(it, iv.t_in, iv.n_in, iv.u_in, true);
+    } else if iv.t_out >= r.s_min && iv.t_out <= r.s_max {
+        h = crossing(it, iv.t_out, iv.n_out, iv.u_out, false);
     }
     return h;
+}
+
+// Of two exits, the later one (equal: the lower item).
+fn later(a: HitOut, b: HitOut) -> bool {
+    return a.item != NONE && (b.item == NONE || a.s > b.s || (a.s == b.s && a.item < b.item));
 }
 
 fn closer(a: HitOut, b: HitOut) -> bool {
@@ -111,11 +125,27 @@ fn plane(v: array<vec4f, 6>, axis: u32, i: u32) -> f32 {
 }
 
 // Tree::walk with the leaf work of WideBvh::closest_hit (any_only = false) or any_hit (true).
-fn walk(r: Ray, any_only: bool) -> HitOut {
-    var best: HitOut;
-    best.item = NONE;
+// The walk's modes.
+const CLOSEST: u32 = 0u;
+const ANY: u32 = 1u;
+// The line interval with the least entry among those whose exit is ≥ s_min (the seed of
+// the first union component).
+const SEED: u32 = 2u;
+// The least entry and the greatest exit among the line intervals meeting [span.x, span.y].
+const SPAN: u32 = 3u;
+
+// What a walk found: the hit (CLOSEST, ANY) or an entry, and an exit (SEED, SPAN).
+struct Found {
+    first: HitOut,
+    last: HitOut,
+}
+
+fn walk(r: Ray, mode: u32, span: vec2f) -> Found {
+    var f: Found;
+    f.first.item = NONE;
+    f.last.item = NONE;
     if r.valid == 0u {
-        return best;
+        return f;
     }
     // TreeRay::new: 1/d clamped to ±2²³ where |d| ≤ 2⁻²³.
     var inv: vec3f;
@@ -124,6 +154,9 @@ fn walk(r: Ray, any_only: bool) -> HitOut {
         inv[a] = select(1.0 / x, select(1.0, -1.0, x < 0.0) / EPS, abs(x) <= EPS);
     }
     var tmax = r.tmax;
+    if mode == SPAN {
+        tmax = min(tmax, (span.y + params.margin) * params.scale);
+    }
     var st_c: array<vec2u, STACK>;
     var st_t: array<f32, STACK>;
     var top = 0u;
@@ -198,14 +231,40 @@ fn walk(r: Ray, any_only: bool) -> HitOut {
                 break;
             }
             for (var it = c.x; it < c.x + c.y; it++) {
-                let h = test_item(r, it);
-                if closer(h, best) {
-                    best = h;
-                    if any_only {
-                        return best;
+                if mode == SPAN {
+                    let iv = item_iv(r, it);
+                    if iv.hit && iv.t_in <= span.y && iv.t_out >= span.x {
+                        let e = crossing(it, iv.t_in, iv.n_in, iv.u_in, true);
+                        let x = crossing(it, iv.t_out, iv.n_out, iv.u_out, false);
+                        if closer(e, f.first) {
+                            f.first = e;
+                        }
+                        if later(x, f.last) {
+                            f.last = x;
+                        }
                     }
-                    // Cull by the best hit so far, loosened by the box margin.
-                    let tb = (best.s + params.margin) * params.scale;
+                    continue;
+                }
+                var h: HitOut;
+                var x: HitOut;
+                if mode == SEED {
+                    let iv = item_iv(r, it);
+                    h.item = NONE;
+                    if iv.hit && iv.t_out >= r.s_min {
+                        h = crossing(it, iv.t_in, iv.n_in, iv.u_in, true);
+                        x = crossing(it, iv.t_out, iv.n_out, iv.u_out, false);
+                    }
+                } else {
+                    h = test_item(r, it);
+                }
+                if closer(h, f.first) {
+                    f.first = h;
+                    f.last = x;
+                    if mode == ANY {
+                        return f;
+                    }
+                    // Cull by the best so far, loosened by the box margin.
+                    let tb = (h.s + params.margin) * params.scale;
                     if tb < tmax {
                         tmax = tb;
                     }
@@ -216,7 +275,7 @@ fn walk(r: Ray, any_only: bool) -> HitOut {
             break;
         }
     }
-    return best;
+    return f;
 }
 
 fn ray_index(gid: vec3u, nwg: vec3u) -> u32 {
@@ -227,7 +286,7 @@ fn ray_index(gid: vec3u, nwg: vec3u) -> u32 {
 fn closest_tree(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
     let i = ray_index(gid, nwg);
     if i < params.n_rays {
-        out[i] = walk(rays[i], false);
+        out[i] = walk(rays[i], CLOSEST, vec2f(0.0)).first;
     }
 }
 
@@ -235,7 +294,7 @@ fn closest_tree(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgrou
 fn any_tree(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
     let i = ray_index(gid, nwg);
     if i < params.n_rays {
-        out[i] = walk(rays[i], true);
+        out[i] = walk(rays[i], ANY, vec2f(0.0)).first;
     }
 }
 
@@ -258,4 +317,34 @@ fn closest_brute(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgro
         }
     }
     out[i] = best;
+}
+
+// The first component of the union of the line intervals that reaches [s_min, s_max]
+// (`tubecast_render::accel::first_component`): the seed interval, then walks over the span
+// [a, b] taking the least entry and the greatest exit of every interval meeting it, until the
+// span stops growing (each walk adds every interval chained to it; at most one per item).
+// Thread 2i writes ray i's entry to out[2i] and its exit to out[2i + 1].
+@compute @workgroup_size(64)
+fn first_piece(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
+    let t = ray_index(gid, nwg);
+    if t >= 2u * params.n_rays || t % 2u == 1u {
+        return;
+    }
+    let r = rays[t / 2u];
+    var f = walk(r, SEED, vec2f(0.0));
+    if f.first.item != NONE {
+        for (var k = 0u; k <= params.n_items; k++) {
+            let g = walk(r, SPAN, vec2f(f.first.s, f.last.s));
+            let grew = g.first.s < f.first.s || g.last.s > f.last.s;
+            f = g;
+            if !grew {
+                break;
+            }
+        }
+        if f.first.s > r.s_max {
+            f.first.item = NONE;
+        }
+    }
+    out[t] = f.first;
+    out[t + 1u] = f.last;
 }

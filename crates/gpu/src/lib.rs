@@ -14,4 +14,4 @@ pub mod scene;
 
 pub use device::{Gpu, GpuError};
 pub use render::{closest_table_gpu, render_gpu};
-pub use scene::{GpuScene, Walk};
+pub use scene::{GpuScene, Piece, Walk};

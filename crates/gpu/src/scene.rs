@@ -105,6 +105,9 @@ struct RayFrame {
     any: bool,
 }
 
+/// A union component's entry and exit ([`GpuScene::first_pieces`]).
+pub type Piece = (Hit<f64>, Hit<f64>);
+
 /// How a closest-hit query visits the items.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Walk {
@@ -125,6 +128,7 @@ pub struct GpuScene<'g> {
     closest: Kernel,
     any: Kernel,
     brute: Kernel,
+    piece: Kernel,
     bytes: u64,
 }
 
@@ -191,6 +195,7 @@ impl<'g> GpuScene<'g> {
             closest: gpu.kernel(&src, "closest_tree", 3)?,
             any: gpu.kernel(&src, "any_tree", 3)?,
             brute: gpu.kernel(&src, "closest_brute", 3)?,
+            piece: gpu.kernel(&src, "first_piece", 3)?,
             bytes,
         })
     }
@@ -244,7 +249,8 @@ impl<'g> GpuScene<'g> {
         (g, t0, len)
     }
 
-    fn query(&self, k: &Kernel, rays: &[Ray<f64>]) -> Result<Vec<Option<Hit<f64>>>, GpuError> {
+    /// Run `k` over `rays`, `per` outputs per ray, mapped back to hits in the rays' `t`.
+    fn query(&self, k: &Kernel, rays: &[Ray<f64>], per: usize) -> Result<Vec<Option<Hit<f64>>>, GpuError> {
         let prep: Vec<(GpuRay, f64, f64)> = rays.iter().map(|r| self.prepare(r)).collect();
         let input: Vec<GpuRay> = prep.iter().map(|p| p.0).collect();
         let buf = self.gpu.upload("rays", &input)?;
@@ -254,10 +260,10 @@ impl<'g> GpuScene<'g> {
             margin: (8.0 * self.frame.pad) as f32,
             scale: self.frame.scale as f32,
         };
-        let out: Vec<GpuHit> = self.gpu.run(k, &params, &[&self.nodes, &self.prims, &buf], rays.len())?;
+        let out: Vec<GpuHit> = self.gpu.run(k, &params, &[&self.nodes, &self.prims, &buf], per * rays.len())?;
         Ok(out
             .iter()
-            .zip(&prep)
+            .zip(prep.iter().flat_map(|p| std::iter::repeat_n(p, per)))
             .map(|(h, &(_, t0, len))| {
                 (h.item != u32::MAX).then(|| Hit {
                     t: t0 + f64::from(h.s) / len,
@@ -273,12 +279,20 @@ impl<'g> GpuScene<'g> {
     /// The closest surface crossing of each ray in its `[t_min, t_max]` (entry, or exit for a
     /// ray starting inside), its `id` the primitive's ([`Tracer::prim`]). Rays must be valid.
     pub fn closest_hits(&self, rays: &[Ray<f64>], walk: Walk) -> Result<Vec<Option<Hit<f64>>>, GpuError> {
-        self.query(if walk == Walk::Tree { &self.closest } else { &self.brute }, rays)
+        self.query(if walk == Walk::Tree { &self.closest } else { &self.brute }, rays, 1)
     }
 
     /// Whether each ray meets a primitive's surface in its `[t_min, t_max]` (shadow and AO rays).
     pub fn any_hits(&self, rays: &[Ray<f64>]) -> Result<Vec<bool>, GpuError> {
-        Ok(self.query(&self.any, rays)?.iter().map(Option::is_some).collect())
+        Ok(self.query(&self.any, rays, 1)?.iter().map(Option::is_some).collect())
+    }
+
+    /// The entry and exit of the first component of the union of every primitive's line
+    /// interval that reaches each ray's `[t_min, t_max]`
+    /// ([`tubecast_render::accel::first_component`], the `intersect --query piece` answer).
+    pub fn first_pieces(&self, rays: &[Ray<f64>]) -> Result<Vec<Option<Piece>>, GpuError> {
+        let out = self.query(&self.piece, rays, 2)?;
+        Ok(out.chunks_exact(2).map(|p| p[0].zip(p[1])).collect())
     }
 
     /// The bound `δ` of the module docs: how far the GPU's local lines may lie from the CPU's

@@ -4,6 +4,7 @@
 
 mod constants;
 mod kernels;
+mod piece;
 mod render;
 mod tree;
 

@@ -1,0 +1,91 @@
+//! The first union component on the GPU (`intersect --query piece`) against the CPU's
+//! `first_component`, with the band of the tree test (module docs there): the entry is checked
+//! as a closest hit is; an exit may differ from the CPU's only where the union's component ends
+//! at a near-touch — another interval of the line enters within the band of the earlier of the
+//! two exits — so each GPU exit lies within `E + δ` of its primitive's surface and agrees with
+//! the CPU's within `(E_gpu + E_cpu + 2δ)/(γ·|d|)` or at such a near-touch.
+
+use tubecast::{Ray, V3};
+use tubecast_gpu::GpuScene;
+use tubecast_oracle::{link_error_bound, sweep_dist, Link, Vec3};
+use tubecast_render::accel::{first_component, Tracer, WideBvh};
+use tubecast_render::scene::generate::{self, Rng};
+use tubecast_render::scene::{Model, Prim, Scene};
+
+fn ov(v: V3<f64>) -> Vec3 {
+    Vec3::new(v.x, v.y, v.z)
+}
+
+fn link_of(p: &Prim) -> Link {
+    let o = V3::from(p.origin);
+    let c = p.round_cone().expect("links and spheres only");
+    Link { a: ov(o + c.a.cast()), ra: f64::from(c.ra), b: ov(o + c.b.cast()), rb: f64::from(c.rb) }
+}
+
+fn bound(p: &Prim, ray: &Ray<f64>) -> f64 {
+    let l = link_of(p);
+    let dn = ray.d * (1.0 / ray.d.length());
+    let foot = ray.o + dn * (V3::from(p.origin) - ray.o).dot(dn);
+    let size = (l.b - l.a).length().max(l.ra).max(l.rb);
+    link_error_bound(&l, ov(foot), size, f64::from(f32::EPSILON))
+}
+
+#[test]
+fn first_piece_matches_the_cpu() {
+    let Some(gpu) = crate::gpu("first_piece_matches_the_cpu") else { return };
+    let mut lines = generate::furball(80, 12, 6);
+    lines.extend(generate::bundle(30, 20, 2));
+    let scene = Scene::from_polylines(&lines, 0.08, "fur").unwrap();
+    let bvh = WideBvh::from_scene(&scene, Model::Links).unwrap();
+    let gs = GpuScene::upload(&gpu, &bvh).unwrap();
+    let delta = gs.band();
+    let mut rng = Rng::new(21);
+    let rays: Vec<Ray<f64>> = (0..3000)
+        .map(|k| {
+            let node = scene.nodes[(rng.uniform() * scene.nodes.len() as f64) as usize].pos;
+            let p = V3::from(node) + V3::from(rng.unit()) * rng.range(0.0, 0.1);
+            let d = V3::from(rng.unit());
+            // From outside, and from inside (a ray starting in a tube: entry before t_min).
+            let o = if k % 3 == 0 { p } else { p - d * 30.0 };
+            Ray::with_range(o, d, 0.0, 50.0)
+        })
+        .collect();
+    let got = gs.first_pieces(&rays).unwrap();
+    let (mut both, mut near_touch) = (0, 0);
+    for (k, ray) in rays.iter().enumerate() {
+        let cpu = first_component(&bvh, ray);
+        match (got[k], cpu) {
+            (None, None) => {}
+            (Some((e, _)), None) | (None, Some((e, _))) => {
+                let p = bvh.prim(e.id);
+                let tol = 2.0 * bound(&p, ray) + delta;
+                let line = tubecast_oracle::Line { o: ov(ray.o), d: ov(ray.d) };
+                let gap = tubecast_oracle::line_gap(&link_of(&p), &line).0;
+                let at_end = (e.t - ray.t_max).abs() <= tol;
+                assert!(gap.abs() <= tol || at_end, "ray {k}: GPU {:?} CPU {cpu:?}: gap {gap:e} > {tol:e}", got[k]);
+            }
+            (Some((ge, gx)), Some((ce, cx))) => {
+                both += 1;
+                for (g, c) in [(ge, ce), (gx, cx)] {
+                    let pg = bvh.prim(g.id);
+                    let (sd, _) = sweep_dist(&link_of(&pg), ov(ray.at(g.t)));
+                    let eg = bound(&pg, ray) + delta;
+                    assert!(sd.abs() <= eg + 1e-12, "ray {k}: GPU boundary {sd:e} off its surface (E + δ = {eg:e})");
+                    let e = eg + bound(&bvh.prim(c.id), ray) + delta;
+                    let gamma = c.n.dot(ray.d).abs().max(1e-12);
+                    if (g.t - c.t).abs() * gamma > e {
+                        // A near-touch: some interval enters within the band of the earlier end.
+                        let mut ivs = Vec::new();
+                        bvh.line_intervals(ray, &mut ivs);
+                        let early = g.t.min(c.t);
+                        let touch = ivs.iter().any(|iv| (iv.iv.entry.t - early).abs() <= 4.0 * e / gamma);
+                        assert!(touch, "ray {k}: GPU {g:?} CPU {c:?}");
+                        near_touch += 1;
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("first piece: {both} of {} rays hit on both; {near_touch} boundaries at near-touches", rays.len());
+    assert!(both > 500, "{both}");
+}
