@@ -142,3 +142,22 @@ pub fn closest_table_gpu(
     }
     Ok(rows)
 }
+
+/// The `intersect --query piece` table of `rays` ([`tubecast_render::accel::hit_table`]'s rows:
+/// entry `t`, exit `t`, entry normal, entry link, entry `u`, 1; a miss is
+/// [`MISS_ROW`](tubecast_render::accel::MISS_ROW)) with the first union components found on
+/// the GPU ([`GpuScene::first_pieces`]).
+pub fn piece_table_gpu(
+    gpu_scene: &GpuScene<'_>,
+    bvh: &WideBvh,
+    rays: &[Ray<f64>],
+) -> Result<Vec<[f64; HIT_COLUMNS]>, GpuError> {
+    Ok(gpu_scene
+        .first_pieces(rays)?
+        .iter()
+        .map(|p| match p {
+            Some((e, x)) => [e.t, x.t, e.n.x, e.n.y, e.n.z, f64::from(bvh.prim(e.id).link), e.u, 1.0],
+            None => tubecast_render::accel::MISS_ROW,
+        })
+        .collect())
+}

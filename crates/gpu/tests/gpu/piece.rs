@@ -86,6 +86,14 @@ fn first_piece_matches_the_cpu() {
             }
         }
     }
+    // The table's rows are these pieces, in hit_table's columns.
+    let rows = tubecast_gpu::piece_table_gpu(&gs, &bvh, &rays).unwrap();
+    for (row, p) in rows.iter().zip(&got) {
+        match p {
+            Some((e, x)) => assert_eq!((row[0], row[1], row[5]), (e.t, x.t, f64::from(bvh.prim(e.id).link))),
+            None => assert_eq!(*row, tubecast_render::accel::MISS_ROW),
+        }
+    }
     eprintln!("first piece: {both} of {} rays hit on both; {near_touch} boundaries at near-touches", rays.len());
     assert!(both > 500, "{both}");
 }
