@@ -195,3 +195,19 @@ fn hit_table_rows_are_the_gpu_hits() {
     }
     assert!(hits.iter().filter(|h| h.is_some()).count() > 100);
 }
+
+/// A scene 10⁶ from the world origin: the GPU moves rays in `f32` relative to the tree centre,
+/// so its band `δ` scales with the scene's size, not with its distance from the origin.
+#[test]
+fn tree_walk_matches_the_cpu_far_from_the_origin() {
+    let Some(gpu) = crate::gpu("tree_walk_matches_the_cpu_far_from_the_origin") else { return };
+    let mut lines = generate::bundle(40, 20, 8);
+    for l in &mut lines {
+        for p in &mut l.points {
+            *p = [p[0] + 1.0e6, p[1] - 2.0e6, p[2] + 5.0e5];
+        }
+    }
+    let scene = Scene::from_polylines(&lines, 0.05, "far bundle").unwrap();
+    let (_, hits, _) = compare(&gpu, &scene, 3000, "far bundle");
+    assert!(hits > 1000, "{hits} hits");
+}
