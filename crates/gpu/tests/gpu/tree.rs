@@ -56,8 +56,12 @@ fn aim(rng: &mut Rng, scene: &Scene, k: usize) -> Ray<f64> {
 /// Compare the GPU with the CPU on `n` rays into `scene`; returns (rays, hits, worst
 /// |Δt|·|d|/(E + δ) over agreeing hits).
 fn compare(gpu: &Gpu, scene: &Scene, n: usize, name: &str) -> (usize, usize, f64) {
-    let bvh = WideBvh::from_scene(scene, Model::Links).unwrap();
-    let gs = GpuScene::upload(gpu, &bvh).unwrap();
+    compare_with(gpu, scene, &WideBvh::from_scene(scene, Model::Links).unwrap(), n, name)
+}
+
+/// [`compare`] on a given tree over `scene`'s primitives.
+fn compare_with(gpu: &Gpu, scene: &Scene, bvh: &WideBvh, n: usize, name: &str) -> (usize, usize, f64) {
+    let gs = GpuScene::upload(gpu, bvh).unwrap();
     let delta = gs.band();
     let mut rng = Rng::new(7);
     let rays: Vec<Ray<f64>> = (0..n).map(|k| aim(&mut rng, scene, k)).collect();
@@ -209,5 +213,32 @@ fn tree_walk_matches_the_cpu_far_from_the_origin() {
     }
     let scene = Scene::from_polylines(&lines, 0.05, "far bundle").unwrap();
     let (_, hits, _) = compare(&gpu, &scene, 3000, "far bundle");
+    assert!(hits > 1000, "{hits} hits");
+}
+
+/// Spheres (links stored as their larger end sphere) and the primitives stored whole
+/// (`WideBvh::build`, no clusters) go through the same walk.
+#[test]
+fn tree_walk_matches_the_cpu_with_spheres_stored_whole() {
+    use tubecast_render::io::Polyline;
+    use tubecast_render::scene::PrimKind;
+    let Some(gpu) = crate::gpu("tree_walk_matches_the_cpu_with_spheres_stored_whole") else { return };
+    // Chains whose radius jumps so that one end sphere swallows the next: stored as spheres.
+    let mut rng = Rng::new(5);
+    let lines: Vec<Polyline> = (0..200)
+        .map(|_| {
+            let c = V3::from(rng.unit()) * 10.0;
+            let points: Vec<[f64; 3]> =
+                (0..6).map(|i| (c + V3::new(0.3 * f64::from(i), 0.0, 0.0)).to_array()).collect();
+            let radii = (0..6).map(|i| if i % 2 == 0 { 0.5 } else { 0.1 }).collect();
+            Polyline { points, radii }
+        })
+        .collect();
+    let scene = Scene::from_polylines(&lines, 0.1, "beads").unwrap();
+    let prims = scene.primitives();
+    let spheres = prims.iter().filter(|p| p.kind() == PrimKind::Sphere).count();
+    assert!(spheres > 100, "{spheres} spheres");
+    let bvh = WideBvh::build(prims);
+    let (_, hits, _) = compare_with(&gpu, &scene, &bvh, 3000, "beads");
     assert!(hits > 1000, "{hits} hits");
 }
