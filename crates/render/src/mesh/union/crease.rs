@@ -92,26 +92,54 @@ fn round(field: &Field, raw: &mut Raw, out: &mut Creases) -> usize {
             break;
         }
     }
-    // Make the vertices and the pieces.
-    let mut index: HashMap<(u32, u32), u32> = HashMap::new();
-    let mut keys: Vec<_> = cand.iter().filter_map(|(k, w)| w.map(|w| (*k, w))).collect();
-    keys.sort_by_key(|(k, _)| *k);
-    for (k, (w, sin_half)) in &keys {
-        index.insert(*k, raw.positions.len() as u32);
-        raw.positions.push(*w);
-        raw.owner.push(field.eval(*w).1);
-        out.min_sin_half = out.min_sin_half.min(*sin_half);
+    // Make the pieces; where one crosses another triangle, refuse its triangle's splits and
+    // make them again (a split point leaves its edge, so the pieces are not confined to the
+    // grid's tetrahedra as the contour's triangles are). After a few refusals, no split.
+    let n0 = raw.positions.len() as u32;
+    for attempt in 0..6 {
+        let mut keys: Vec<_> = cand.iter().filter_map(|(k, w)| w.map(|w| (*k, w))).collect();
+        keys.sort_by(|a, b| a.0.cmp(&b.0));
+        if attempt == 5 {
+            keys.clear();
+        }
+        let index: HashMap<(u32, u32), u32> = keys.iter().enumerate().map(|(i, (k, _))| (*k, n0 + i as u32)).collect();
+        let mut pos = raw.positions.clone();
+        pos.extend(keys.iter().map(|(_, (w, _))| *w));
+        let (mut tris, mut source, mut dirty) =
+            (Vec::with_capacity(raw.triangles.len() + 3 * keys.len()), Vec::new(), Vec::new());
+        for (s, t) in raw.triangles.iter().enumerate() {
+            let mid = |e: usize| {
+                let (u, v) = (t[e], t[(e + 1) % 3]);
+                index.get(&(u.min(v), u.max(v))).copied()
+            };
+            let before = tris.len();
+            split_triangle(*t, [mid(0), mid(1), mid(2)], &pos, &mut tris);
+            source.extend(std::iter::repeat(s).take(tris.len() - before));
+            if tris.len() - before > 1 {
+                dirty.extend(before..tris.len());
+            }
+        }
+        let bad = super::embed::crossing(&tris, &dirty, &pos, 2.0 * field.h);
+        if bad.is_empty() {
+            for (_, (w, sin_half)) in &keys {
+                raw.owner.push(field.eval(*w).1);
+                out.min_sin_half = out.min_sin_half.min(*sin_half);
+            }
+            raw.positions = pos;
+            raw.triangles = tris;
+            return keys.len();
+        }
+        for b in bad {
+            let t = raw.triangles[source[b]];
+            for e in 0..3 {
+                let (u, v) = (t[e], t[(e + 1) % 3]);
+                if let Some(w) = cand.get_mut(&(u.min(v), u.max(v))) {
+                    *w = None;
+                }
+            }
+        }
     }
-    let mut tris = Vec::with_capacity(raw.triangles.len() + 2 * keys.len());
-    for t in &raw.triangles {
-        let mid = |e: usize| {
-            let (u, v) = (t[e], t[(e + 1) % 3]);
-            index.get(&(u.min(v), u.max(v))).copied()
-        };
-        split_triangle(*t, [mid(0), mid(1), mid(2)], &raw.positions, &mut tris);
-    }
-    raw.triangles = tris;
-    keys.len()
+    0
 }
 
 /// The outward direction of a tube holding all three corners of a piece, at its centroid.

@@ -11,8 +11,10 @@
 
 mod certify;
 mod crease;
+mod embed;
 mod field;
 mod grid;
+mod triple;
 
 use super::{MeshError, SceneMesh};
 use crate::scene::Scene;
@@ -117,6 +119,7 @@ pub fn tessellate_union(scene: &Scene, eps: f64) -> Result<(SceneMesh, UnionRepo
         let field = Field::new(tubes.clone(), origin, h, CELL_STEPS, 3.0 * h);
         let mut raw = grid::contour(&field);
         let creases = crease::split(&field, &mut raw);
+        triple::fan(&field, &mut raw);
         let ex = certify::excursion(&field, &raw);
         let mut report = UnionReport {
             step: h,
