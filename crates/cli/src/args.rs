@@ -123,6 +123,15 @@ pub enum Accel {
     Grid,
 }
 
+/// Where the rays are traced (`--device`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Device {
+    /// The CPU (every core).
+    Cpu,
+    /// A Vulkan GPU (built with the `gpu` feature): the same 8-wide tree and kernels in WGSL.
+    Gpu,
+}
+
 /// The surface model of `render` and `info` (`--model`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Surface {
@@ -297,6 +306,9 @@ pub struct RenderArgs {
     /// Acceleration structure.
     #[arg(long, value_enum, default_value_t = Accel::Bvh)]
     pub accel: Accel,
+    /// Where to trace the rays: cpu (default) or gpu (a build with the `gpu` feature).
+    #[arg(long, value_enum, default_value_t = Device::Cpu)]
+    pub device: Device,
     /// Threads, quiet, progress.
     #[command(flatten)]
     pub run: RunArgs,
@@ -361,6 +373,9 @@ pub struct IntersectArgs {
     /// Acceleration structure (the hits are the same).
     #[arg(long, value_enum, default_value_t = Accel::Bvh)]
     pub accel: Accel,
+    /// Where to trace the rays: cpu (default) or gpu (a build with the `gpu` feature).
+    #[arg(long, value_enum, default_value_t = Device::Cpu)]
+    pub device: Device,
     /// Radius and minimum radius.
     #[command(flatten)]
     pub radius: RadiusArgs,

@@ -1,7 +1,7 @@
 //! `tubecast intersect --query hit|piece|all`: the scene's accelerator, the rays, and the
 //! table the query asks for.
 
-use crate::args::{IntersectArgs, Query, Surface};
+use crate::args::{Device, IntersectArgs, Query, Surface};
 use crate::error::CliError;
 use crate::setup::{self, Plan};
 use tubecast_render::accel::{closest_table, crossings_table, hit_table};
@@ -17,6 +17,10 @@ pub fn intersect(a: &IntersectArgs) -> Result<(), CliError> {
     let plan = Plan { model: m, accel: a.accel, render: None, rays: Some(rays.len() as f64) };
     let scene = setup::load(&a.input, &a.radius, (&a.select, &a.run), plan, "every ray misses", false)?.scene;
     let scene = crate::quantized::model_scene(Surface::from(a.model), scene, &a.quant, a.run.quiet)?;
+    if a.device == Device::Gpu {
+        let rows = crate::gpu::table(a.query, &scene, &rays)?;
+        return crate::hits_io::write_hits(&a.out, &Array2::from_rows(&rows), a.csv);
+    }
     let rows = setup::with_threads(a.run.threads, || {
         let bvh = setup::scene_tracer(a.accel, &scene, m, None, Some(rays.len() as f64))?;
         Ok::<_, CliError>(match a.query {

@@ -25,6 +25,9 @@ pub enum CliError {
     Mesh(MeshError),
     /// The scene would not fit in memory (estimated before loading).
     Memory(tubecast_render::estimate::TooLarge),
+    /// `--device gpu`: no adapter, or the device failed.
+    #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+    Gpu(String),
 }
 
 impl CliError {
@@ -52,6 +55,7 @@ impl fmt::Display for CliError {
             Self::Threads(e) => write!(f, "--threads: {e}"),
             Self::Mesh(e) => e.fmt(f),
             Self::Memory(e) => e.fmt(f),
+            Self::Gpu(m) => f.write_str(m),
         }
     }
 }

@@ -15,6 +15,7 @@ mod cmd_mesh;
 mod cmd_render;
 mod cmd_simplify;
 mod error;
+mod gpu;
 mod hits_io;
 mod options;
 mod progress;

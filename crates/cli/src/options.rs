@@ -69,6 +69,7 @@ pub fn output(flag: &str, path: &Path, exts: &[&str], force: bool) -> Result<(),
 /// `render`: the PNG and the depth file, the mesh model's tolerance, the quantized model's
 /// colours.
 pub fn render(a: &RenderArgs) -> Result<(), CliError> {
+    crate::gpu::check_render(a)?;
     output("-o", &a.out, &["png"], a.force)?;
     if let Some(d) = &a.depth {
         output("--depth", d, &["npy"], a.force)?;
@@ -89,6 +90,7 @@ pub fn render(a: &RenderArgs) -> Result<(), CliError> {
 
 /// `intersect`: the hits go to `.npy`, `.csv` or `-` (stdout).
 pub fn intersect(a: &IntersectArgs) -> Result<(), CliError> {
+    crate::gpu::check_intersect(a)?;
     if is_dash(&a.out) {
         return Ok(());
     }
