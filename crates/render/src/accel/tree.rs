@@ -169,11 +169,12 @@ impl Tree {
     fn entries(n: &Node, r: &TreeRay, neg: [bool; 3]) -> [f32; WIDTH] {
         let mut near = [0.0f32; WIDTH];
         let mut far = [r.t_max; WIDTH];
-        for a in 0..3 {
-            let (lo, hi) = if neg[a] { (&n.hi[a], &n.lo[a]) } else { (&n.lo[a], &n.hi[a]) };
+        for (a, &flip) in neg.iter().enumerate() {
+            let (lo, hi) = if flip { (&n.hi[a], &n.lo[a]) } else { (&n.lo[a], &n.hi[a]) };
+            let (o, inv) = (r.o[a], r.inv[a]);
             for i in 0..WIDTH {
-                let t0 = (lo[i] - r.o[a]) * r.inv[a];
-                let t1 = (hi[i] - r.o[a]) * r.inv[a];
+                let t0 = (lo[i] - o) * inv;
+                let t1 = (hi[i] - o) * inv;
                 near[i] = if t0 > near[i] { t0 } else { near[i] };
                 far[i] = if t1 < far[i] { t1 } else { far[i] };
             }

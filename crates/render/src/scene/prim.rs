@@ -75,20 +75,24 @@ pub struct Prim {
 
 /// True only where the stable link kernel surely misses the local `f32` line `o + τ·d` (`d`
 /// unit to `f32` rounding): the line passes the link's axis segment `[a, b]` farther than
-/// `R = max(ra, rb)` plus a margin `M = (L₁ + R + |o − m|₁)/16 + 2⁻¹⁶·(|o|₁ + |m|₁)` (`L₁`,
+/// `R = max(ra, rb)` plus a margin `M = 2⁻¹²·(L₁ + R + |o − m|₁) + 2⁻¹⁶·(|o|₁ + |m|₁)` (`L₁`,
 /// `|·|₁`: 1-norms, upper bounds of the Euclidean ones; `m` the link's midpoint, `≈ 0` for a
 /// [`Prim::from_link`] primitive, up to a cluster's extent for links sharing a cluster's origin).
 /// A static filter, as in robust predicates: it runs before the kernel and never changes a hit.
 ///
-/// Why it is safe: the solid lies within distance `R` of the segment. The kernel accepts a
-/// stump crossing only where its distance-like residual is `|g| ≤ 8√ε·S` (`StumpSide::polish`,
-/// `S ≤ 2(L + R + |o − m|)`: its frame is centred on an axis point formed from the midpoint),
-/// i.e. at most `5.6·10⁻³·(L + R + |o − m|)` (f32: `8·2⁻¹²·2`) off the surface; its sphere
-/// chords err by a few `ε` of the same sizes. Forming the midpoint and the frame in `f32` from
-/// coordinates relative to the local origin adds a few `ε·(|o| + |m|)`, as does the distance
-/// computed here (`ε = 2⁻²⁴`; the second term of `M` is 256 of them). `M` exceeds the sum by a
-/// factor over 10, so a rejected line is a kernel miss (the test `filter_rejects_only_kernel_misses`
-/// below compares filtered and unfiltered answers bit for bit, also for links stored in a
+/// Why it is safe: the solid lies within distance `R` of the segment, and the kernel reports
+/// only crossings it has checked against the solid to its own `ε`-sized error. A stump crossing
+/// stands only where the distance-like residual after the Newton settle is
+/// `|g| ≤ 64ε·min(scale, S + D)` (`StumpSide::polish`, `ε = 2⁻²³` in `f32`, `S + D =
+/// max(L, ra, rb) + |o − m| ≤ L₁ + R + |o − m|₁`), or at a cap end inside the cone (`g ≤ 0`, a point
+/// of the solid); its sphere chords err by a few `ε` of the same sizes. So every crossing it
+/// accepts lies within `E = 64ε·(L₁ + R + |o − m|₁)` plus a few `ε` of that size of the solid,
+/// and on the line: the line passes the segment within `R + E`. Forming the midpoint, the
+/// frame and this distance in `f32` from coordinates relative to the local origin adds a few
+/// `ε·(|o| + |m|)`, which the second term of `M` covers 32 times over; the first term is 32
+/// times `64ε = 2⁻¹⁷`. A rejected line is therefore a kernel miss (the test
+/// `filter_rejects_only_kernel_misses` below compares filtered and unfiltered answers bit for
+/// bit on lines passing at `R·(1 + δ)`, `δ` down to `10⁻⁶`, also for links stored in a
 /// cluster's frame).
 #[inline(always)]
 pub(crate) fn link_surely_misses(c: &RoundCone<f32>, o: V3<f32>, d: V3<f32>) -> bool {
@@ -103,7 +107,7 @@ pub(crate) fn link_surely_misses(c: &RoundCone<f32>, o: V3<f32>, d: V3<f32>) -> 
     let r = c.ra.max(c.rb);
     let n1 = |x: V3<f32>| x.x.abs() + x.y.abs() + x.z.abs();
     let m = (c.a + c.b) * 0.5;
-    let reach = r + (n1(v) + r + n1(o - m)) * (1.0 / 16.0) + (n1(o) + n1(m)) * (1.0 / 65536.0);
+    let reach = r + (n1(v) + r + n1(o - m)) * (1.0 / 4096.0) + (n1(o) + n1(m)) * (1.0 / 65536.0);
     // NaN compares false: no rejection.
     dist2 > reach * reach
 }
@@ -447,7 +451,14 @@ mod tests {
             };
             let side = dir.cross(V3::from(rng.unit())).normalize_or_zero();
             let delta = [-1e-3, 0.0, 1e-6, 1e-3, 1e-2, 0.1, 1.0, 10.0, 1e3][k % 9];
-            let reach = r.max(rb) * (1.0 + delta) + if k % 3 == 0 { len * rng.uniform() } else { 0.0 };
+            // One in three: beside the axis by up to the link's length; one in three (when
+            // not so): at the filter's margin, about 2⁻¹¹·L₁ for these lines, on both sides.
+            let reach = r.max(rb) * (1.0 + delta)
+                + match k % 3 {
+                    0 => len * rng.uniform(),
+                    1 => len * [0.0, 2f64.powi(-12), 2f64.powi(-11), 2f64.powi(-10)][(k / 3) % 4],
+                    _ => 0.0,
+                };
             let o = at + side * reach - dir * (scale * 50.0);
             let ray = Ray::new(o, dir);
             let (f, u) = (p.intersect(&ray), unfiltered(&p, &ray));
