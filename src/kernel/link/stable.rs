@@ -27,6 +27,10 @@ impl<T: Real> RoundCone<T> {
             hull.add_stump(f.stump_crossings(self));
         }
         let hit = hull.in_a | hull.in_b | hull.cone_in;
+        // A miss in every lane needs no normals: the same answer as `masked` below gives.
+        if hit.none() {
+            return Interval::miss();
+        }
         let (n_in, u_in) = f.finish(self, hull.t_in, hull.in_a, hull.in_b, hull.cone_in, hull.side_in);
         let (n_out, u_out) = f.finish(self, hull.t_out, hull.out_a, hull.out_b, hull.cone_out, hull.side_out);
         let inv_dl = T::one() / f.dl;
