@@ -440,15 +440,19 @@ pub struct MeshArgs {
     #[arg(long)]
     pub force: bool,
     /// Tolerance ε > 0 (scene units): the two-sided Hausdorff bound between the mesh and the
-    /// exact tubes of the input.
+    /// surface of the union of the exact tubes (with --shells: each shell and its chain's tubes).
     #[arg(long, value_name = "EPS", value_parser = values::positive, allow_hyphen_values = true)]
     pub tolerance: f64,
     /// Radius and minimum radius.
     #[command(flatten)]
     pub radius: RadiusArgs,
-    /// Mesh the C¹ spline tubes of the chains instead of the links.
+    /// Mesh the C¹ spline tubes of the chains instead of the links (as shells: implies --shells).
     #[arg(long)]
     pub splines: bool,
+    /// Write one closed shell per chain (and split joint), overlapping where chains meet,
+    /// instead of the surface of the union: for renderers that composite through a depth buffer.
+    #[arg(long)]
+    pub shells: bool,
     /// Print the summary as one JSON object.
     #[arg(long)]
     pub json: bool,
