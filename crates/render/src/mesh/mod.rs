@@ -5,7 +5,9 @@
 //!
 //! Bifurcations need nothing special: each chain ends on the node sphere of a bifurcation
 //! with a spherical cap, so the branches' closed meshes overlap there and their union has no
-//! crack.
+//! crack. Those are shells, certified each against its own chain; [`tessellate_union`] meshes
+//! the surface of the union itself (one closed surface per component, certified against the
+//! union's exact surface; `docs/design/union-mesh.md`), which is what `tubecast mesh` writes.
 
 pub mod export;
 mod tracer;
