@@ -98,7 +98,7 @@ fn round(field: &Field, raw: &mut Raw, out: &mut Creases) -> usize {
     let n0 = raw.positions.len() as u32;
     for attempt in 0..6 {
         let mut keys: Vec<_> = cand.iter().filter_map(|(k, w)| w.map(|w| (*k, w))).collect();
-        keys.sort_by(|a, b| a.0.cmp(&b.0));
+        keys.sort_by_key(|a| a.0);
         if attempt == 5 {
             keys.clear();
         }

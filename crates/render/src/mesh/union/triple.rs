@@ -74,7 +74,7 @@ fn meet(field: &Field, k: [u32; 3], start: V3<f64>) -> Option<V3<f64>> {
         }
         let (c0, c1, c2) = (g[1].cross(g[2]), g[2].cross(g[0]), g[0].cross(g[1]));
         let dx = (c0 * f[0] + c1 * f[1] + c2 * f[2]) * (1.0 / det);
-        x = x - dx;
+        x -= dx;
         if (x - start).length() > 2.0 * field.h {
             return None;
         }
