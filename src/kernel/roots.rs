@@ -3,8 +3,13 @@
 
 /// Root-finding strategy of the spline kernel ([`crate::QuadTube::intersect_with`]).
 ///
-/// All variants are exact in the sense that they bracket every critical point the method's
-/// model admits; they differ in the work per bracket and in the final accuracy.
+/// Which is exact and which approximate:
+///
+/// | solver | answer |
+/// |---|---|
+/// | [`Solver::Polynomial`] (default) | exact to the kernel's band; rests on no empirical claim |
+/// | [`Solver::Newton`], [`Solver::Itp`] | accurate where Russig's claim holds; where it fails the interval can lie inside the true one |
+/// | [`Solver::Bisection`] | approximate below about 30 steps; as `Itp` from 40 |
 ///
 /// ```
 /// use tubecast::{QuadTube, Ray, Solver, V3};

@@ -22,7 +22,7 @@ use tubecast::Ray;
 /// let scene = Scene::from_polylines(&[line], 0.5, "tube").unwrap();
 /// let tracer: Box<dyn Tracer> = Box::new(Bvh::build(scene.primitives()));
 /// let hit = tracer.closest_hit(&Ray::new(V3::new(2.0, 3.0, 0.0), V3::new(0.0, -1.0, 0.0))).unwrap();
-/// assert_eq!(tracer.prim(hit.prim).link, 0);
+/// assert_eq!(tracer.prim(hit.id).link, 0);
 /// ```
 pub trait Tracer: Send + Sync {
     /// The primitives the tracer stores whole: ids `0..prims().len()` of [`Hit::prim`] and

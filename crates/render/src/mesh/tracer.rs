@@ -29,7 +29,7 @@ use tubecast::{Crossing, Interval, Ray, V3};
 /// let tracer = MeshTracer::build(&mesh, scene.primitives());
 /// let hit = tracer.closest_hit(&Ray::new(V3::new(2.0, 3.0, 0.0), V3::new(0.0, -1.0, 0.0))).unwrap();
 /// assert!((hit.t - 2.5).abs() <= tracer.error()); // exact: 3 − 0.5
-/// assert_eq!(tracer.prims()[hit.prim as usize].link, 0);
+/// assert_eq!(tracer.prims()[hit.id as usize].link, 0);
 /// ```
 pub struct MeshTracer {
     bvh: Bvh2,

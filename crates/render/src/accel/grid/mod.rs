@@ -210,7 +210,7 @@ impl Default for GridParams {
 /// let grid = Grid::build(scene.primitives());
 /// let down = Ray::new(V3::new(2.0, 3.0, 0.0), V3::new(0.0, -1.0, 0.0));
 /// let hit = grid.closest_hit(&down).unwrap();
-/// assert_eq!((hit.t, hit.link, hit.entering), (2.5, 0, true));
+/// assert_eq!((hit.t, grid.prim(hit.id).link, hit.entering), (2.5, 0, true));
 /// assert!(!grid.any_hit(&Ray::new(V3::new(2.0, 3.0, 0.0), V3::new(0.0, 1.0, 0.0))));
 /// ```
 pub struct Grid {
