@@ -180,7 +180,7 @@ fn every_shipped_file_meshes_watertight() {
     let (mut meshed, mut refused, mut heavy) = (0, 0, 0);
     for p in &files {
         let Ok(scene) = Scene::load(p, 0.2) else { continue };
-        if scene.links.len() == 0 {
+        if scene.links.is_empty() {
             continue;
         }
         let r_min = (0..scene.nodes.len()).map(|i| scene.radius(i)).filter(|&r| r > 0.0).fold(f64::INFINITY, f64::min);

@@ -151,8 +151,8 @@ pub fn embedded(m: &SceneMesh) {
             let edges = |t: [u32; 3], c: [P; 3]| {
                 (0..3)
                     .filter(move |&e| {
-                        !(tj.contains(&t[e]) && ti.contains(&t[e]))
-                            && !(tj.contains(&t[(e + 1) % 3]) && ti.contains(&t[(e + 1) % 3]))
+                        !(tj.contains(&t[e]) && ti.contains(&t[e])
+                            || tj.contains(&t[(e + 1) % 3]) && ti.contains(&t[(e + 1) % 3]))
                     })
                     .map(move |e| (c[e], c[(e + 1) % 3]))
             };
