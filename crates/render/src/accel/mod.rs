@@ -135,6 +135,7 @@ impl obvhs::Boundable for BoxOf {
 
 /// The scene box in `f64` (padded), its centre (the origin of the `f32` boxes) and the box
 /// padding (see the module docs).
+#[derive(Clone, Debug)]
 struct Frame {
     centre: [f64; 3],
     lo: [f64; 3],
@@ -204,9 +205,9 @@ impl Frame {
     }
 
     /// Clip the ray's line restricted to distances `[s_lo, s_hi]` along the unit direction to
-    /// the scene box; `None` when it misses.
+    /// the scene box and restart it just before the box; `None` when it misses.
     #[inline]
-    fn clip(&self, ray: &Ray<f64>, s_lo: f64, s_hi: f64) -> Option<Clipped> {
+    fn restart(&self, ray: &Ray<f64>, s_lo: f64, s_hi: f64) -> Option<Restart> {
         if !self.any {
             return None;
         }
@@ -234,23 +235,44 @@ impl Frame {
         // point is formed with one rounding per coordinate (fused o + d·t₀), so it lies within
         // ε·|p| of the ray's line — not ε·|o|, which for an origin far from a small scene would
         // exceed the box padding (a fuzz finding: origin 1e18 away from a 1e-6 scene).
-        // Also `LEAD` before it in obvhs units, past obvhs's absolute entry bound (module docs).
+        // Also `LEAD` before it in tree units, past the walk's absolute entry bound (module docs).
         let s0 = a - 4.0 * self.pad - LEAD / self.scale;
         let t0 = s0 / len;
         let p = V3::new(ray.d.x.mul_add(t0, ray.o.x), ray.d.y.mul_add(t0, ray.o.y), ray.d.z.mul_add(t0, ray.o.z));
+        let rel = [p.x - self.centre[0], p.y - self.centre[1], p.z - self.centre[2]];
+        Some(Restart { rel, dir: d, t0, len, s_end: (b - s0) + 8.0 * self.pad })
+    }
+
+    /// [`Self::restart`] as an obvhs ray in the frame's scaled `f32` coordinates.
+    #[inline]
+    fn clip(&self, ray: &Ray<f64>, s_lo: f64, s_hi: f64) -> Option<Clipped> {
+        let r = self.restart(ray, s_lo, s_hi)?;
         let sc = self.scale;
-        let org = Vec3A::new(
-            ((p.x - self.centre[0]) * sc) as f32,
-            ((p.y - self.centre[1]) * sc) as f32,
-            ((p.z - self.centre[2]) * sc) as f32,
-        );
+        let org = Vec3A::from(r.rel.map(|x| (x * sc) as f32));
         // `+ 0.0` turns a −0.0 component (e.g. −sin 0, or a tiny negative rounded to f32) into
         // +0.0: obvhs takes the octant from the sign bit but the slab order from `d < 0`, and the
         // two disagree on −0.0 (a fuzz/CLI finding: the wide BVH missed axis-parallel rays).
-        let dir = Vec3A::new(d[0] as f32 + 0.0, d[1] as f32 + 0.0, d[2] as f32 + 0.0);
-        let tmax = (((b - s0) + 8.0 * self.pad) * sc) as f32;
-        Some(Clipped { ray: obvhs::ray::Ray::new(org, dir, 0.0, tmax), t0, len, scale: sc })
+        let dir = Vec3A::from(r.dir.map(|x| x as f32 + 0.0));
+        let tmax = (r.s_end * sc) as f32;
+        Some(Clipped { ray: obvhs::ray::Ray::new(org, dir, 0.0, tmax), t0: r.t0, len: r.len, scale: sc })
     }
+}
+
+/// A ray restarted just before the scene box: what a walk of the tree takes, on the CPU or a
+/// GPU ([`TreeExport::restart`]). Distances along it are world units along the unit direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Restart {
+    /// The restart point minus the frame's centre (world units; scale, then round to `f32`).
+    pub rel: [f64; 3],
+    /// The unit direction.
+    pub dir: [f64; 3],
+    /// The user's ray parameter `t` at the restart point.
+    pub t0: f64,
+    /// Length of the user's direction (`s = (t − t0)·len`).
+    pub len: f64,
+    /// Distance from the restart point past which the ray meets no box (the clipped exit plus
+    /// the padding margin).
+    pub s_end: f64,
 }
 
 /// The scene-box-clipped form of a ray, ready for obvhs.

@@ -41,6 +41,17 @@ pub struct TreeExport<'a> {
     pub pad: f64,
     /// True for a tree over nothing (every ray misses).
     pub empty: bool,
+    frame: Frame,
+}
+
+impl TreeExport<'_> {
+    /// The ray's part within `[s_lo, s_hi]` (distances along its unit direction from its
+    /// origin) restarted just before the tree's box, exactly as the CPU walk takes it; `None`
+    /// when it misses the box. A walk in the tree's coordinates starts at `rel·scale` along
+    /// `dir` and ends at `s_end·scale`.
+    pub fn restart(&self, ray: &Ray<f64>, s_lo: f64, s_hi: f64) -> Option<super::Restart> {
+        self.frame.restart(ray, s_lo, s_hi)
+    }
 }
 
 /// An eight-wide BVH over primitives (see [`super::tree`]).
@@ -251,7 +262,15 @@ impl WideBvh {
             })
             .collect();
         let f = &self.frame;
-        TreeExport { nodes: self.tree.nodes(), item_prims, centre: f.centre, scale: f.scale, pad: f.pad, empty: !f.any }
+        TreeExport {
+            nodes: self.tree.nodes(),
+            item_prims,
+            centre: f.centre,
+            scale: f.scale,
+            pad: f.pad,
+            empty: !f.any,
+            frame: f.clone(),
+        }
     }
 
     /// Number of clusters of links (0 when built by [`Self::build`]).
