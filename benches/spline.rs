@@ -149,7 +149,7 @@ fn leaf_bench(c: &mut Criterion, hit: bool) {
     g.finish();
     let tw = QuadTube::<WideF32x8>::from_lanes(|i| t32[i]);
     let lw = RoundCone::<WideF32x8>::from_lanes(|i| l32[i]);
-    let rw: Vec<Ray<WideF32x8>> = r32.iter().map(|r| Ray::splat(*r)).collect();
+    let rw: Vec<Ray<WideF32x8>> = r32.iter().map(|r| Ray::broadcast(*r)).collect();
     let big = WideF32x8::cst(1e9);
     let mut g = c.benchmark_group(format!("{group}/f32x8"));
     g.throughput(Throughput::Elements(N as u64));

@@ -56,7 +56,7 @@ use crate::vec::V3;
 /// use tubecast::{Primitive, Ray, RoundCone, WideF32x8, V3};
 /// let link = RoundCone::new(V3::new(0.0, 0.0, 0.0), 1.0, V3::new(4.0, 0.0, 0.0), 0.5).unwrap();
 /// let ray = |i: usize| Ray::new(V3::new(0.5 * i as f32, -10.0, 0.3), V3::new(0.0, 1.0, 0.0));
-/// let iv = RoundCone::<WideF32x8>::splat(link).intersect(&Ray::from_fn(ray));
+/// let iv = RoundCone::<WideF32x8>::broadcast(link).intersect(&Ray::from_fn(ray));
 /// for i in 0..8 {
 ///     assert_eq!(iv.lane(i), link.intersect(&ray(i)));
 /// }
@@ -134,7 +134,7 @@ impl<T: Real> Sphere<T> {
     }
     /// Every lane the same ball.
     pub fn splat(s: Sphere<T::Elem>) -> Self {
-        Self { c: V3::splat(s.c), r: T::splat(s.r) }
+        Self { c: V3::broadcast(s.c), r: T::splat(s.r) }
     }
 }
 

@@ -42,8 +42,8 @@ impl<T: Real> Ray<T> {
     }
     /// The same rays in every lane: broadcast a scalar ray.
     #[inline(always)]
-    pub fn splat(r: Ray<T::Elem>) -> Self {
-        Self { o: V3::splat(r.o), d: V3::splat(r.d), t_min: T::splat(r.t_min), t_max: T::splat(r.t_max) }
+    pub fn broadcast(r: Ray<T::Elem>) -> Self {
+        Self { o: V3::broadcast(r.o), d: V3::broadcast(r.d), t_min: T::splat(r.t_min), t_max: T::splat(r.t_max) }
     }
     /// Lanes from a function of the lane index.
     #[inline]

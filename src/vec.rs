@@ -36,7 +36,7 @@ impl<T: Real> V3<T> {
     }
     /// Every lane set to the scalar vector `v`.
     #[inline(always)]
-    pub fn splat(v: V3<T::Elem>) -> Self {
+    pub fn broadcast(v: V3<T::Elem>) -> Self {
         Self::new(T::splat(v.x), T::splat(v.y), T::splat(v.z))
     }
     /// Lanes from a function of the lane index.

@@ -36,14 +36,14 @@ pub fn check(data: &[u8]) {
             }
         }
     }
-    let iv4 = Sphere::<tubecast::WideF64x4> { c: V3::splat(c), r: Real::splat(r) }.intersect(&Ray::splat(ray));
+    let iv4 = Sphere::<tubecast::WideF64x4> { c: V3::broadcast(c), r: Real::splat(r) }.intersect(&Ray::broadcast(ray));
     assert_eq!(iv4.lane(3), iv, "f64x4 lane differs from scalar");
     let (c32, r32) = (c.cast::<f32>(), r as f32);
     let ray32 = Ray::new(ray.o.cast::<f32>(), ray.d.cast::<f32>());
     if c32.is_finite() && r32 * r32 >= f32::MIN_POSITIVE && (r32 * r32).is_finite() && ray32.validate().is_ok() && (c32 - ray32.o).length2().is_finite() {
         let a = Sphere { c: c32, r: r32 }.intersect(&ray32);
         sane(&a);
-        let iv8 = Sphere::<tubecast::WideF32x8> { c: V3::splat(c32), r: Real::splat(r32) }.intersect(&Ray::splat(ray32));
+        let iv8 = Sphere::<tubecast::WideF32x8> { c: V3::broadcast(c32), r: Real::splat(r32) }.intersect(&Ray::broadcast(ray32));
         assert_eq!(iv8.lane(5), a, "f32x8 lane differs from scalar");
     }
 }

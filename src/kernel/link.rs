@@ -142,8 +142,8 @@ impl<T: Real> RoundCone<T> {
         }
     }
     /// Every lane the same link.
-    pub fn splat(l: RoundCone<T::Elem>) -> Self {
-        Self { a: V3::splat(l.a), ra: T::splat(l.ra), b: V3::splat(l.b), rb: T::splat(l.rb) }
+    pub fn broadcast(l: RoundCone<T::Elem>) -> Self {
+        Self { a: V3::broadcast(l.a), ra: T::splat(l.ra), b: V3::broadcast(l.b), rb: T::splat(l.rb) }
     }
 
     /// The tangent-cone stump alone (no end spheres), stable form.

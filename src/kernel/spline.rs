@@ -220,9 +220,9 @@ impl<T: Real> QuadTube<T> {
         }
     }
     /// Every lane the same segment.
-    pub fn splat(s: QuadTube<T::Elem>) -> Self {
+    pub fn broadcast(s: QuadTube<T::Elem>) -> Self {
         Self {
-            b: [V3::splat(s.b[0]), V3::splat(s.b[1]), V3::splat(s.b[2])],
+            b: [V3::broadcast(s.b[0]), V3::broadcast(s.b[1]), V3::broadcast(s.b[2])],
             r: [T::splat(s.r[0]), T::splat(s.r[1]), T::splat(s.r[2])],
         }
     }

@@ -89,11 +89,11 @@ mod nalgebra_section {
         assert!(iv.hit);
         assert_eq!(iv, l.intersect(&r));
         // Eight lanes from nalgebra lane vectors.
-        let o8: Point3<WideF32x8> = V3::splat(r.o.cast::<f32>()).into();
+        let o8: Point3<WideF32x8> = V3::broadcast(r.o.cast::<f32>()).into();
         let d8: Vector3<WideF32x8> = V3::from_fn(|i| r.d.cast::<f32>() + V3::new(0.01 * i as f32, 0.0, 0.0)).into();
         let ray8: Ray<WideF32x8> = (o8, d8).into();
         let l32 = l.cast::<f32>();
-        let iv8 = RoundCone::<WideF32x8>::splat(l32).intersect(&ray8);
+        let iv8 = RoundCone::<WideF32x8>::broadcast(l32).intersect(&ray8);
         for i in 0..8 {
             assert_eq!(iv8.lane(i), l32.intersect(&ray8.lane(i)));
         }

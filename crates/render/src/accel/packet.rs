@@ -57,7 +57,7 @@ impl Packet {
         o[self.n..].fill(o0);
         tc[self.n..].fill(tc0);
         let inf = WideF32x8::splat(f32::INFINITY);
-        let rl = Ray::with_range(V3::from_fn(|i| o[i]), V3::splat(dn.cast::<f32>()), -inf, inf);
+        let rl = Ray::with_range(V3::from_fn(|i| o[i]), V3::broadcast(dn.cast::<f32>()), -inf, inf);
         let iv = self.cone.intersect(&rl);
         if !iv.hit.any() {
             return;
