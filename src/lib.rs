@@ -40,7 +40,7 @@ pub use bounds::{Aabb, Obb};
 pub use error::GeometryError;
 pub use kernel::csg::{self, union, Tagged};
 pub use kernel::hermite::{AdaptiveSplit, HermiteSegment};
-pub use kernel::link::{HanLink, LinkShape, RoundCone};
+pub use kernel::link::{HanLink, LinkShape, PendingInterval, RoundCone};
 pub use kernel::mesh::{
     tessellate_chain, tessellate_chain_solid, tessellate_link, tessellate_spline, Mesh, Part, MAX_RING,
 };

@@ -18,6 +18,7 @@
 //! the earliest entry and the latest exit over the pieces.
 
 mod stable;
+pub use stable::PendingInterval;
 
 use super::cone::{cylinder_line, stump_line};
 use super::cone::{TangentCone, UnitConeTransform};

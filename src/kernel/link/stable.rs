@@ -16,6 +16,37 @@ impl<T: Real> RoundCone<T> {
     /// crossings computed ([`StableFrame::finish`]).
     #[inline(always)]
     pub(crate) fn stable_line(&self, ray: &Ray<T>, spheres: bool) -> Interval<T> {
+        let p = self.pending_line_with(ray, spheres);
+        // A miss in every lane needs no normals: the same answer as `masked` gives.
+        if p.hit.none() {
+            return Interval::miss();
+        }
+        p.interval(self)
+    }
+
+    /// The line's interval with the link ([`Primitive::line_interval`](crate::Primitive)'s
+    /// `t` and hit mask, bit for bit) before the normals and curve parameters of its ends are
+    /// formed: a closest-hit search finishes only the crossing it keeps
+    /// ([`PendingInterval::entry`], [`PendingInterval::exit`]), and those equal the ends of
+    /// [`Primitive::line_interval`](crate::Primitive), bit for bit.
+    ///
+    /// ```
+    /// use tubecast::{Primitive, Ray, RoundCone, V3};
+    /// let link = RoundCone::new(V3::new(0.0, 0.0, 0.0), 1.0, V3::new(4.0, 0.0, 0.0), 0.5).unwrap();
+    /// let ray = Ray::new(V3::new(2.0, 5.0, 0.0), V3::new(0.0, -1.0, 0.0));
+    /// let p = link.pending_line(&ray);
+    /// let iv = link.line_interval(&ray);
+    /// assert!(p.hit && iv.hit);
+    /// assert_eq!((p.t_in, p.t_out), (iv.entry.t, iv.exit.t));
+    /// assert_eq!((p.entry(&link), p.exit(&link)), (iv.entry, iv.exit));
+    /// ```
+    #[inline(always)]
+    pub fn pending_line(&self, ray: &Ray<T>) -> PendingInterval<T> {
+        self.pending_line_with(ray, true)
+    }
+
+    #[inline(always)]
+    fn pending_line_with(&self, ray: &Ray<T>, spheres: bool) -> PendingInterval<T> {
         let f = StableFrame::new(self, ray);
         let mut hull = PieceHull::empty();
         if spheres {
@@ -27,16 +58,47 @@ impl<T: Real> RoundCone<T> {
             hull.add_stump(f.stump_crossings(self));
         }
         let hit = hull.in_a | hull.in_b | hull.cone_in;
-        // A miss in every lane needs no normals: the same answer as `masked` below gives.
-        if hit.none() {
-            return Interval::miss();
-        }
-        let (n_in, u_in) = f.finish(self, hull.t_in, hull.in_a, hull.in_b, hull.cone_in, hull.side_in);
-        let (n_out, u_out) = f.finish(self, hull.t_out, hull.out_a, hull.out_b, hull.cone_out, hull.side_out);
         let inv_dl = T::one() / f.dl;
         let (t_in, t_out) = ((hull.t_in + f.tc) * inv_dl, (hull.t_out + f.tc) * inv_dl);
-        Interval::new(Crossing { t: t_in, n: n_in, u: u_in }, Crossing { t: t_out, n: n_out, u: u_out }, hit)
-            .masked(hit)
+        PendingInterval { t_in, t_out, hit, f, hull }
+    }
+}
+
+/// A link's line interval whose ends have their `t` but not yet their normal and curve
+/// parameter ([`RoundCone::pending_line`]).
+#[derive(Clone, Copy)]
+pub struct PendingInterval<T: Real> {
+    /// Entry `t` along the ray (meaningful where `hit`).
+    pub t_in: T,
+    /// Exit `t` along the ray (meaningful where `hit`).
+    pub t_out: T,
+    /// Lanes where the line meets the link.
+    pub hit: T::Mask,
+    f: StableFrame<T>,
+    hull: PieceHull<T>,
+}
+
+impl<T: Real> PendingInterval<T> {
+    /// The entry crossing of `link` (the link this was computed for).
+    #[inline(always)]
+    pub fn entry(&self, link: &RoundCone<T>) -> Crossing<T> {
+        let h = &self.hull;
+        let (n, u) = self.f.finish(link, h.t_in, h.in_a, h.in_b, h.cone_in, h.side_in);
+        Crossing { t: self.t_in, n, u }
+    }
+
+    /// The exit crossing of `link` (the link this was computed for).
+    #[inline(always)]
+    pub fn exit(&self, link: &RoundCone<T>) -> Crossing<T> {
+        let h = &self.hull;
+        let (n, u) = self.f.finish(link, h.t_out, h.out_a, h.out_b, h.cone_out, h.side_out);
+        Crossing { t: self.t_out, n, u }
+    }
+
+    /// The whole line interval, as [`Primitive::line_interval`](crate::Primitive) gives it.
+    #[inline(always)]
+    pub fn interval(&self, link: &RoundCone<T>) -> Interval<T> {
+        Interval::new(self.entry(link), self.exit(link), self.hit).masked(self.hit)
     }
 }
 
@@ -59,6 +121,7 @@ fn widen<T: Real>(t_in: &mut T, t_out: &mut T, k0: T, k1: T, ok: T::Mask) -> (T:
 /// axis; 3) the new origin o is the ray's closest point to c0. Near a crossing, o is then as
 /// short as the ray–axis distance, so every coefficient is formed from numbers of the size
 /// of the radius, not of L or |o − m|.
+#[derive(Clone, Copy)]
 struct StableFrame<T: Real> {
     /// Link length, or 1 for a zero-length link.
     len_s: T,
@@ -352,6 +415,7 @@ struct StumpCrossings<T: Real> {
 }
 
 /// The running hull `[t_in, t_out]` over the link's pieces, and which piece gave each end.
+#[derive(Clone, Copy)]
 struct PieceHull<T: Real> {
     t_in: T,
     t_out: T,

@@ -37,7 +37,7 @@
 //! volume), and in a dense bundle a ray entered so many that tracing was 6× slower (peers
 //! report, Bundle 10⁵: 0.14 against 0.82 Mrays/s; pieces of two links: 0.41).
 
-use crate::scene::{link_interval, local_origin, stored_as_sphere, Prim, Scene, Shape};
+use crate::scene::{link_interval, local_origin, stored_as_sphere, Best, PendingHit, Prim, Scene, Shape};
 use tubecast::{Interval, Ray, RoundCone, V3};
 
 mod pending;
@@ -225,6 +225,28 @@ impl Clusters {
             }
         }
         true
+    }
+
+    /// Keep in `best` the closest first crossing of the links `i0..i1` of cluster `c` (as
+    /// [`Self::hits`] then [`Interval::first_hit`] find them, bit for bit), left pending;
+    /// `id(i)` is link `i`'s hit id.
+    #[inline(always)]
+    pub fn closest(
+        &self,
+        (c, i0, i1): (usize, usize, usize),
+        ray: &Ray<f64>,
+        dn: V3<f64>,
+        len: f64,
+        id: impl Fn(usize) -> u32,
+        best: &mut Best,
+    ) {
+        let (o, tc) = local_origin(self.heads[c].origin, ray.o, dn);
+        let rl = Ray::with_range(o, dn.cast::<f32>(), f32::NEG_INFINITY, f32::INFINITY);
+        for i in i0..i1 {
+            if let Some(p) = PendingHit::of_link(&self.cone(c, i), &rl, tc, len, ray, id(i)) {
+                best.keep(Best::Pending(p));
+            }
+        }
     }
 
     /// Bytes held (allocated capacity).

@@ -93,6 +93,11 @@ fn step(x: f32, dir: f32) -> f32 {
 /// `cwbuild::MAX_DEPTH + 1`, rounded up.
 const STACK: usize = 7 * (super::cwbuild::MAX_DEPTH + 2);
 
+thread_local! {
+    /// Each thread's walk stack ([`Tree::walk`]).
+    static STACKS: std::cell::Cell<Option<Box<[u64; STACK]>>> = const { std::cell::Cell::new(None) };
+}
+
 /// A stack entry: a child (`count` ≤ 3 items of a leaf, 0 for an inner node) and its entry.
 #[inline(always)]
 fn pack(child: u32, count: u32, t: f32) -> u64 {
@@ -190,39 +195,65 @@ impl Tree {
     /// before `t_max` with the ray's `t_max` (the caller lowers it as hits are found; entries
     /// beyond it are dropped). `leaf` returns false to stop the walk.
     #[inline]
-    pub fn walk(&self, r: &mut TreeRay, mut leaf: impl FnMut(Leaf, &mut f32) -> bool) {
+    pub fn walk(&self, r: &mut TreeRay, leaf: impl FnMut(Leaf, &mut f32) -> bool) {
         if self.nodes.is_empty() {
             return;
         }
+        // One stack per thread, reused: a fresh array would be zeroed (1.8 kB) for every ray.
+        // A walk started from inside another's leaf callback finds the slot empty and takes a
+        // stack of its own.
+        let mut stack = STACKS.with(|s| s.take()).unwrap_or_else(|| Box::new([0u64; STACK]));
+        self.walk_with(r, leaf, &mut stack);
+        STACKS.with(|s| s.set(Some(stack)));
+    }
+
+    #[inline(always)]
+    fn walk_with(&self, r: &mut TreeRay, mut leaf: impl FnMut(Leaf, &mut f32) -> bool, stack: &mut [u64; STACK]) {
         let neg = [r.inv[0] < 0.0, r.inv[1] < 0.0, r.inv[2] < 0.0];
         // Pushed children as `entry bits << 32 | child | count << 30`: at most seven a level,
         // and the build bounds the depth (`cwbuild::MAX_DEPTH`).
-        let mut stack = [0u64; STACK];
         let mut top = 0usize;
         let mut node = 0u32;
         loop {
             let n = &self.nodes[node as usize];
             let t = Self::entries(n, r, neg);
-            // The children hit, nearest first (insertion sort of at most eight).
-            let mut order = [(0.0f32, 0usize); WIDTH];
+            // The children hit, as stack entries: entries are `≥ +0.0`, so their bits (the high
+            // half of an entry) order them as the floats do, and whole entries sort by distance.
+            let mut keys = [0u64; WIDTH];
             let mut k = 0;
             for (i, &ti) in t.iter().enumerate() {
                 if ti != f32::INFINITY {
-                    let mut j = k;
-                    while j > 0 && order[j - 1].0 > ti {
-                        order[j] = order[j - 1];
-                        j -= 1;
-                    }
-                    order[j] = (ti, i);
+                    keys[k] = pack(n.child[i], n.count[i], ti);
                     k += 1;
                 }
             }
-            // Push all but the nearest, farthest first; go on with the nearest.
-            for &(ti, i) in order[1..k.max(1)].iter().rev() {
-                stack[top] = pack(n.child[i], n.count[i], ti);
+            let mut next = None;
+            if k == 1 {
+                next = Some(keys[0]);
+            } else if k == 2 {
+                let (a, b) = (keys[0].min(keys[1]), keys[0].max(keys[1]));
+                stack[top] = b;
                 top += 1;
+                next = Some(a);
+            } else if k > 2 {
+                // Nearest first (insertion sort of at most eight); push all but the nearest,
+                // farthest first; go on with the nearest.
+                let keys = &mut keys[..k];
+                for i in 1..k {
+                    let x = keys[i];
+                    let mut j = i;
+                    while j > 0 && keys[j - 1] > x {
+                        keys[j] = keys[j - 1];
+                        j -= 1;
+                    }
+                    keys[j] = x;
+                }
+                for &e in keys[1..].iter().rev() {
+                    stack[top] = e;
+                    top += 1;
+                }
+                next = Some(keys[0]);
             }
-            let mut next = if k > 0 { Some(pack(n.child[order[0].1], n.count[order[0].1], order[0].0)) } else { None };
             loop {
                 let e = match next.take() {
                     Some(x) => x,

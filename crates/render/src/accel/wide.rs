@@ -13,7 +13,7 @@ use super::chunked::CHUNK;
 use super::cluster::{Clusters, Pending};
 use super::tree::{Node, Tree, TreeRay};
 use super::{Bvh, Frame, Hit, Tracer};
-use crate::scene::{Model, Prim, Scene, SceneError};
+use crate::scene::{Best, Model, Prim, Scene, SceneError};
 use tubecast::csg::Tagged;
 use tubecast::Ray;
 
@@ -322,33 +322,28 @@ impl Tracer for WideBvh {
         let r = c.ray;
         let margin = 8.0 * self.frame.pad;
         let (dn, len) = Bvh::unit(ray);
-        let mut best: Option<Hit> = None;
+        let mut best = Best::None;
         walk!(self, r, tmax, item, {
             if item & WHOLE != 0 {
                 let id = (item & !WHOLE) as usize;
                 if let Some(h) = self.prims[id].first_hit_unit(ray, dn, len) {
-                    Hit { id: id as u32, ..h }.keep_closer(&mut best);
+                    best.keep(Best::Done(Hit { id: id as u32, ..h }));
                 }
             } else {
                 let pc = self.piece(item);
                 let k = pc.0;
-                self.clusters.hits(pc, ray, dn, len, |i, iv| {
-                    if let Some(h) = iv.first_hit(ray.t_min, ray.t_max) {
-                        Hit { id: self.cluster_id(k, i), ..h }.keep_closer(&mut best);
-                    }
-                    true
-                });
+                self.clusters.closest(pc, ray, dn, len, |i| self.cluster_id(k, i), &mut best);
             }
             // Cull by the best hit so far, loosened by the box margin (module docs).
-            if let Some(h) = best {
-                let tb = (((h.t - c.t0) * c.len + margin) * c.scale) as f32;
+            if let Some(t) = best.t() {
+                let tb = (((t - c.t0) * c.len + margin) * c.scale) as f32;
                 if tb < *tmax {
                     *tmax = tb;
                 }
             }
             true
         });
-        best
+        best.finish()
     }
 
     fn any_hit(&self, ray: &Ray<f64>) -> bool {

@@ -65,7 +65,7 @@ pub use chains::{Chain, SplineFidelity, SplineSegment, SPLINE_MAX_DEPTH, SPLINE_
 pub use error::SceneError;
 pub use links::{Iter as LinkIter, Links};
 pub use load::{LoadOptions, LoadReport};
-pub(crate) use prim::{link_interval, local_origin, stored_as_sphere};
+pub(crate) use prim::{link_interval, local_origin, stored_as_sphere, Best, PendingHit};
 pub use prim::{Prim, PrimKind, Shape};
 pub use radii::Radii;
 pub use stats::Stats;

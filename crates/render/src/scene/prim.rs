@@ -1,7 +1,7 @@
 //! Renderer primitives: `f32` geometry relative to an `f64` local origin.
 
 use tubecast::QuadTube;
-use tubecast::RoundCone;
+use tubecast::{PendingInterval, RoundCone};
 use tubecast::Solver;
 use tubecast::{Crossing, Hit, Interval, Ray};
 use tubecast::{GeometryError, LinkShape, Primitive, Sphere, V3};
@@ -131,6 +131,111 @@ pub(crate) fn link_interval(c: &RoundCone<f32>, rl: &Ray<f32>, tc: f64, len: f64
         return Interval::miss();
     }
     Prim::to_world(&c.intersect(rl), tc, len, ray)
+}
+
+/// A link's first crossing within the ray's range, found by exactly the arithmetic of
+/// [`link_interval`] then [`Interval::first_hit`] (so its `t`, and once finished its normal and
+/// curve parameter, equal theirs bit for bit) but with the normal and curve parameter left to
+/// [`PendingHit::finish`]: a closest-hit search finishes only the crossing it keeps.
+#[derive(Clone, Copy)]
+pub(crate) struct PendingHit {
+    /// The crossing's `t` along the world ray.
+    pub t: f64,
+    /// The hit's primitive id.
+    pub id: u32,
+    entering: bool,
+    cone: RoundCone<f32>,
+    line: PendingInterval<f32>,
+}
+
+impl PendingHit {
+    /// The link's first crossing of `ray` within its range (`rl`, `tc`, `len` as
+    /// [`link_interval`] takes them), if any.
+    #[inline(always)]
+    pub fn of_link(c: &RoundCone<f32>, rl: &Ray<f32>, tc: f64, len: f64, ray: &Ray<f64>, id: u32) -> Option<Self> {
+        if link_surely_misses(c, rl.o, rl.d) {
+            return None;
+        }
+        let line = c.pending_line(rl);
+        // `Primitive::intersect`'s clip to the local ray's range.
+        if !(line.hit && line.t_in <= line.t_out && line.t_out >= rl.t_min && line.t_in <= rl.t_max) {
+            return None;
+        }
+        // `Prim::to_world`, then `Interval::first_hit`.
+        let t_in = (tc + line.t_in as f64) / len;
+        let t_out = (tc + line.t_out as f64) / len;
+        if !(t_in <= t_out && t_out >= ray.t_min && t_in <= ray.t_max) {
+            return None;
+        }
+        let (t, entering) = if t_in >= ray.t_min && t_in <= ray.t_max {
+            (t_in, true)
+        } else if t_out >= ray.t_min && t_out <= ray.t_max {
+            (t_out, false)
+        } else {
+            return None;
+        };
+        Some(Self { t, id, entering, cone: *c, line })
+    }
+
+    /// The hit, with the normal and curve parameter of its crossing.
+    #[inline]
+    pub fn finish(&self) -> Hit<f64> {
+        let c = if self.entering { self.line.entry(&self.cone) } else { self.line.exit(&self.cone) };
+        Hit::new(Crossing { t: self.t, ..c.to_f64() }, self.id, self.entering)
+    }
+}
+
+/// The closest hit of a search so far: finished (a whole primitive's) or pending (a link's).
+#[derive(Clone, Copy, Default)]
+pub(crate) enum Best {
+    #[default]
+    None,
+    Done(Hit<f64>),
+    Pending(PendingHit),
+}
+
+impl Best {
+    /// `t` of the hit held (`None` when none).
+    #[inline(always)]
+    pub fn t(&self) -> Option<f64> {
+        match self {
+            Best::None => None,
+            Best::Done(h) => Some(h.t),
+            Best::Pending(p) => Some(p.t),
+        }
+    }
+
+    /// The hit held, finished.
+    #[inline]
+    pub fn finish(&self) -> Option<Hit<f64>> {
+        match self {
+            Best::None => None,
+            Best::Done(h) => Some(*h),
+            Best::Pending(p) => Some(p.finish()),
+        }
+    }
+
+    /// Keep `cand` where it is closer than the hit held, by [`Hit::closer`]: decided on `t`
+    /// alone where the two differ, on the finished hits where they are equal.
+    #[inline(always)]
+    pub fn keep(&mut self, cand: Best) {
+        let (Some(tc), Some(tb)) = (cand.t(), self.t()) else {
+            if self.t().is_none() {
+                *self = cand;
+            }
+            return;
+        };
+        if tc < tb {
+            *self = cand;
+        } else if !(tc > tb) {
+            let (c, b) = (cand.finish(), self.finish());
+            if let (Some(c), Some(b)) = (c, b) {
+                if c.closer(&b) {
+                    *self = cand;
+                }
+            }
+        }
+    }
 }
 
 /// A sphere of radius `r` at the local origin as a (degenerate) round cone.
