@@ -3,7 +3,7 @@
 //!
 //! # Rays
 //! Each ray is clipped to the scene box and restarted before it in `f64` on the CPU, exactly as
-//! the CPU tracer does (`Frame::clip` in `tubecast_render::accel`), so the tree walk sees the
+//! the CPU tracer does (the tree's own [`TreeExport::restart`]), so the tree walk sees the
 //! same `f32` ray, the same padded boxes and the same culling margin: its culling is as
 //! conservative as the CPU's (the accel module's bound).
 //!
@@ -27,15 +27,10 @@ use crate::device::{Gpu, GpuError};
 use crate::kernel::LINK_WGSL;
 use bytemuck::{Pod, Zeroable};
 use tubecast::{Hit, Ray, V3};
-use tubecast_render::accel::{Tracer, WideBvh};
+use tubecast_render::accel::{Tracer, TreeExport, WideBvh};
 use tubecast_render::scene::Shape;
 
 const TREE_WGSL: &str = include_str!("../shaders/tree.wgsl");
-
-/// How far (in tree units, beyond the `4·pad` margin) a ray restarts before the scene box: the
-/// CPU tracer's `LEAD` (`tubecast_render::accel`), past obvhs's absolute `10⁻⁴` entry bound, which
-/// the tree's planes inherit from the obvhs build.
-const LEAD: f64 = 1.0 / 4096.0;
 
 /// A tree node as the CPU stores it (`tubecast_render::accel::tree::Node`, `#[repr(C)]`).
 #[repr(C)]
@@ -94,17 +89,6 @@ struct Params {
     scale: f32,
 }
 
-/// The ray frame of a tree: the CPU tracer's `Frame`, rebuilt from the export and the
-/// primitives' boxes.
-struct RayFrame {
-    centre: [f64; 3],
-    lo: [f64; 3],
-    hi: [f64; 3],
-    pad: f64,
-    scale: f64,
-    any: bool,
-}
-
 /// A union component's entry and exit ([`GpuScene::first_pieces`]).
 pub type Piece = (Hit<f64>, Hit<f64>);
 
@@ -122,9 +106,9 @@ pub struct GpuScene<'g> {
     gpu: &'g Gpu,
     nodes: wgpu::Buffer,
     prims: wgpu::Buffer,
-    /// Per item: its primitive id ([`Tracer::prim`]).
-    item_prims: Vec<u32>,
-    frame: RayFrame,
+    /// The tree as exported: its items' primitive ids ([`Tracer::prim`]), its frame, and the
+    /// restart of every ray ([`TreeExport::restart`]).
+    ex: TreeExport<'g>,
     closest: Kernel,
     any: Kernel,
     brute: Kernel,
@@ -152,7 +136,7 @@ impl<'g> GpuScene<'g> {
     /// Upload `bvh` (its nodes as built, its items' primitives in leaf order). Errors:
     /// [`GpuError::Unsupported`] for spline primitives, [`GpuError::TooLarge`] for a scene over
     /// the adapter's buffer limits.
-    pub fn upload(gpu: &'g Gpu, bvh: &WideBvh) -> Result<Self, GpuError> {
+    pub fn upload(gpu: &'g Gpu, bvh: &'g WideBvh) -> Result<Self, GpuError> {
         let ex = bvh.export();
         let nodes: Vec<GpuNode> =
             ex.nodes.iter().map(|n| GpuNode { lo: n.lo, hi: n.hi, child: n.child, count: n.count }).collect();
@@ -172,16 +156,6 @@ impl<'g> GpuScene<'g> {
                 }
             });
         }
-        // The scene box as the CPU's frame bounds it: the primitives' boxes, padded by 2·pad.
-        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for id in 0..bvh.prim_count() as u32 {
-            let (a, b) = bvh.prim(id).aabb();
-            for i in 0..3 {
-                lo[i] = lo[i].min(a[i] - 2.0 * ex.pad);
-                hi[i] = hi[i].max(b[i] + 2.0 * ex.pad);
-            }
-        }
-        let frame = RayFrame { centre: c, lo, hi, pad: ex.pad, scale: ex.scale, any: !ex.empty && !nodes.is_empty() };
         // Seven pushes a level at most (Tree::walk).
         let stack = 7 * (depth(&nodes) + 1);
         let src = format!("{LINK_WGSL}\n{}", TREE_WGSL.replace("STACK_SIZE", &stack.to_string()));
@@ -190,8 +164,7 @@ impl<'g> GpuScene<'g> {
             gpu,
             nodes: gpu.upload("tree nodes", &nodes)?,
             prims: gpu.upload("primitives", &prims)?,
-            item_prims: ex.item_prims,
-            frame,
+            ex,
             closest: gpu.kernel(&src, "closest_tree", 3)?,
             any: gpu.kernel(&src, "any_tree", 3)?,
             brute: gpu.kernel(&src, "closest_brute", 3)?,
@@ -205,48 +178,30 @@ impl<'g> GpuScene<'g> {
         self.bytes
     }
 
-    /// The ray as the walk takes it, with `t0` (the restart, in the ray's `t`) and `|d|`
-    /// (`Frame::clip`, same operations).
+    /// The ray as the walk takes it, with `t0` (the restart, in the ray's `t`) and `|d|`: the
+    /// CPU walk's own restart ([`TreeExport::restart`]), rounded to `f32` as the CPU rounds it
+    /// (origin `rel·scale`, direction with `+ 0.0`, `tmax = s_end·scale`) for the tree, and
+    /// unscaled for the primitives' local origins.
     fn prepare(&self, ray: &Ray<f64>) -> (GpuRay, f64, f64) {
-        let f = &self.frame;
         let len = ray.d.length();
-        let dn = ray.d * (1.0 / len);
-        let miss = (GpuRay::zeroed(), 0.0, len);
-        if !f.any {
-            return miss;
-        }
-        let (o, d) = (ray.o.to_array(), dn.to_array());
-        let (mut a, mut b) = (ray.t_min * len, ray.t_max * len);
-        for i in 0..3 {
-            if d[i] == 0.0 {
-                if o[i] < f.lo[i] || o[i] > f.hi[i] {
-                    return miss;
-                }
-            } else {
-                let t1 = (f.lo[i] - o[i]) / d[i];
-                let t2 = (f.hi[i] - o[i]) / d[i];
-                a = a.max(t1.min(t2));
-                b = b.min(t1.max(t2));
-            }
-        }
-        if a.is_nan() || b.is_nan() || a > b {
-            return miss;
-        }
-        let s0 = a - 4.0 * f.pad - LEAD / f.scale;
-        let t0 = s0 / len;
-        let p = V3::new(ray.d.x.mul_add(t0, ray.o.x), ray.d.y.mul_add(t0, ray.o.y), ray.d.z.mul_add(t0, ray.o.z));
-        let rel = [p.x - f.centre[0], p.y - f.centre[1], p.z - f.centre[2]];
+        // (An empty tree has no root to walk: every ray misses, as `restart` says for it too.)
+        let restart =
+            if self.ex.nodes.is_empty() { None } else { self.ex.restart(ray, ray.t_min * len, ray.t_max * len) };
+        let Some(r) = restart else {
+            return (GpuRay::zeroed(), 0.0, len);
+        };
+        let sc = self.ex.scale;
         let g = GpuRay {
-            o: rel.map(|x| x as f32),
-            s_min: ((ray.t_min - t0) * len) as f32,
-            d: dn.cast::<f32>().to_array(),
-            s_max: ((ray.t_max - t0) * len) as f32,
-            to: rel.map(|x| (x * f.scale) as f32),
-            tmax: (((b - s0) + 8.0 * f.pad) * f.scale) as f32,
-            td: d.map(|x| x as f32 + 0.0),
+            o: r.rel.map(|x| x as f32),
+            s_min: ((ray.t_min - r.t0) * r.len) as f32,
+            d: r.dir.map(|x| x as f32),
+            s_max: ((ray.t_max - r.t0) * r.len) as f32,
+            to: r.rel.map(|x| (x * sc) as f32),
+            tmax: (r.s_end * sc) as f32,
+            td: r.dir.map(|x| x as f32 + 0.0),
             valid: 1,
         };
-        (g, t0, len)
+        (g, r.t0, r.len)
     }
 
     /// Run `k` over `rays`, `per` outputs per ray, mapped back to hits in the rays' `t`.
@@ -256,9 +211,9 @@ impl<'g> GpuScene<'g> {
         let buf = self.gpu.upload("rays", &input)?;
         let params = Params {
             n_rays: rays.len() as u32,
-            n_items: self.item_prims.len() as u32,
-            margin: (8.0 * self.frame.pad) as f32,
-            scale: self.frame.scale as f32,
+            n_items: self.ex.item_prims.len() as u32,
+            margin: (8.0 * self.ex.pad) as f32,
+            scale: self.ex.scale as f32,
         };
         let out: Vec<GpuHit> = self.gpu.run(k, &params, &[&self.nodes, &self.prims, &buf], per * rays.len())?;
         Ok(out
@@ -269,7 +224,7 @@ impl<'g> GpuScene<'g> {
                     t: t0 + f64::from(h.s) / len,
                     n: V3::from(h.n).cast(),
                     u: f64::from(h.u),
-                    id: self.item_prims[h.item as usize],
+                    id: self.ex.item_prims[h.item as usize],
                     entering: h.entering != 0,
                 })
             })
@@ -296,14 +251,28 @@ impl<'g> GpuScene<'g> {
     }
 
     /// The bound `δ` of the module docs: how far the GPU's local lines may lie from the CPU's
-    /// (`16·2⁻²⁴·R`, `R` the distance from the centre to the padded scene box's corner plus
-    /// the restart lead).
+    /// (`16·2⁻²⁴·R`, `R` at least the distance from the centre to the padded scene box's corner
+    /// plus the restart lead: no restart point or primitive origin lies farther).
+    ///
+    /// `R` is read from the walk's own restart rather than rebuilt from the tree's constants: a
+    /// ray from the centre along `±eᵢ` restarts the lead `l` before the box and ends
+    /// `s_end = hᵢ + l + 8·pad` past the restart (`hᵢ` the padded box's half extent), and
+    /// `|(hᵢ + l)ᵢ| ≥ |h| + l` (the `hᵢ`, `l` are non-negative), so that norm is a valid `R`
+    /// (at most `√3·l` above the least one, and `l ≪ |h|`).
     pub fn band(&self) -> f64 {
-        let f = &self.frame;
-        if !f.any {
-            return 0.0;
+        let c = V3::from(self.ex.centre);
+        let mut reach = [0.0f64; 3];
+        for (i, r) in reach.iter_mut().enumerate() {
+            for sign in [1.0, -1.0] {
+                let mut d = [0.0; 3];
+                d[i] = sign;
+                let Some(x) = self.ex.restart(&Ray::new(c, V3::from(d)), 0.0, f64::INFINITY) else {
+                    return 0.0;
+                };
+                *r = r.max(x.s_end - 8.0 * self.ex.pad);
+            }
         }
-        let r = (0..3).map(|i| (f.hi[i] - f.lo[i]).powi(2)).sum::<f64>().sqrt() * 0.5 + 4.0 * f.pad + LEAD / f.scale;
+        let r = reach.iter().map(|x| x * x).sum::<f64>().sqrt();
         16.0 * f64::from(f32::EPSILON) * 0.5 * r
     }
 }
