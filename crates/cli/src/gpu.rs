@@ -1,4 +1,4 @@
-//! `--device gpu` (cargo feature `gpu`): `render`, and `intersect --query hit|piece`, with every
+//! `--device gpu` (cargo feature `gpu`): `render`, and `intersect --query hit|piece|all`, with every
 //! ray answered by `tubecast-gpu` on a Vulkan adapter over the same 8-wide tree the CPU builds;
 //! and the checks `--device gpu` needs, made before any work.
 
@@ -46,7 +46,7 @@ pub fn check_render(a: &RenderArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// `intersect --device gpu`: exact links, the 8-wide tree, `--query hit` or `piece`.
+/// `intersect --device gpu`: exact links, the 8-wide tree, any `--query`.
 pub fn check_intersect(a: &IntersectArgs) -> Result<(), CliError> {
     if a.device == Device::Cpu {
         return Ok(());
@@ -60,9 +60,6 @@ pub fn check_intersect(a: &IntersectArgs) -> Result<(), CliError> {
     }
     if a.accel != Accel::Bvh {
         return Err(unsupported("--accel other than bvh"));
-    }
-    if matches!(a.query, Query::All) {
-        return Err(unsupported("--query all"));
     }
     Ok(())
 }
@@ -95,8 +92,9 @@ mod run {
 
     pub fn table(query: Query, scene: &Scene, rays: &[Ray<f64>]) -> Result<Vec<[f64; HIT_COLUMNS]>, CliError> {
         with_scene(scene, |gs, bvh| match query {
+            Query::Hit => tubecast_gpu::closest_table_gpu(gs, bvh, rays),
             Query::Piece => tubecast_gpu::piece_table_gpu(gs, bvh, rays),
-            _ => tubecast_gpu::closest_table_gpu(gs, bvh, rays),
+            Query::All => tubecast_gpu::crossings_table_gpu(gs, bvh, rays),
         })
     }
 }
@@ -112,7 +110,7 @@ pub fn render(scene: &Scene, cam: &Camera, opts: &Options) -> Result<Image, CliE
     }
 }
 
-/// `intersect`'s table (`--query hit` or `piece`) with every ray answered on the GPU
+/// `intersect`'s table (any `--query`) with every ray answered on the GPU
 /// ([`check_intersect`] passed).
 pub fn table(query: Query, scene: &Scene, rays: &[Ray<f64>]) -> Result<Vec<[f64; 8]>, CliError> {
     #[cfg(feature = "gpu")]

@@ -61,7 +61,8 @@ struct HitOut {
 @group(0) @binding(1) var<storage, read> nodes: array<Node>;
 @group(0) @binding(2) var<storage, read> prims: array<Prim>;
 @group(0) @binding(3) var<storage, read> rays: array<Ray>;
-@group(0) @binding(4) var<storage, read_write> out: array<HitOut>;
+// Binding 4 in the queries' module; lines.wgsl puts its per-ray offsets there and this at 5.
+@group(0) @binding(OUT_BINDING) var<storage, read_write> out: array<HitOut>;
 
 const NONE: u32 = 0xffffffffu;
 const STACK: u32 = STACK_SIZEu;
@@ -133,17 +134,24 @@ const ANY: u32 = 1u;
 const SEED: u32 = 2u;
 // The least entry and the greatest exit among the line intervals meeting [span.x, span.y].
 const SPAN: u32 = 3u;
+// Every line interval meeting [span.x, span.y]: counted (COUNT), or counted and written as
+// entry/exit pairs to out[slots.x], out[slots.x + 1], … for the first slots.y of them (LIST).
+const COUNT: u32 = 4u;
+const LIST: u32 = 5u;
 
-// What a walk found: the hit (CLOSEST, ANY) or an entry, and an exit (SEED, SPAN).
+// What a walk found: the hit (CLOSEST, ANY) or an entry, and an exit (SEED, SPAN); the number
+// of intervals (COUNT, LIST).
 struct Found {
     first: HitOut,
     last: HitOut,
+    n: u32,
 }
 
-fn walk(r: Ray, mode: u32, span: vec2f) -> Found {
+fn walk(r: Ray, mode: u32, span: vec2f, slots: vec2u) -> Found {
     var f: Found;
     f.first.item = NONE;
     f.last.item = NONE;
+    f.n = 0u;
     if r.valid == 0u {
         return f;
     }
@@ -154,7 +162,9 @@ fn walk(r: Ray, mode: u32, span: vec2f) -> Found {
         inv[a] = select(1.0 / x, select(1.0, -1.0, x < 0.0) / EPS, abs(x) <= EPS);
     }
     var tmax = r.tmax;
-    if mode == SPAN {
+    // The modes over a span (SPAN, COUNT, LIST) visit the boxes it reaches, loosened by the
+    // box margin.
+    if mode >= SPAN {
         tmax = min(tmax, (span.y + params.margin) * params.scale);
     }
     var st_c: array<vec2u, STACK>;
@@ -231,16 +241,24 @@ fn walk(r: Ray, mode: u32, span: vec2f) -> Found {
                 break;
             }
             for (var it = c.x; it < c.x + c.y; it++) {
-                if mode == SPAN {
+                if mode >= SPAN {
                     let iv = item_iv(r, it);
                     if iv.hit && iv.t_in <= span.y && iv.t_out >= span.x {
                         let e = crossing(it, iv.t_in, iv.n_in, iv.u_in, true);
                         let x = crossing(it, iv.t_out, iv.n_out, iv.u_out, false);
-                        if closer(e, f.first) {
-                            f.first = e;
-                        }
-                        if later(x, f.last) {
-                            f.last = x;
+                        if mode == SPAN {
+                            if closer(e, f.first) {
+                                f.first = e;
+                            }
+                            if later(x, f.last) {
+                                f.last = x;
+                            }
+                        } else {
+                            if mode == LIST && f.n < slots.y {
+                                out[slots.x + 2u * f.n] = e;
+                                out[slots.x + 2u * f.n + 1u] = x;
+                            }
+                            f.n++;
                         }
                     }
                     continue;
@@ -286,7 +304,7 @@ fn ray_index(gid: vec3u, nwg: vec3u) -> u32 {
 fn closest_tree(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
     let i = ray_index(gid, nwg);
     if i < params.n_rays {
-        out[i] = walk(rays[i], CLOSEST, vec2f(0.0)).first;
+        out[i] = walk(rays[i], CLOSEST, vec2f(0.0), vec2u(0u)).first;
     }
 }
 
@@ -294,7 +312,7 @@ fn closest_tree(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgrou
 fn any_tree(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
     let i = ray_index(gid, nwg);
     if i < params.n_rays {
-        out[i] = walk(rays[i], ANY, vec2f(0.0)).first;
+        out[i] = walk(rays[i], ANY, vec2f(0.0), vec2u(0u)).first;
     }
 }
 
@@ -331,10 +349,10 @@ fn first_piece(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroup
         return;
     }
     let r = rays[t / 2u];
-    var f = walk(r, SEED, vec2f(0.0));
+    var f = walk(r, SEED, vec2f(0.0), vec2u(0u));
     if f.first.item != NONE {
         for (var k = 0u; k <= params.n_items; k++) {
-            let g = walk(r, SPAN, vec2f(f.first.s, f.last.s));
+            let g = walk(r, SPAN, vec2f(f.first.s, f.last.s), vec2u(0u));
             let grew = g.first.s < f.first.s || g.last.s > f.last.s;
             f = g;
             if !grew {
@@ -347,4 +365,18 @@ fn first_piece(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroup
     }
     out[t] = f.first;
     out[t + 1u] = f.last;
+}
+
+// The number of line intervals meeting ray i's [s_min, s_max] (`intersect --query all`: the
+// union's boundaries there are those of these intervals alone), in out[i].item; lines.wgsl's
+// list_lines then writes them.
+@compute @workgroup_size(64)
+fn count_lines(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
+    let i = ray_index(gid, nwg);
+    if i < params.n_rays {
+        let r = rays[i];
+        var h: HitOut;
+        h.item = walk(r, COUNT, vec2f(r.s_min, r.s_max), vec2u(0u)).n;
+        out[i] = h;
+    }
 }

@@ -112,9 +112,21 @@ impl Gpu {
         inputs: &[&wgpu::Buffer],
         n: usize,
     ) -> Result<Vec<O>, GpuError> {
+        self.run_sized(k, params, inputs, n, n)
+    }
+
+    /// [`Self::run`] over `threads` threads with `n` outputs (zeroed where no thread runs).
+    pub(crate) fn run_sized<P: Pod, O: Pod>(
+        &self,
+        k: &Kernel,
+        params: &P,
+        inputs: &[&wgpu::Buffer],
+        threads: usize,
+        n: usize,
+    ) -> Result<Vec<O>, GpuError> {
         assert_eq!(inputs.len(), k.inputs, "binding count of the kernel");
-        if n == 0 {
-            return Ok(Vec::new());
+        if n == 0 || threads == 0 {
+            return Ok(vec![O::zeroed(); n]);
         }
         let size = (n * std::mem::size_of::<O>()) as u64;
         self.fits("outputs", size)?;
@@ -153,7 +165,7 @@ impl Gpu {
             let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor { label: None, timestamp_writes: None });
             pass.set_pipeline(&k.pipeline);
             pass.set_bind_group(0, &group, &[]);
-            let groups = (n as u64).div_ceil(u64::from(GROUP));
+            let groups = (threads as u64).div_ceil(u64::from(GROUP));
             let x = groups.min(65_535);
             let y = groups.div_ceil(x);
             pass.dispatch_workgroups(x as u32, y as u32, 1);

@@ -13,5 +13,5 @@ mod render;
 pub mod scene;
 
 pub use device::{Gpu, GpuError};
-pub use render::{closest_table_gpu, piece_table_gpu, render_gpu};
+pub use render::{closest_table_gpu, crossings_table_gpu, piece_table_gpu, render_gpu};
 pub use scene::{GpuScene, Piece, Walk};

@@ -15,7 +15,7 @@ use std::collections::HashMap;
 use std::sync::Mutex;
 use tubecast::csg::Tagged;
 use tubecast::{Hit, Ray};
-use tubecast_render::accel::{closest_table, Tracer, WideBvh, HIT_COLUMNS};
+use tubecast_render::accel::{closest_table, crossings_table, Tracer, WideBvh, HIT_COLUMNS};
 use tubecast_render::render::{render, Camera, Image, Options};
 use tubecast_render::scene::{Prim, Scene};
 
@@ -34,9 +34,11 @@ struct Answers<'a> {
     bvh: &'a WideBvh,
     closest: HashMap<Key, Option<Hit<f64>>>,
     any: HashMap<Key, bool>,
+    lines: HashMap<Key, Vec<Tagged<f64>>>,
     ask_closest: Mutex<Vec<Ray<f64>>>,
     ask_any: Mutex<Vec<Ray<f64>>>,
-    /// A query the GPU does not answer (line intervals: transparency, faded thin tubes).
+    /// A ray's line intervals were asked with no answer: the render's (transparency, faded
+    /// thin tubes), which the GPU does not answer, or a table's ray that went unanswered.
     unsupported: Mutex<bool>,
 }
 
@@ -46,12 +48,31 @@ impl<'a> Answers<'a> {
             bvh,
             closest: HashMap::new(),
             any: HashMap::new(),
+            lines: HashMap::new(),
             ask_closest: Mutex::new(Vec::new()),
             ask_any: Mutex::new(Vec::new()),
             unsupported: Mutex::new(false),
         }
     }
 }
+
+impl Answers<'_> {
+    /// `table` of `rays` from the answers so far; an error where it asked a ray they lack (a
+    /// table is answered in one batch, so that would be a bug, not a round to run).
+    fn table(&self, rays: &[Ray<f64>], table: Table) -> Result<Vec<[f64; HIT_COLUMNS]>, GpuError> {
+        let rows = table(self, rays);
+        let asked = !self.ask_closest.lock().expect("ray log").is_empty()
+            || !self.ask_any.lock().expect("ray log").is_empty()
+            || *self.unsupported.lock().expect("flag");
+        if asked {
+            return Err(GpuError::Dispatch("a ray of the table went unanswered".into()));
+        }
+        Ok(rows)
+    }
+}
+
+/// A table of the `tubecast_render::accel` kind.
+type Table = fn(&dyn Tracer, &[Ray<f64>]) -> Vec<[f64; HIT_COLUMNS]>;
 
 impl Tracer for Answers<'_> {
     fn prims(&self) -> &[Prim] {
@@ -81,8 +102,13 @@ impl Tracer for Answers<'_> {
             }
         }
     }
-    fn line_intervals(&self, _: &Ray<f64>, _: &mut Vec<Tagged<f64>>) {
-        *self.unsupported.lock().expect("flag") = true;
+    /// The intervals reaching `[t_min, t_max]` only ([`GpuScene::line_intervals`]): enough for
+    /// the union's boundaries within the range, not for a component's entry before `t_min`.
+    fn line_intervals(&self, ray: &Ray<f64>, out: &mut Vec<Tagged<f64>>) {
+        match self.lines.get(&key(ray)) {
+            Some(ivs) => out.extend_from_slice(ivs),
+            None => *self.unsupported.lock().expect("flag") = true,
+        }
     }
     fn memory_bytes(&self) -> usize {
         self.bvh.memory_bytes()
@@ -136,11 +162,7 @@ pub fn closest_table_gpu(
     let mut ans = Answers::new(bvh);
     let hits = gpu_scene.closest_hits(rays, Walk::Tree)?;
     ans.closest.extend(rays.iter().map(key).zip(hits));
-    let rows = closest_table(&ans, rays);
-    if !ans.ask_closest.lock().expect("ray log").is_empty() {
-        return Err(GpuError::Dispatch("a ray of the table went unanswered".into()));
-    }
-    Ok(rows)
+    ans.table(rays, closest_table)
 }
 
 /// The `intersect --query piece` table of `rays` ([`tubecast_render::accel::hit_table`]'s rows:
@@ -160,4 +182,19 @@ pub fn piece_table_gpu(
             None => tubecast_render::accel::MISS_ROW,
         })
         .collect())
+}
+
+/// The `intersect --query all` table of `rays` ([`crossings_table`]'s rows: every exterior
+/// boundary of the union within each ray's `[t_min, t_max]`, in ray order and increasing `t`)
+/// with the line intervals found on the GPU ([`GpuScene::line_intervals`]) and the union taken
+/// on the CPU by the same [`crossings_table`].
+pub fn crossings_table_gpu(
+    gpu_scene: &GpuScene<'_>,
+    bvh: &WideBvh,
+    rays: &[Ray<f64>],
+) -> Result<Vec<[f64; HIT_COLUMNS]>, GpuError> {
+    let mut ans = Answers::new(bvh);
+    let lines = gpu_scene.line_intervals(rays)?;
+    ans.lines.extend(rays.iter().map(key).zip(lines));
+    ans.table(rays, crossings_table)
 }

@@ -26,11 +26,14 @@ use crate::compute::Kernel;
 use crate::device::{Gpu, GpuError};
 use crate::kernel::LINK_WGSL;
 use bytemuck::{Pod, Zeroable};
-use tubecast::{Hit, Ray, V3};
+use std::sync::OnceLock;
+use tubecast::csg::Tagged;
+use tubecast::{Crossing, Hit, Interval, Ray, V3};
 use tubecast_render::accel::{Tracer, TreeExport, WideBvh};
 use tubecast_render::scene::Shape;
 
 const TREE_WGSL: &str = include_str!("../shaders/tree.wgsl");
+const LINES_WGSL: &str = include_str!("../shaders/lines.wgsl");
 
 /// A tree node as the CPU stores it (`tubecast_render::accel::tree::Node`, `#[repr(C)]`).
 #[repr(C)]
@@ -113,6 +116,10 @@ pub struct GpuScene<'g> {
     any: Kernel,
     brute: Kernel,
     piece: Kernel,
+    /// The line-interval kernels (count, list), built on first use from `tree` (tree.wgsl
+    /// with its stack size).
+    lines: OnceLock<(Kernel, Kernel)>,
+    tree: String,
     bytes: u64,
 }
 
@@ -158,7 +165,8 @@ impl<'g> GpuScene<'g> {
         }
         // Seven pushes a level at most (Tree::walk).
         let stack = 7 * (depth(&nodes) + 1);
-        let src = format!("{LINK_WGSL}\n{}", TREE_WGSL.replace("STACK_SIZE", &stack.to_string()));
+        let tree = TREE_WGSL.replace("STACK_SIZE", &stack.to_string());
+        let src = Self::module(&tree, false);
         let bytes = (nodes.len() * 256 + prims.len() * std::mem::size_of::<GpuPrim>()) as u64;
         Ok(Self {
             gpu,
@@ -169,8 +177,20 @@ impl<'g> GpuScene<'g> {
             any: gpu.kernel(&src, "any_tree", 3)?,
             brute: gpu.kernel(&src, "closest_brute", 3)?,
             piece: gpu.kernel(&src, "first_piece", 3)?,
+            lines: OnceLock::new(),
+            tree,
             bytes,
         })
+    }
+
+    /// The shader module: the link kernels and `tree` (tree.wgsl with its stack size), its output
+    /// at binding 4; or at 5, with lines.wgsl (its offsets at 4), for `list_lines`.
+    fn module(tree: &str, list: bool) -> String {
+        if list {
+            format!("{LINK_WGSL}\n{}\n{LINES_WGSL}", tree.replace("OUT_BINDING", "5"))
+        } else {
+            format!("{LINK_WGSL}\n{}", tree.replace("OUT_BINDING", "4"))
+        }
     }
 
     /// Bytes uploaded for the scene (nodes and primitives).
@@ -204,30 +224,38 @@ impl<'g> GpuScene<'g> {
         (g, r.t0, r.len)
     }
 
+    /// The uniform of a dispatch over `n` rays.
+    fn params(&self, n: usize) -> Params {
+        Params {
+            n_rays: n as u32,
+            n_items: self.ex.item_prims.len() as u32,
+            margin: (8.0 * self.ex.pad) as f32,
+            scale: self.ex.scale as f32,
+        }
+    }
+
+    /// A GPU crossing in the ray's `t` (`t0`, `len` from [`Self::prepare`]); `None` for none.
+    fn hit(&self, h: &GpuHit, t0: f64, len: f64) -> Option<Hit<f64>> {
+        (h.item != u32::MAX).then(|| Hit {
+            t: t0 + f64::from(h.s) / len,
+            n: V3::from(h.n).cast(),
+            u: f64::from(h.u),
+            id: self.ex.item_prims[h.item as usize],
+            entering: h.entering != 0,
+        })
+    }
+
     /// Run `k` over `rays`, `per` outputs per ray, mapped back to hits in the rays' `t`.
     fn query(&self, k: &Kernel, rays: &[Ray<f64>], per: usize) -> Result<Vec<Option<Hit<f64>>>, GpuError> {
         let prep: Vec<(GpuRay, f64, f64)> = rays.iter().map(|r| self.prepare(r)).collect();
         let input: Vec<GpuRay> = prep.iter().map(|p| p.0).collect();
         let buf = self.gpu.upload("rays", &input)?;
-        let params = Params {
-            n_rays: rays.len() as u32,
-            n_items: self.ex.item_prims.len() as u32,
-            margin: (8.0 * self.ex.pad) as f32,
-            scale: self.ex.scale as f32,
-        };
-        let out: Vec<GpuHit> = self.gpu.run(k, &params, &[&self.nodes, &self.prims, &buf], per * rays.len())?;
+        let out: Vec<GpuHit> =
+            self.gpu.run(k, &self.params(rays.len()), &[&self.nodes, &self.prims, &buf], per * rays.len())?;
         Ok(out
             .iter()
             .zip(prep.iter().flat_map(|p| std::iter::repeat_n(p, per)))
-            .map(|(h, &(_, t0, len))| {
-                (h.item != u32::MAX).then(|| Hit {
-                    t: t0 + f64::from(h.s) / len,
-                    n: V3::from(h.n).cast(),
-                    u: f64::from(h.u),
-                    id: self.ex.item_prims[h.item as usize],
-                    entering: h.entering != 0,
-                })
-            })
+            .map(|(h, &(_, t0, len))| self.hit(h, t0, len))
             .collect())
     }
 
@@ -248,6 +276,77 @@ impl<'g> GpuScene<'g> {
     pub fn first_pieces(&self, rays: &[Ray<f64>]) -> Result<Vec<Option<Piece>>, GpuError> {
         let out = self.query(&self.piece, rays, 2)?;
         Ok(out.chunks_exact(2).map(|p| p[0].zip(p[1])).collect())
+    }
+
+    /// Every primitive's line interval that meets each ray's `[t_min, t_max]` (closed), tagged
+    /// with the primitive's id ([`Tracer::prim`]), in no particular order: the intervals of
+    /// [`Tracer::line_intervals`] that reach the range. The union's boundaries within the range
+    /// ([`tubecast::csg::union`] with the ray's `t_min`, `t_max`) are the same with or without
+    /// the others: an interval wholly outside the range covers no point of it.
+    ///
+    /// Two walks per ray: one counts the intervals, the second writes them where the counts'
+    /// prefix sums put them. Errors: the GPU's, and [`GpuError::TooLarge`] for a ray with more
+    /// intervals than one output buffer holds.
+    pub fn line_intervals(&self, rays: &[Ray<f64>]) -> Result<Vec<Vec<Tagged<f64>>>, GpuError> {
+        let (count, list) = self.line_kernels()?;
+        let prep: Vec<(GpuRay, f64, f64)> = rays.iter().map(|r| self.prepare(r)).collect();
+        let input: Vec<GpuRay> = prep.iter().map(|p| p.0).collect();
+        let buf = self.gpu.upload("rays", &input)?;
+        let counts: Vec<GpuHit> =
+            self.gpu.run(count, &self.params(rays.len()), &[&self.nodes, &self.prims, &buf], rays.len())?;
+        // Runs of rays whose intervals fit one output buffer (an entry and an exit each).
+        let fit = (self.gpu.max_binding() / (2 * std::mem::size_of::<GpuHit>() as u64)).max(1);
+        let mut all = Vec::with_capacity(rays.len());
+        let mut start = 0;
+        while start < rays.len() {
+            let (mut end, mut total) = (start, 0u64);
+            while end < rays.len() && (end == start || total + u64::from(counts[end].item) <= fit) {
+                total += u64::from(counts[end].item);
+                end += 1;
+            }
+            let offsets: Vec<u32> = std::iter::once(0)
+                .chain(counts[start..end].iter().scan(0u32, |acc, c| {
+                    *acc += c.item;
+                    Some(*acc)
+                }))
+                .collect();
+            let chunk = self.gpu.upload("rays", &input[start..end])?;
+            let offs = self.gpu.upload("interval offsets", &offsets)?;
+            let out: Vec<GpuHit> = self.gpu.run_sized(
+                list,
+                &self.params(end - start),
+                &[&self.nodes, &self.prims, &chunk, &offs],
+                end - start,
+                2 * total as usize,
+            )?;
+            for (k, w) in offsets.windows(2).enumerate() {
+                let (_, t0, len) = prep[start + k];
+                let pairs = out[2 * w[0] as usize..2 * w[1] as usize].chunks_exact(2);
+                all.push(
+                    pairs
+                        .filter_map(|p| {
+                            let (e, x) = (self.hit(&p[0], t0, len)?, self.hit(&p[1], t0, len)?);
+                            let c = |h: Hit<f64>| Crossing { t: h.t, n: h.n, u: h.u };
+                            Some(Tagged { iv: Interval::new(c(e), c(x), true), id: e.id })
+                        })
+                        .collect(),
+                );
+            }
+            start = end;
+        }
+        Ok(all)
+    }
+
+    /// The count and list kernels of [`Self::line_intervals`], built on first use (most
+    /// scenes never need them, and each pipeline costs a shader compile).
+    fn line_kernels(&self) -> Result<&(Kernel, Kernel), GpuError> {
+        if let Some(k) = self.lines.get() {
+            return Ok(k);
+        }
+        let count = self.gpu.kernel(&Self::module(&self.tree, false), "count_lines", 3)?;
+        let list = self.gpu.kernel(&Self::module(&self.tree, true), "list_lines", 4)?;
+        let built = (count, list);
+        Ok(self.lines.get_or_init(|| built))
     }
 
     /// The bound `δ` of the module docs: how far the GPU's local lines may lie from the CPU's

@@ -5,45 +5,25 @@
 //! two exits — so each GPU exit lies within `E + δ` of its primitive's surface and agrees with
 //! the CPU's within `(E_gpu + E_cpu + 2δ)/(γ·|d|)` or at such a near-touch.
 
+use crate::{bound32, link_of, ov};
 use tubecast::{Ray, V3};
 use tubecast_gpu::GpuScene;
-use tubecast_oracle::{link_error_bound, sweep_dist, Link, Vec3};
+use tubecast_oracle::sweep_dist;
 use tubecast_render::accel::{first_component, Tracer, WideBvh};
-use tubecast_render::scene::generate::{self, Rng};
-use tubecast_render::scene::{Model, Prim, Scene};
-
-fn ov(v: V3<f64>) -> Vec3 {
-    Vec3::new(v.x, v.y, v.z)
-}
-
-fn link_of(p: &Prim) -> Link {
-    let o = V3::from(p.origin);
-    let c = p.round_cone().expect("links and spheres only");
-    Link { a: ov(o + c.a.cast()), ra: f64::from(c.ra), b: ov(o + c.b.cast()), rb: f64::from(c.rb) }
-}
-
-fn bound(p: &Prim, ray: &Ray<f64>) -> f64 {
-    let l = link_of(p);
-    let dn = ray.d * (1.0 / ray.d.length());
-    let foot = ray.o + dn * (V3::from(p.origin) - ray.o).dot(dn);
-    let size = (l.b - l.a).length().max(l.ra).max(l.rb);
-    link_error_bound(&l, ov(foot), size, f64::from(f32::EPSILON))
-}
+use tubecast_render::scene::generate::Rng;
+use tubecast_render::scene::Model;
 
 #[test]
 fn first_piece_matches_the_cpu() {
     let Some(gpu) = crate::gpu("first_piece_matches_the_cpu") else { return };
-    let mut lines = generate::furball(80, 12, 6);
-    lines.extend(generate::bundle(30, 20, 2));
-    let scene = Scene::from_polylines(&lines, 0.08, "fur").unwrap();
+    let scene = crate::fur();
     let bvh = WideBvh::from_scene(&scene, Model::Links).unwrap();
     let gs = GpuScene::upload(&gpu, &bvh).unwrap();
     let delta = gs.band();
     let mut rng = Rng::new(21);
     let rays: Vec<Ray<f64>> = (0..3000)
         .map(|k| {
-            let node = scene.nodes[(rng.uniform() * scene.nodes.len() as f64) as usize].pos;
-            let p = V3::from(node) + V3::from(rng.unit()) * rng.range(0.0, 0.1);
+            let p = crate::near_node(&mut rng, &scene);
             let d = V3::from(rng.unit());
             // From outside, and from inside (a ray starting in a tube: entry before t_min).
             let o = if k % 3 == 0 { p } else { p - d * 30.0 };
@@ -58,7 +38,7 @@ fn first_piece_matches_the_cpu() {
             (None, None) => {}
             (Some((e, _)), None) | (None, Some((e, _))) => {
                 let p = bvh.prim(e.id);
-                let tol = 2.0 * bound(&p, ray) + delta;
+                let tol = 2.0 * bound32(&p, ray) + delta;
                 let line = tubecast_oracle::Line { o: ov(ray.o), d: ov(ray.d) };
                 let gap = tubecast_oracle::line_gap(&link_of(&p), &line).0;
                 let at_end = (e.t - ray.t_max).abs() <= tol;
@@ -69,9 +49,9 @@ fn first_piece_matches_the_cpu() {
                 for (g, c) in [(ge, ce), (gx, cx)] {
                     let pg = bvh.prim(g.id);
                     let (sd, _) = sweep_dist(&link_of(&pg), ov(ray.at(g.t)));
-                    let eg = bound(&pg, ray) + delta;
+                    let eg = bound32(&pg, ray) + delta;
                     assert!(sd.abs() <= eg + 1e-12, "ray {k}: GPU boundary {sd:e} off its surface (E + δ = {eg:e})");
-                    let e = eg + bound(&bvh.prim(c.id), ray) + delta;
+                    let e = eg + bound32(&bvh.prim(c.id), ray) + delta;
                     let gamma = c.n.dot(ray.d).abs().max(1e-12);
                     if (g.t - c.t).abs() * gamma > e {
                         // A near-touch: some interval enters within the band of the earlier end.

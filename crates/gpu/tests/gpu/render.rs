@@ -11,34 +11,14 @@
 //! `18·((E_gpu + E_cpu + 2δ)/(γ·r) + 64ε)`. Where the two hit different primitives or only one
 //! hits, the primary ray must graze (the tree test's band); those pixels are counted.
 
+use crate::{bound32, link_of, ov};
 use std::path::Path;
-use tubecast::V3;
 use tubecast_gpu::{render_gpu, GpuScene, Walk};
-use tubecast_oracle::{line_gap, link_error_bound, Line, Link, Vec3};
+use tubecast_oracle::{line_gap, Line};
 use tubecast_render::accel::{Tracer, WideBvh};
 use tubecast_render::render::{render, Camera, Options};
 use tubecast_render::scene::generate;
-use tubecast_render::scene::{Model, Prim, Scene};
-
-fn ov(v: V3<f64>) -> Vec3 {
-    Vec3::new(v.x, v.y, v.z)
-}
-
-fn link_of(p: &Prim) -> Link {
-    let o = V3::from(p.origin);
-    let c = p.round_cone().expect("links and spheres only");
-    Link { a: ov(o + c.a.cast()), ra: f64::from(c.ra), b: ov(o + c.b.cast()), rb: f64::from(c.rb) }
-}
-
-/// `E` (ε = 2⁻²³) for primitive `p` and a ray from `o` along `d`.
-fn bound(p: &Prim, o: V3<f64>, d: V3<f64>) -> f64 {
-    let l = link_of(p);
-    let dn = d * (1.0 / d.length());
-    let m = V3::from(p.origin);
-    let foot = o + dn * (m - o).dot(dn);
-    let size = (l.b - l.a).length().max(l.ra).max(l.rb);
-    link_error_bound(&l, ov(foot), size, f64::from(f32::EPSILON))
-}
+use tubecast_render::scene::{Model, Scene};
 
 fn check(scene: &Scene, name: &str) {
     let Some(gpu) = crate::gpu(name) else { return };
@@ -60,7 +40,7 @@ fn check(scene: &Scene, name: &str) {
             (Some(g), Some(c)) if g.id == c.id => {
                 let p = bvh.prim(g.id);
                 let gamma = c.n.dot(ray.d * (1.0 / ray.d.length())).abs();
-                let e = 2.0 * bound(&p, ray.o, ray.d) + 2.0 * delta;
+                let e = 2.0 * bound32(&p, ray) + 2.0 * delta;
                 let tol = 18.0 * (e / (gamma * f64::from(p.max_radius())) + 64.0 * f64::from(f32::EPSILON));
                 assert!(diff <= tol, "{name} pixel {i}: colour differs by {diff:e} > {tol:e} (γ {gamma:e})");
                 worst = worst.max(diff);
@@ -73,10 +53,10 @@ fn check(scene: &Scene, name: &str) {
                 let line = Line { o: ov(ray.o), d: ov(ray.d) };
                 let grazed = [g, c].iter().flatten().any(|h| {
                     let p = bvh.prim(h.id);
-                    line_gap(&link_of(&p), &line).0.abs() <= 2.0 * bound(&p, ray.o, ray.d) + delta
+                    line_gap(&link_of(&p), &line).0.abs() <= 2.0 * bound32(&p, ray) + delta
                 });
                 let same_t = matches!((g, c), (Some(g), Some(c)) if (g.t - c.t).abs() * ray.d.length()
-                    <= 2.0 * (bound(&bvh.prim(g.id), ray.o, ray.d) + bound(&bvh.prim(c.id), ray.o, ray.d) + delta)
+                    <= 2.0 * (bound32(&bvh.prim(g.id), ray) + bound32(&bvh.prim(c.id), ray) + delta)
                         / c.n.dot(ray.d * (1.0 / ray.d.length())).abs().max(1e-12));
                 assert!(grazed || same_t, "{name} pixel {i}: GPU {g:?} CPU {c:?} outside the band");
                 grazes += 1;

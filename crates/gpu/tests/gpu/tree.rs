@@ -14,40 +14,18 @@
 //!   primitive only one of them hit first (a graze), or the crossing lies within that
 //!   tolerance of the ray's range ends.
 
+use crate::{bound, link_of, ov};
 use std::path::Path;
 use tubecast::{Hit, Ray, V3};
 use tubecast_gpu::{Gpu, GpuScene, Walk};
-use tubecast_oracle::{line_gap, link_error_bound, sweep_dist, Line, Link, Vec3};
+use tubecast_oracle::{line_gap, sweep_dist, Line};
 use tubecast_render::accel::{Tracer, WideBvh};
 use tubecast_render::scene::generate::{self, Rng};
 use tubecast_render::scene::{Model, Prim, Scene};
 
-fn ov(v: V3<f64>) -> Vec3 {
-    Vec3::new(v.x, v.y, v.z)
-}
-
-/// The stored primitive as an exact `f64` link (its `f32` shape plus its `f64` origin).
-fn link_of(p: &Prim) -> Link {
-    let o = V3::from(p.origin);
-    let c = p.round_cone().expect("links and spheres only");
-    Link { a: ov(o + c.a.cast()), ra: f64::from(c.ra), b: ov(o + c.b.cast()), rb: f64::from(c.rb) }
-}
-
-/// `E` for primitive `p` and the local ray of `ray` (origin: the line's point nearest the
-/// primitive's origin), for unit roundoff `eps`.
-fn bound(p: &Prim, ray: &Ray<f64>, eps: f64) -> f64 {
-    let l = link_of(p);
-    let dn = ray.d * (1.0 / ray.d.length());
-    let m = V3::from(p.origin);
-    let foot = ray.o + dn * (m - ray.o).dot(dn);
-    let size = (l.b - l.a).length().max(l.ra).max(l.rb);
-    link_error_bound(&l, ov(foot), size, eps)
-}
-
 /// A ray aimed near a random node: from 40 away (`k` even) or from the node itself.
 fn aim(rng: &mut Rng, scene: &Scene, k: usize) -> Ray<f64> {
-    let node = scene.nodes[(rng.uniform() * scene.nodes.len() as f64) as usize].pos;
-    let p = V3::from(node) + V3::from(rng.unit()) * rng.range(0.0, 0.1);
+    let p = crate::near_node(rng, scene);
     let d = V3::from(rng.unit()) * rng.range(0.5, 2.0);
     let o = if k.is_multiple_of(2) { p - d * (40.0 / d.length()) } else { p };
     Ray::with_range(o, d, 0.0, 60.0)
