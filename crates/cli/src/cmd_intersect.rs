@@ -3,31 +3,50 @@
 
 use crate::args::{Device, IntersectArgs, Query, Surface};
 use crate::error::CliError;
+use crate::hits_io::{write_hits, HitsOut};
 use crate::setup::{self, Plan};
-use tubecast_render::accel::{closest_table, crossings_table, hit_table};
-use tubecast_render::io::{self, npy::Array2};
+use tubecast_render::accel::{closest_rows, crossings_table, hit_rows, MISS_ROW};
+use tubecast_render::io;
+
+/// Rays per chunk of the streamed table: enough to keep every thread busy, few enough that
+/// the rows in flight stay small (2 MB).
+const CHUNK: usize = 1 << 15;
 
 /// `tubecast intersect`.
 pub fn intersect(a: &IntersectArgs) -> Result<(), CliError> {
     crate::options::intersect(a)?;
     // The rays first: their count sets the grid's resolution, which the memory estimate needs.
     let name = a.rays.display().to_string();
-    let rays = io::npy::read(&crate::hits_io::read_input(&a.rays)?, &name, Some(6))?.rays(&name)?;
+    let rays = io::npy::read(&crate::hits_io::read_input(&a.rays)?, &name, Some(6))?;
+    rays.check_rays(&name)?;
     let m = setup::model(a.splines);
-    let plan = Plan { model: m, accel: a.accel, render: None, rays: Some(rays.len() as f64) };
+    let plan = Plan { model: m, accel: a.accel, render: None, rays: Some(rays.rows as f64) };
     let scene = setup::load(&a.input, &a.radius, (&a.select, &a.run), plan, "every ray misses", false)?.scene;
     let scene = crate::quantized::model_scene(Surface::from(a.model), scene, &a.quant, a.run.quiet)?;
     if a.device == Device::Gpu {
-        let rows = crate::gpu::table(a.query, &scene, &rays)?;
-        return crate::hits_io::write_hits(&a.out, &Array2::from_rows(&rows), a.csv);
+        let rows = crate::gpu::table(a.query, &scene, &rays.rays(&name)?)?;
+        return write_hits(&a.out, &rows, a.csv);
     }
-    let rows = setup::with_threads(a.run.threads, || {
-        let bvh = setup::scene_tracer(a.accel, &scene, m, None, Some(rays.len() as f64))?;
-        Ok::<_, CliError>(match a.query {
-            Query::Hit => closest_table(bvh.as_ref(), &rays),
-            Query::Piece => hit_table(bvh.as_ref(), &rays),
-            Query::All => crossings_table(bvh.as_ref(), &rays),
-        })
-    })??;
-    crate::hits_io::write_hits(&a.out, &Array2::from_rows(&rows), a.csv)
+    setup::with_threads(a.run.threads, || {
+        let bvh = setup::scene_tracer(a.accel, &scene, m, None, Some(rays.rows as f64))?;
+        let fill = match a.query {
+            Query::Hit => closest_rows,
+            Query::Piece => hit_rows,
+            Query::All => return write_hits(&a.out, &crossings_table(bvh.as_ref(), &rays.rays(&name)?), a.csv),
+        };
+        // One row per ray: stream the table chunk by chunk instead of holding it (and its
+        // bytes) whole; fresh pages for a table of 10⁶ rows cost more system time than the
+        // tracing takes.
+        let mut out = HitsOut::create(&a.out, a.csv, rays.rows)?;
+        let mut rows = vec![MISS_ROW; CHUNK.min(rays.rows)];
+        let mut chunk = Vec::with_capacity(CHUNK.min(rays.rows));
+        for start in (0..rays.rows).step_by(CHUNK) {
+            chunk.clear();
+            chunk.extend((start..(start + CHUNK).min(rays.rows)).map(|i| rays.ray(i)));
+            let rows = &mut rows[..chunk.len()];
+            fill(bvh.as_ref(), &chunk, rows);
+            out.write(rows)?;
+        }
+        out.finish()
+    })?
 }

@@ -3,7 +3,7 @@
 use crate::error::CliError;
 use std::io::{Read, Write};
 use std::path::Path;
-use tubecast_render::io::{self, npy::Array2, IoError};
+use tubecast_render::io::{self, IoError};
 
 /// The hit table's columns, in order (see `tubecast intersect --help`).
 pub const HIT_COLUMNS: [&str; 8] = ["t_in", "t_out", "nx", "ny", "nz", "link", "u", "hit"];
@@ -18,35 +18,80 @@ pub fn read_input(path: &Path) -> Result<Vec<u8>, CliError> {
     Ok(io::read_bytes(path)?)
 }
 
-/// The hits as CSV: a header line of [`HIT_COLUMNS`], one row per ray; `link` and `hit` as
-/// integers, the other columns with Rust's shortest round-trip formatting (`inf` for misses).
-pub fn hits_csv(hits: &Array2) -> String {
-    let mut s = HIT_COLUMNS.join(",");
-    s.push('\n');
-    for i in 0..hits.rows {
-        let row: Vec<String> = hits
-            .row(i)
-            .iter()
-            .enumerate()
-            .map(|(k, v)| if k == 5 || k == 7 { format!("{}", *v as i64) } else { format!("{v}") })
-            .collect();
-        s.push_str(&row.join(","));
-        s.push('\n');
+/// One CSV line of a hit row: `link` and `hit` as integers, the other columns with Rust's
+/// shortest round-trip formatting (`inf` for misses).
+fn csv_line(out: &mut String, row: &[f64]) {
+    use std::fmt::Write as _;
+    for (k, v) in row.iter().enumerate() {
+        if k > 0 {
+            out.push(',');
+        }
+        // Writing to a String cannot fail.
+        let _ = if k == 5 || k == 7 { write!(out, "{}", *v as i64) } else { write!(out, "{v}") };
     }
-    s
+    out.push('\n');
+}
+
+/// The hit table streamed to `-` (stdout) or a file as it is computed, in chunks of rows: CSV
+/// when asked or the name ends in `.csv`, else `.npy` (whose header needs the row count up
+/// front). Nothing is held but the chunk being written.
+pub struct HitsOut {
+    w: std::io::BufWriter<Box<dyn Write>>,
+    csv: bool,
+    name: String,
+    rows_left: usize,
+}
+
+impl HitsOut {
+    /// Open `path` (`-`: stdout) for a table of `rows` rows and write its header.
+    pub fn create(path: &Path, csv: bool, rows: usize) -> Result<Self, CliError> {
+        let csv = csv || path.extension().is_some_and(|e| e.eq_ignore_ascii_case("csv"));
+        let name = path.display().to_string();
+        let w: Box<dyn Write> = if path.as_os_str() == "-" {
+            Box::new(std::io::stdout().lock())
+        } else {
+            let f = std::fs::File::create(path).map_err(|e| IoError::file(&name, format!("cannot write: {e}")))?;
+            Box::new(f)
+        };
+        let mut out = Self { w: std::io::BufWriter::with_capacity(1 << 20, w), csv, name, rows_left: rows };
+        let head = if csv { format!("{}\n", HIT_COLUMNS.join(",")).into_bytes() } else { io::npy::header(rows, 8) };
+        out.put(&head)?;
+        Ok(out)
+    }
+
+    fn put(&mut self, bytes: &[u8]) -> Result<(), CliError> {
+        self.w.write_all(bytes).map_err(|e| self.error(e))
+    }
+
+    fn error(&self, e: std::io::Error) -> CliError {
+        IoError::file(&self.name, format!("cannot write: {e}")).into()
+    }
+
+    /// Append `rows`.
+    pub fn write(&mut self, rows: &[[f64; 8]]) -> Result<(), CliError> {
+        assert!(rows.len() <= self.rows_left, "more rows than the header announced");
+        self.rows_left -= rows.len();
+        if self.csv {
+            let mut s = String::with_capacity(rows.len() * 64);
+            for r in rows {
+                csv_line(&mut s, r);
+            }
+            return self.put(s.as_bytes());
+        }
+        io::npy::write_rows(&mut self.w, rows).map_err(|e| self.error(e))
+    }
+
+    /// Flush; every announced row must have been written.
+    pub fn finish(mut self) -> Result<(), CliError> {
+        assert_eq!(self.rows_left, 0, "fewer rows than the header announced");
+        self.w.flush().map_err(|e| self.error(e))
+    }
 }
 
 /// Write the hits to `path` (`-`: stdout) as CSV when `csv` or the name ends in `.csv`, as
 /// `.npy` otherwise.
-pub fn write_hits(path: &Path, hits: &Array2, csv: bool) -> Result<(), CliError> {
-    let csv = csv || path.extension().is_some_and(|e| e.eq_ignore_ascii_case("csv"));
-    let bytes = if csv { hits_csv(hits).into_bytes() } else { io::npy::write(hits) };
-    if path.as_os_str() == "-" {
-        let mut out = std::io::stdout().lock();
-        out.write_all(&bytes)
-            .and_then(|_| out.flush())
-            .map_err(|e| IoError::file("-", format!("cannot write stdout: {e}")))?;
-        return Ok(());
-    }
-    Ok(io::write_bytes(path, &bytes)?)
+pub fn write_hits(path: &Path, rows: &[[f64; 8]], csv: bool) -> Result<(), CliError> {
+    let mut out = HitsOut::create(path, csv, rows.len())?;
+    out.write(rows)?;
+    out.finish()
 }

@@ -67,7 +67,7 @@ pub mod tree;
 mod wide;
 
 pub use chunked::{CHUNK, CHUNKS_AT_ONCE};
-pub use table::{closest_table, crossings_table, hit_table, MISS_ROW};
+pub use table::{closest_rows, closest_table, crossings_table, hit_rows, hit_table, MISS_ROW};
 pub use tracer::Tracer;
 pub use wide::{TreeExport, WideBvh};
 

@@ -33,29 +33,45 @@ pub const MISS_ROW: [f64; HIT_COLUMNS] = [f64::INFINITY, f64::INFINITY, 0.0, 0.0
 /// assert_eq!(rows[0], [2.5, 3.5, 0.0, 1.0, 0.0, 0.0, 0.5, 1.0]);
 /// ```
 pub fn closest_table(tracer: &dyn Tracer, rays: &[Ray<f64>]) -> Vec<[f64; HIT_COLUMNS]> {
-    rays.par_iter()
-        .map(|ray| match tracer.closest_hit(ray) {
-            Some(h) => {
+    let mut rows = vec![MISS_ROW; rays.len()];
+    closest_rows(tracer, rays, &mut rows);
+    rows
+}
+
+/// [`closest_table`] into `rows` (one per ray, `rows.len() == rays.len()`), for a caller that
+/// streams the table in chunks through one buffer.
+pub fn closest_rows(tracer: &dyn Tracer, rays: &[Ray<f64>], rows: &mut [[f64; HIT_COLUMNS]]) {
+    assert_eq!(rays.len(), rows.len(), "one row per ray");
+    rows.par_iter_mut().zip(rays.par_iter()).for_each(|(row, ray)| {
+        *row = match tracer.closest_hit_exit(ray) {
+            Some((h, exit)) => {
                 let p = tracer.prim(h.id);
-                let exit = p.intersect(ray).exit.t;
                 let flag = if h.entering { 1.0 } else { -1.0 };
                 [h.t, exit, h.n.x, h.n.y, h.n.z, p.link as f64, h.u, flag]
             }
             None => MISS_ROW,
-        })
-        .collect()
+        }
+    });
 }
 
 /// The `--query piece` table of `rays`: `t_in`, `t_out` of the first component of the union
 /// ([`first_component`]), the entry normal (x, y, z), the entry's scene link, its curve
 /// parameter `u`, and 1; a miss is [`MISS_ROW`]. Rows in ray order.
 pub fn hit_table(tracer: &dyn Tracer, rays: &[Ray<f64>]) -> Vec<[f64; HIT_COLUMNS]> {
-    rays.par_iter()
-        .map(|ray| match first_component(tracer, ray) {
+    let mut rows = vec![MISS_ROW; rays.len()];
+    hit_rows(tracer, rays, &mut rows);
+    rows
+}
+
+/// [`hit_table`] into `rows` (one per ray, `rows.len() == rays.len()`).
+pub fn hit_rows(tracer: &dyn Tracer, rays: &[Ray<f64>], rows: &mut [[f64; HIT_COLUMNS]]) {
+    assert_eq!(rays.len(), rows.len(), "one row per ray");
+    rows.par_iter_mut().zip(rays.par_iter()).for_each(|(row, ray)| {
+        *row = match first_component(tracer, ray) {
             Some((e, x)) => [e.t, x.t, e.n.x, e.n.y, e.n.z, tracer.prim(e.id).link as f64, e.u, 1.0],
             None => MISS_ROW,
-        })
-        .collect()
+        }
+    });
 }
 
 /// The `--query all` table of `rays`: one row per exterior boundary of the union of all tubes

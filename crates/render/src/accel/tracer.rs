@@ -41,6 +41,13 @@ pub trait Tracer: Send + Sync {
     /// The closest surface crossing in `[t_min, t_max]` (entry, or exit when the ray starts
     /// inside a primitive). The ray must be valid ([`Ray::validate`]).
     fn closest_hit(&self, ray: &Ray<f64>) -> Option<Hit>;
+    /// [`Self::closest_hit`] and the exit `t` of the hit primitive's own interval (that of
+    /// [`Prim::intersect`] of [`Self::prim`]), for tables that report both; a tracer that knows
+    /// the exit from its search gives it without a second kernel call.
+    fn closest_hit_exit(&self, ray: &Ray<f64>) -> Option<(Hit, f64)> {
+        let h = self.closest_hit(ray)?;
+        Some((h, self.prim(h.id).intersect(ray).exit.t))
+    }
     /// True when any primitive's surface or interior meets the ray within `[t_min, t_max]`.
     fn any_hit(&self, ray: &Ray<f64>) -> bool;
     /// Every primitive's interval (one per connected piece) with the ray's whole line,

@@ -7,23 +7,24 @@
 //! Why not obvhs's own CWBVH traversal over the same tree: it dequantises the 8-bit child planes
 //! on every visit, orders children by a fixed octant instead of their distance, and its stack
 //! keeps no entry distance, so a pushed child is tested again after a closer hit was found.
-//! Dequantising once at build time costs memory (256 bytes a node instead of 80) and nothing
-//! else.
+//! Storing exact `f32` planes costs memory (256 bytes a node instead of 80) and nothing else;
+//! the eight slab tests of a node run as one eight-lane computation.
 //!
 //! # Conservative planes
-//! A child's quantised plane is `p + q·2ᵏ` (`p`: the node's `f32` origin, `q ≤ 255`, `2ᵏ` a
-//! power of two), rounded outward by obvhs when it quantised the child's box, so the exact
-//! value of `p + q·2ᵏ` contains the child's padded box. It is evaluated here in `f64` (exact but
-//! for one rounding of `2⁻⁵³` relative) and rounded to the nearest `f32`, then moved one more
-//! `f32` step outward: the stored plane is outside the exact one by at least a half step of
-//! `f32`, which exceeds the `f64` rounding. The traversal's slab arithmetic is the one the
-//! parent module's bound covers (the box padding `pad`): one subtraction and one product per
-//! plane, with `1/dᵢ` clamped to `±2²³` as obvhs clamps it.
+//! The walk's trees ([`Tree::from_cwbvh_exact`]) store each child's **exact** box: the union
+//! (`f32` min and max, exact) of the padded `f32` boxes of the items under it, the boxes the
+//! build was given. So every plane contains what it stands for with no rounding of its own,
+//! and the traversal's slab arithmetic is the one the parent module's bound covers (the box
+//! padding `pad`): one subtraction and one product per plane, with `1/dᵢ` clamped to `±2²³`
+//! as obvhs clamps it. (obvhs's 8-bit quantised planes, `p + q·2ᵏ`, are looser, and were
+//! measured up to one `f32` step *inside* the padded boxes they stand for: the padding, not the
+//! quantisation, is what made them safe.)
 //!
 //! The layout is `#[repr(C)]` and plain data so that another backend (a GPU) can take the
 //! nodes as they are ([`Tree::nodes`]).
 
 use obvhs::cwbvh::CwBvh;
+use wide::f32x8;
 
 /// Children per node.
 pub const WIDTH: usize = 8;
@@ -126,7 +127,9 @@ pub struct Leaf {
 }
 
 impl Tree {
-    /// The same tree as obvhs's `bvh` with its planes dequantised (see the module docs).
+    /// The same tree as obvhs's `bvh` with its quantised planes evaluated (`p + q·2ᵏ` in `f64`,
+    /// rounded to `f32` and one step outward): the structure [`Self::from_cwbvh_exact`] then
+    /// tightens.
     pub fn from_cwbvh(bvh: &CwBvh) -> Self {
         let nodes = bvh
             .nodes
@@ -158,6 +161,44 @@ impl Tree {
         Self { nodes }
     }
 
+    /// [`Self::from_cwbvh`] with every child's planes replaced by its exact box: the union of
+    /// the boxes `item_box(k)` of its leaf-order items `k` (for an inner child, of everything
+    /// under it), the boxes the build was given (module docs).
+    pub fn from_cwbvh_exact(bvh: &CwBvh, item_box: impl Fn(u32) -> ([f32; 3], [f32; 3])) -> Self {
+        let mut tree = Self::from_cwbvh(bvh);
+        if !tree.nodes.is_empty() {
+            tree.tighten(0, &item_box);
+        }
+        tree
+    }
+
+    /// Set node `ni`'s child planes to the exact boxes (see [`Self::from_cwbvh_exact`]) and
+    /// return the node's own box.
+    fn tighten(&mut self, ni: usize, item_box: &impl Fn(u32) -> ([f32; 3], [f32; 3])) -> ([f32; 3], [f32; 3]) {
+        let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+        for ch in 0..WIDTH {
+            let (child, count) = (self.nodes[ni].child[ch], self.nodes[ni].count[ch]);
+            if child == EMPTY {
+                continue;
+            }
+            let (l, h) = if count > 0 {
+                (child..child + count)
+                    .map(item_box)
+                    .fold(([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]), |(l, h), (a, b)| {
+                        (std::array::from_fn(|i| l[i].min(a[i])), std::array::from_fn(|i| h[i].max(b[i])))
+                    })
+            } else {
+                self.tighten(child as usize, item_box)
+            };
+            let n = &mut self.nodes[ni];
+            for a in 0..3 {
+                (n.lo[a][ch], n.hi[a][ch]) = (l[a], h[a]);
+                (lo[a], hi[a]) = (lo[a].min(l[a]), hi[a].max(h[a]));
+            }
+        }
+        (lo, hi)
+    }
+
     /// The nodes; the root is node 0.
     pub fn nodes(&self) -> &[Node] {
         &self.nodes
@@ -168,27 +209,22 @@ impl Tree {
         self.nodes.capacity() * std::mem::size_of::<Node>()
     }
 
-    /// Entry distances of the eight children of `n` (`+∞` where the ray misses the box or
-    /// enters it beyond `t_max`).
+    /// The children of `n` whose boxes the ray enters before `t_max` (bit `i` for child `i`)
+    /// and their entry distances, eight lanes at once. The arithmetic is the slab test the
+    /// module docs bound: `(plane − o)·inv` per plane, entry the largest near distance (from
+    /// 0), exit the least far one (to `t_max`). No lane is NaN: `o` and `inv` are finite and a
+    /// plane is finite or an empty slot's `±∞`.
     #[inline(always)]
-    fn entries(n: &Node, r: &TreeRay, neg: [bool; 3]) -> [f32; WIDTH] {
-        let mut near = [0.0f32; WIDTH];
-        let mut far = [r.t_max; WIDTH];
+    fn entries(n: &Node, r: &TreeRay, neg: [bool; 3]) -> (u32, [f32; WIDTH]) {
+        let mut near = f32x8::splat(0.0);
+        let mut far = f32x8::splat(r.t_max);
         for (a, &flip) in neg.iter().enumerate() {
-            let (lo, hi) = if flip { (&n.hi[a], &n.lo[a]) } else { (&n.lo[a], &n.hi[a]) };
-            let (o, inv) = (r.o[a], r.inv[a]);
-            for i in 0..WIDTH {
-                let t0 = (lo[i] - o) * inv;
-                let t1 = (hi[i] - o) * inv;
-                near[i] = if t0 > near[i] { t0 } else { near[i] };
-                far[i] = if t1 < far[i] { t1 } else { far[i] };
-            }
+            let (lo, hi) = if flip { (n.hi[a], n.lo[a]) } else { (n.lo[a], n.hi[a]) };
+            let (o, inv) = (f32x8::splat(r.o[a]), f32x8::splat(r.inv[a]));
+            near = ((f32x8::new(lo) - o) * inv).fast_max(near);
+            far = ((f32x8::new(hi) - o) * inv).fast_min(far);
         }
-        let mut out = [f32::INFINITY; WIDTH];
-        for i in 0..WIDTH {
-            out[i] = if near[i] <= far[i] { near[i] } else { f32::INFINITY };
-        }
-        out
+        (near.simd_le(far).to_bitmask(), near.to_array())
     }
 
     /// Walk the tree along `r`, nearest child first, calling `leaf` for each leaf entered
@@ -216,16 +252,15 @@ impl Tree {
         let mut node = 0u32;
         loop {
             let n = &self.nodes[node as usize];
-            let t = Self::entries(n, r, neg);
+            let (mut hit, t) = Self::entries(n, r, neg);
             // The children hit, as stack entries: entries are `≥ +0.0`, so their bits (the high
             // half of an entry) order them as the floats do, and whole entries sort by distance.
             let mut keys = [0u64; WIDTH];
-            let mut k = 0;
-            for (i, &ti) in t.iter().enumerate() {
-                if ti != f32::INFINITY {
-                    keys[k] = pack(n.child[i], n.count[i], ti);
-                    k += 1;
-                }
+            let k = hit.count_ones() as usize;
+            for key in keys.iter_mut().take(k) {
+                let i = hit.trailing_zeros() as usize;
+                hit &= hit - 1;
+                *key = pack(n.child[i], n.count[i], t[i]);
             }
             let mut next = None;
             if k == 1 {

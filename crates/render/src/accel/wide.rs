@@ -188,7 +188,10 @@ impl WideBvh {
         let mut bvh = super::chunked::build(n, |j| frame.padded(world(j)), chunk);
         let order = std::mem::take(&mut bvh.primitive_indices);
         assert!(order.len() < 1 << 30, "leaf items are addressed in 30 bits");
-        let tree = Tree::from_cwbvh(&bvh);
+        let tree = Tree::from_cwbvh_exact(&bvh, |k| {
+            let b = frame.padded(world(order[k as usize] as usize));
+            (b.min.into(), b.max.into())
+        });
         #[cfg(test)]
         let depth = super::cwbuild::depth(&bvh);
         drop(bvh);
@@ -317,6 +320,10 @@ impl Tracer for WideBvh {
     }
 
     fn closest_hit(&self, ray: &Ray<f64>) -> Option<Hit> {
+        self.closest_hit_exit(ray).map(|(h, _)| h)
+    }
+
+    fn closest_hit_exit(&self, ray: &Ray<f64>) -> Option<(Hit, f64)> {
         let (a, b) = Bvh::range(ray);
         let c = self.frame.clip(ray, a, b)?;
         let r = c.ray;
@@ -326,8 +333,8 @@ impl Tracer for WideBvh {
         walk!(self, r, tmax, item, {
             if item & WHOLE != 0 {
                 let id = (item & !WHOLE) as usize;
-                if let Some(h) = self.prims[id].first_hit_unit(ray, dn, len) {
-                    best.keep(Best::Done(Hit { id: id as u32, ..h }));
+                if let Some((h, exit)) = self.prims[id].first_hit_exit_unit(ray, dn, len) {
+                    best.keep(Best::Done(Hit { id: id as u32, ..h }, exit));
                 }
             } else {
                 let pc = self.piece(item);

@@ -27,19 +27,29 @@ impl Array2 {
     }
 
     /// The rays of an N×6 array (origin x, y, z, direction x, y, z per row), each checked by
-    /// [`Ray::validate`]; `name` names the array in errors.
+    /// [`Ray::validate`] ([`Self::check_rays`]); `name` names the array in errors.
     pub fn rays(&self, name: &str) -> Result<Vec<Ray<f64>>, IoError> {
+        self.check_rays(name)?;
+        Ok((0..self.rows).map(|i| self.ray(i)).collect())
+    }
+
+    /// Whether the array holds valid rays: 6 columns, each row's ray passing
+    /// [`Ray::validate`]; `name` names the array in errors.
+    pub fn check_rays(&self, name: &str) -> Result<(), IoError> {
         if self.cols != 6 {
             return Err(IoError::file(name, format!("has {} columns, expected 6", self.cols)));
         }
-        (0..self.rows)
-            .map(|i| {
-                let r = self.row(i);
-                let ray = Ray::new(V3::new(r[0], r[1], r[2]), V3::new(r[3], r[4], r[5]));
-                ray.validate().map_err(|e| IoError::file(name, format!("row {i}: {e}")))?;
-                Ok(ray)
-            })
-            .collect()
+        for i in 0..self.rows {
+            self.ray(i).validate().map_err(|e| IoError::file(name, format!("row {i}: {e}")))?;
+        }
+        Ok(())
+    }
+
+    /// The ray of row `i` of an N×6 array, unchecked (see [`Self::check_rays`]).
+    #[inline]
+    pub fn ray(&self, i: usize) -> Ray<f64> {
+        let r = self.row(i);
+        Ray::new(V3::new(r[0], r[1], r[2]), V3::new(r[3], r[4], r[5]))
     }
 }
 
@@ -204,7 +214,18 @@ fn plain_header(h: &[u8]) -> bool {
 
 /// Write a row-major 2-D `float64` array as `.npy` version 1.0, little endian, C order.
 pub fn write(a: &Array2) -> Vec<u8> {
-    let mut h = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {}), }}", a.rows, a.cols);
+    let mut out = header(a.rows, a.cols);
+    out.reserve(a.data.len() * 8);
+    for v in &a.data {
+        out.extend_from_slice(&v.to_le_bytes());
+    }
+    out
+}
+
+/// The header of a `rows × cols` `float64` array as [`write`] writes it (`.npy` version 1.0,
+/// little endian, C order), for a writer that streams the values after it.
+pub fn header(rows: usize, cols: usize) -> Vec<u8> {
+    let mut h = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({rows}, {cols}), }}");
     // Pad so that the data starts at a multiple of 64 bytes; the header ends with '\n'.
     while (10 + h.len() + 1) % 64 != 0 {
         h.push(' ');
@@ -213,8 +234,18 @@ pub fn write(a: &Array2) -> Vec<u8> {
     let mut out = b"\x93NUMPY\x01\x00".to_vec();
     out.extend_from_slice(&(h.len() as u16).to_le_bytes());
     out.extend_from_slice(h.as_bytes());
-    for v in &a.data {
-        out.extend_from_slice(&v.to_le_bytes());
-    }
     out
+}
+
+/// Stream `rows` as the values of a `.npy` array whose [`header`] was written before them.
+pub fn write_rows<const N: usize>(w: &mut impl std::io::Write, rows: &[[f64; N]]) -> std::io::Result<()> {
+    let mut buf = Vec::with_capacity(8 * N * rows.len().min(4096));
+    for chunk in rows.chunks(4096) {
+        buf.clear();
+        for v in chunk.iter().flatten() {
+            buf.extend_from_slice(&v.to_le_bytes());
+        }
+        w.write_all(&buf)?;
+    }
+    Ok(())
 }

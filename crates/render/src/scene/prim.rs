@@ -1,10 +1,10 @@
 //! Renderer primitives: `f32` geometry relative to an `f64` local origin.
 
 use tubecast::QuadTube;
-use tubecast::{PendingInterval, RoundCone};
 use tubecast::Solver;
 use tubecast::{Crossing, Hit, Interval, Ray};
 use tubecast::{GeometryError, LinkShape, Primitive, Sphere, V3};
+use tubecast::{PendingInterval, RoundCone};
 
 /// Which exact shape a primitive is (the tag of [`Shape`], for counting and comparing).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -141,6 +141,8 @@ pub(crate) fn link_interval(c: &RoundCone<f32>, rl: &Ray<f32>, tc: f64, len: f64
 pub(crate) struct PendingHit {
     /// The crossing's `t` along the world ray.
     pub t: f64,
+    /// The exit `t` of the link's interval (that of `Prim::intersect`).
+    pub t_out: f64,
     /// The hit's primitive id.
     pub id: u32,
     entering: bool,
@@ -174,7 +176,7 @@ impl PendingHit {
         } else {
             return None;
         };
-        Some(Self { t, id, entering, cone: *c, line })
+        Some(Self { t, t_out, id, entering, cone: *c, line })
     }
 
     /// The hit, with the normal and curve parameter of its crossing.
@@ -185,12 +187,13 @@ impl PendingHit {
     }
 }
 
-/// The closest hit of a search so far: finished (a whole primitive's) or pending (a link's).
+/// The closest hit of a search so far: finished (a whole primitive's, with the exit `t` of its
+/// interval) or pending (a link's).
 #[derive(Clone, Copy, Default)]
 pub(crate) enum Best {
     #[default]
     None,
-    Done(Hit<f64>),
+    Done(Hit<f64>, f64),
     Pending(PendingHit),
 }
 
@@ -200,18 +203,18 @@ impl Best {
     pub fn t(&self) -> Option<f64> {
         match self {
             Best::None => None,
-            Best::Done(h) => Some(h.t),
+            Best::Done(h, _) => Some(h.t),
             Best::Pending(p) => Some(p.t),
         }
     }
 
-    /// The hit held, finished.
+    /// The hit held, finished, and the exit `t` of its primitive's interval.
     #[inline]
-    pub fn finish(&self) -> Option<Hit<f64>> {
+    pub fn finish(&self) -> Option<(Hit<f64>, f64)> {
         match self {
             Best::None => None,
-            Best::Done(h) => Some(*h),
-            Best::Pending(p) => Some(p.finish()),
+            Best::Done(h, x) => Some((*h, *x)),
+            Best::Pending(p) => Some((p.finish(), p.t_out)),
         }
     }
 
@@ -227,9 +230,8 @@ impl Best {
         };
         if tc < tb {
             *self = cand;
-        } else if !(tc > tb) {
-            let (c, b) = (cand.finish(), self.finish());
-            if let (Some(c), Some(b)) = (c, b) {
+        } else if tc.partial_cmp(&tb) != Some(std::cmp::Ordering::Greater) {
+            if let (Some((c, _)), Some((b, _))) = (cand.finish(), self.finish()) {
                 if c.closer(&b) {
                     *self = cand;
                 }
@@ -421,21 +423,28 @@ impl Prim {
     /// [`Self::first_hit`] given `dn` and `len` as [`Self::intersect_unit`] takes them.
     #[inline]
     pub(crate) fn first_hit_unit(&self, ray: &Ray<f64>, dn: V3<f64>, len: f64) -> Option<Hit<f64>> {
+        self.first_hit_exit_unit(ray, dn, len).map(|(h, _)| h)
+    }
+
+    /// [`Self::first_hit_unit`] and the exit `t` of the primitive's own interval (that of
+    /// [`Self::intersect`]).
+    #[inline]
+    pub(crate) fn first_hit_exit_unit(&self, ray: &Ray<f64>, dn: V3<f64>, len: f64) -> Option<(Hit<f64>, f64)> {
         let iv = self.intersect_unit(ray, dn, len);
         if !iv.hit {
             return None;
         }
-        let own = |h: Hit<f64>| Hit { id: self.link, ..h };
+        let own = |h: Hit<f64>| (Hit { id: self.link, ..h }, iv.exit.t);
         if self.kind() != PrimKind::Spline || (iv.entry.t >= ray.t_min && iv.entry.t <= ray.t_max) {
             return iv.first_hit(ray.t_min, ray.t_max).map(own);
         }
         let mut best: Option<Hit<f64>> = None;
         self.pieces(ray, |p| {
             if let Some(h) = p.first_hit(ray.t_min, ray.t_max) {
-                own(h).keep_closer(&mut best);
+                h.keep_closer(&mut best);
             }
         });
-        best
+        best.map(own)
     }
 
     /// True when the primitive's surface or interior meets `[t_min, t_max]` of the ray.
