@@ -7,8 +7,9 @@ use criterion::measurement::Measurement;
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion, Throughput};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use tubecast::cone::{intersect_stump_precomputed, TangentCone, UnitConeTransform};
-use tubecast::{HanLink, Interval, Primitive, Ray, Real, RoundCone, Sphere, WideF32x8, WideF64x4, V3};
+use tubecast::baseline::cone::{intersect_stump_precomputed, TangentCone, UnitConeTransform};
+use tubecast::baseline::HanLink;
+use tubecast::{Interval, Primitive, Ray, Real, RoundCone, Sphere, WideF32x8, WideF64x4, V3};
 
 const N: usize = 1024;
 

@@ -1,11 +1,13 @@
-//! Criterion bench of the three round-cone voxelizations (`tubecast::voxel`): conservative
-//! Algorithm 1 (two radii), the AABB baseline and the DDA baseline (centre line only, not
-//! conservative), against link length (1…64 voxels) and orientation (axis, face diagonal,
-//! space diagonal), radius 0.5 voxel — the shape of Kraaijeveld et al.'s Fig. 6. Time is per
-//! link; the voxels each method visits are printed once per case (`voxels …` lines).
+//! Criterion bench of the three round-cone voxelizations: conservative Algorithm 1 (two radii,
+//! `tubecast::voxel`), the AABB baseline and the DDA baseline (centre line only, not
+//! conservative; both `tubecast::baseline::voxel`), against link length (1…64 voxels) and
+//! orientation (axis, face diagonal, space diagonal), radius 0.5 voxel — the shape of
+//! Kraaijeveld et al.'s Fig. 6. Time is per link; the voxels each method visits are printed
+//! once per case (`voxels …` lines).
 //!
 //!     cargo bench --bench voxel
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use tubecast::baseline;
 use tubecast::voxel::{self, Dims};
 use tubecast::{RoundCone, V3};
 
@@ -16,8 +18,8 @@ include!("common/voxel_cases.rs");
 fn bench(c: &mut Criterion) {
     let methods: [(&str, Method); 3] = [
         ("round_cone", |l, d, f| voxel::voxelize_round_cone(l, d, f)),
-        ("aabb", |l, d, f| voxel::voxelize_aabb(l, d, f)),
-        ("dda", |l, d, f| voxel::voxelize_dda(l, d, f)),
+        ("aabb", |l, d, f| baseline::voxel::voxelize_aabb(l, d, f)),
+        ("dda", |l, d, f| baseline::voxel::voxelize_dda(l, d, f)),
     ];
     let dirs = [("axis", [1.0, 0.0, 0.0]), ("face", [1.0, 1.0, 0.0]), ("diagonal", [1.0, 1.0, 1.0])];
     for (dname, dir) in dirs {

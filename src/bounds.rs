@@ -1,10 +1,10 @@
-//! Bounding boxes: one axis-aligned [`Aabb`] for every primitive ([`crate::Primitive::aabb`])
-//! and the oriented [`Obb`] where a tight one is defined ([`QuadTube::obb`],
-//! [`RoundCone::obb`]).
+//! Bounds: one axis-aligned [`Aabb`] for every primitive ([`crate::Primitive::aabb`]), the
+//! oriented [`Obb`] where a tight one is defined ([`QuadTube::obb`], [`RoundCone::obb`]), and
+//! the spline kernel's error band ([`spline_error_band`], [`QuadTube::error_band`]).
 
 use crate::kernel::link::RoundCone;
 use crate::kernel::spline::QuadTube;
-use crate::real::Real;
+use crate::real::{Real, Scalar};
 use crate::vec::V3;
 
 pub use crate::kernel::obb::Obb;
@@ -98,5 +98,83 @@ impl<T: Real> RoundCone<T> {
             b: [self.a, (self.a + self.b) * h, self.b],
             r: [self.ra, (self.ra + self.rb) * h, self.rb],
         })
+    }
+}
+
+/// The spline kernel's backward-error band, in length units:
+///
+/// `E = 1024·ε·R + 8·ε·|o − p(½)|`
+///
+/// for a segment of bounding radius `R = max|bᵢ − p(½)| + max|rᵢ|` (its
+/// [`QuadTube::bounding_radius`]), a ray from `o` at `origin_distance = |o − p(½)|`, and the
+/// unit roundoff `eps` of the precision the kernel ran in (`f32::EPSILON` or `f64::EPSILON`,
+/// as `f64`). [`QuadTube::error_band`] forms both sizes from a segment and a ray origin.
+///
+/// *What it bounds.* The interval of [`QuadTube::intersect_with`] (every solver but
+/// `Bisection` with fewer than 40 steps) is, up to a shift of at most `E` along the ray,
+/// exactly the interval of a tube whose radius is within `E` of the given one. So a hit where
+/// the tube inflated by `E` is missed, or a miss where the tube deflated by `E` is hit, is a
+/// defect, and so is an entry or exit outside the inflated and deflated tubes' (± `E` along
+/// the ray, `E/|d|` in `t`).
+///
+/// *Why.* The kernel works in units of `R` with the origin moved near `p(½)`, where its
+/// ray-space coefficients sum to at most 18 (positions) and 9 (radii). Forming them perturbs
+/// the input by `≲ 40ε`; evaluating the gap `r − |w|` from them adds `≤ 432ε`, so a computed
+/// half chord is exact for a radius off by `≤ 864ε·R`; the position along the line errs by
+/// `≤ 408ε·R`, and converting back to `t` from the moved origin adds `≤ 4ε(R + |o − p(½)|)`.
+/// Both the radius change and the shift are within `E`. One assumption is tested, not proven:
+/// the entry's critical point is among the polished candidates. The full derivation is the
+/// "Conditioning" section of `src/kernel/spline.rs`; `docs/design/spline-kernel.md` has the
+/// reasoning and `tests/kernels/spline/conditioning.rs` the test over `L/r = 1 … 10⁵`.
+///
+/// `E/r` grows linearly in `L/r`: in `f32` it reaches the radius itself near `L/r ≈ 10⁴`.
+///
+/// ```
+/// use tubecast::spline_error_band;
+/// let e = spline_error_band(f32::EPSILON as f64, 2.0, 10.0);
+/// assert_eq!(e, (1024.0 * 2.0 + 8.0 * 10.0) * f32::EPSILON as f64);
+/// assert!(spline_error_band(f64::EPSILON, 2.0, 10.0) < 1e-12);
+/// ```
+#[inline]
+pub fn spline_error_band(eps: f64, bounding_radius: f64, origin_distance: f64) -> f64 {
+    1024.0 * eps * bounding_radius + 8.0 * eps * origin_distance
+}
+
+impl<T: Scalar> QuadTube<T> {
+    /// The bounding radius `R = max|bᵢ − p(½)| + max|rᵢ|` (in `f64`): the sphere about
+    /// `p(½)` of that radius holds the sweep, and the kernel works in units of it.
+    ///
+    /// ```
+    /// use tubecast::{QuadTube, V3};
+    /// let tube = QuadTube::new([V3::new(-2.0, 0.0, 0.0), V3::new(0.0, 2.0, 0.0), V3::new(2.0, 0.0, 0.0)], [0.5; 3])?;
+    /// // p(½) = (0, 1, 0): the ends are √5 from it, the middle control point 1.
+    /// assert_eq!(tube.bounding_radius(), 5f64.sqrt() + 0.5);
+    /// # Ok::<(), tubecast::GeometryError>(())
+    /// ```
+    pub fn bounding_radius(&self) -> f64 {
+        let b = self.b.map(|p| p.cast::<f64>());
+        let m = (b[0] + b[1] * 2.0 + b[2]) * 0.25;
+        let far = b.iter().map(|&p| (p - m).length()).fold(0.0, f64::max);
+        far + self.r.iter().fold(0.0, |a, &x| a.max(x.to_f64().abs()))
+    }
+
+    /// [`spline_error_band`] of this segment for a ray from `o`, at unit roundoff `eps` (of
+    /// the precision the kernel runs in, which may differ from `T`: a `QuadTube<f64>` can
+    /// describe the segment an `f32` kernel saw).
+    ///
+    /// ```
+    /// use tubecast::{QuadTube, Ray, Solver, V3};
+    /// let tube = QuadTube::new([V3::new(-2.0f64, 0.0, 0.0), V3::new(0.0, 2.0, 0.0), V3::new(2.0, 0.0, 0.0)], [0.5; 3])?;
+    /// let ray = Ray::new(V3::new(0.0, 1.0, -10.0), V3::new(0.0, 0.0, 1.0));
+    /// let e = tube.error_band(ray.o, f64::EPSILON);
+    /// // Through p(½) = (0, 1, 0) head on: the exact entry is at t = 9.5.
+    /// let iv = tube.intersect_with(&ray, Solver::Polynomial);
+    /// assert!(iv.hit && (iv.entry.t - 9.5).abs() <= 2.0 * e);
+    /// # Ok::<(), tubecast::GeometryError>(())
+    /// ```
+    pub fn error_band(&self, o: V3<T>, eps: f64) -> f64 {
+        let b = self.b.map(|p| p.cast::<f64>());
+        let m = (b[0] + b[1] * 2.0 + b[2]) * 0.25;
+        spline_error_band(eps, self.bounding_radius(), (o.cast::<f64>() - m).length())
     }
 }

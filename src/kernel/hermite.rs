@@ -26,13 +26,39 @@ use crate::kernel::spline::QuadTube;
 use crate::real::{Real, Scalar};
 use crate::vec::V3;
 
-/// A cubic Hermite segment: positions, position derivatives (tangents), radii and radius
-/// derivatives at both nodes; the parameter runs over `[0, 1]`.
+/// One node of a [`HermiteSegment`]: position, position derivative (tangent), radius and
+/// radius derivative there, all with respect to the segment's parameter on `[0, 1]`.
 ///
 /// ```
-/// use tubecast::{HermiteSegment, V3};
+/// use tubecast::{HermiteEnd, V3};
+/// let end = HermiteEnd { p: V3::new(1.0f64, 0.0, 0.0), tangent: V3::new(0.0, 2.0, 0.0), r: 0.1, dr: 0.0 };
+/// assert_eq!(end.r, 0.1);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HermiteEnd<T> {
+    /// Position.
+    pub p: V3<T>,
+    /// Position derivative `p'` (per unit of the segment's parameter, so its length scales
+    /// with the segment's length: for Catmull–Rom, half the difference of the neighbours).
+    pub tangent: V3<T>,
+    /// Radius.
+    pub r: T,
+    /// Radius derivative `r'` (per unit of the segment's parameter).
+    pub dr: T,
+}
+
+/// A cubic Hermite segment: positions, position derivatives (tangents), radii and radius
+/// derivatives at both nodes; the parameter runs over `[0, 1]`. Build it from its two ends
+/// with [`HermiteSegment::from_ends`] (named fields), or with [`HermiteSegment::new`]
+/// (positional).
+///
+/// ```
+/// use tubecast::{HermiteEnd, HermiteSegment, V3};
 /// let (p0, p1) = (V3::new(0.0f64, 0.0, 0.0), V3::new(3.0, 0.0, 0.0));
-/// let seg = HermiteSegment::new(p0, p1 - p0, 0.5, 0.0, p1, p1 - p0, 0.5, 0.0);
+/// let seg = HermiteSegment::from_ends(
+///     HermiteEnd { p: p0, tangent: p1 - p0, r: 0.5, dr: 0.0 },
+///     HermiteEnd { p: p1, tangent: p1 - p0, r: 0.5, dr: 0.0 },
+/// );
 /// let [a, b] = seg.split()?; // two quadratic sphere-swept segments, joined at t = ½
 /// assert_eq!(a.b[2], b.b[0]);
 /// assert_eq!(a.point(1.0), seg.point(0.5)); // straight, chord tangents: exact
@@ -98,10 +124,39 @@ impl<T: Real> HermiteSegment<T> {
 }
 
 impl<T: Scalar> HermiteSegment<T> {
-    /// A segment from node data (no validation here; [`Self::split`] validates the result).
+    /// A segment from its start and end node (no validation here; [`Self::split`] and
+    /// [`Self::split_adaptive`] validate the pieces they build). Example at [`HermiteSegment`].
+    pub fn from_ends(start: HermiteEnd<T>, end: HermiteEnd<T>) -> Self {
+        Self {
+            p0: start.p,
+            m0: start.tangent,
+            p1: end.p,
+            m1: end.tangent,
+            r0: start.r,
+            dr0: start.dr,
+            r1: end.r,
+            dr1: end.dr,
+        }
+    }
+    /// The same as [`Self::from_ends`] with the node data positional: start position,
+    /// tangent, radius, radius derivative, then the end's.
     #[allow(clippy::too_many_arguments)]
     pub fn new(p0: V3<T>, m0: V3<T>, r0: T, dr0: T, p1: V3<T>, m1: V3<T>, r1: T, dr1: T) -> Self {
         Self { p0, m0, p1, m1, r0, dr0, r1, dr1 }
+    }
+    /// The start and the end node.
+    ///
+    /// ```
+    /// use tubecast::{HermiteEnd, HermiteSegment, V3};
+    /// let a = HermiteEnd { p: V3::new(0.0f64, 0.0, 0.0), tangent: V3::new(1.0, 1.0, 0.0), r: 0.5, dr: -0.1 };
+    /// let b = HermiteEnd { p: V3::new(2.0, 0.0, 0.0), tangent: V3::new(1.0, -1.0, 0.0), r: 0.4, dr: 0.0 };
+    /// assert_eq!(HermiteSegment::from_ends(a, b).ends(), [a, b]);
+    /// ```
+    pub fn ends(&self) -> [HermiteEnd<T>; 2] {
+        [
+            HermiteEnd { p: self.p0, tangent: self.m0, r: self.r0, dr: self.dr0 },
+            HermiteEnd { p: self.p1, tangent: self.m1, r: self.r1, dr: self.dr1 },
+        ]
     }
     /// The two validated quadratic sub-segments. Errors as [`QuadTube::new`] (non-finite
     /// data, a sub-segment radius negative somewhere, zero radius).
@@ -202,11 +257,13 @@ impl<T: Scalar> HermiteSegment<T> {
     /// tolerance of the renderer is `1e-3`. Errors as [`QuadTube::new`].
     ///
     /// ```
-    /// use tubecast::{HermiteSegment, V3};
+    /// use tubecast::{HermiteEnd, HermiteSegment, V3};
     /// // A quarter circle of radius 1 (Hermite tangents π/2), tube radius 0.05.
     /// let h = std::f64::consts::FRAC_PI_2;
-    /// let seg = HermiteSegment::new(V3::new(1.0, 0.0, 0.0), V3::new(0.0, h, 0.0), 0.05, 0.0,
-    ///                               V3::new(0.0, 1.0, 0.0), V3::new(-h, 0.0, 0.0), 0.05, 0.0);
+    /// let seg = HermiteSegment::from_ends(
+    ///     HermiteEnd { p: V3::new(1.0, 0.0, 0.0), tangent: V3::new(0.0, h, 0.0), r: 0.05, dr: 0.0 },
+    ///     HermiteEnd { p: V3::new(0.0, 1.0, 0.0), tangent: V3::new(-h, 0.0, 0.0), r: 0.05, dr: 0.0 },
+    /// );
     /// let s = seg.split_adaptive(1e-3, 8)?;
     /// assert!(s.relative <= 1e-3 && s.distance <= 0.05e-3);
     /// assert_eq!(s.quads[0].b[0], seg.p0);

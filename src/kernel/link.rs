@@ -6,8 +6,9 @@
 //! * **faithful** — Han et al. 2019: apex, unit-cone transform, quadratic, slab `[z_cap, 1]`,
 //!   plus the two spheres; a textbook cylinder when the radii are exactly equal. With the
 //!   transform precomputed ([`HanLink`], Han Table 1 option d) or built per call
-//!   ([`RoundCone::intersect_han_on_the_fly`], option c).
-//! * **stable** — [`RoundCone`] ([`Primitive`]): no apex. The cone is written with its half-angle,
+//!   ([`RoundCone::intersect_han_on_the_fly`], option c). A baseline: it lives in
+//!   [`crate::baseline`].
+//! * **stable** — [`RoundCone`] ([`Primitive`](crate::Primitive)): no apex. The cone is written with its half-angle,
 //!   `sin θ = (r₁ − r₂)/L`, in coordinates centred on the link's midpoint, and the ray origin is
 //!   first moved to the point of the line closest to that midpoint. The quadratic's
 //!   coefficients are built from cross products (`|d × â|²`, `(o × â)·(d × â)`, …), so
@@ -20,13 +21,12 @@
 mod stable;
 pub use stable::PendingInterval;
 
-use super::cone::{cylinder_line, stump_line};
-use super::cone::{TangentCone, UnitConeTransform};
-use super::sphere::sphere_line;
+// The faithful link's `Primitive` impl (`src/primitive.rs`) still names it by this path.
+pub(crate) use crate::baseline::HanLink;
+
 use crate::error::GeometryError;
-use crate::primitive::Primitive;
 use crate::ray::{Interval, Ray};
-use crate::real::{Mask, Real, Scalar};
+use crate::real::{Real, Scalar};
 use crate::vec::V3;
 
 /// A round cone (link) between spheres `(a, ra)` and `(b, rb)`. The curve parameter `u` runs
@@ -34,9 +34,10 @@ use crate::vec::V3;
 ///
 /// Build scalar links with [`RoundCone::new`] (validated); lane links with
 /// [`RoundCone::from_lanes`] from validated scalar links. Ray queries, the box and the
-/// distance come from [`Primitive`]: the **stable** formulation (no apex: the cone by its
+/// distance come from [`Primitive`](crate::Primitive): the **stable** formulation (no apex: the cone by its
 /// half-angle in coordinates centred on the link, the ray origin moved to the point of the
-/// line closest to it; derivation in `src/kernel/link.rs`). [`HanLink`] is the faithful one.
+/// line closest to it; derivation in `src/kernel/link.rs`). [`HanLink`] is the faithful one, a
+/// baseline.
 ///
 /// ```
 /// use tubecast::{Primitive, Ray, RoundCone, V3};
@@ -151,59 +152,5 @@ impl<T: Real> RoundCone<T> {
     #[inline(always)]
     pub fn intersect_stump_stable(&self, ray: &Ray<T>) -> Interval<T> {
         self.stable_line(ray, false).clip(ray)
-    }
-
-    /// Faithful Han et al. round cone, tangent cone and transform built per call
-    /// (Han Table 1 option c).
-    #[inline(always)]
-    pub fn intersect_han_on_the_fly(&self, ray: &Ray<T>) -> Interval<T> {
-        HanLink::new(self).intersect(ray)
-    }
-}
-
-/// A link with Han's tangent cone and unit-cone transform precomputed (Han Table 1 option d):
-/// the faithful formulation of the same solid as its [`RoundCone`].
-///
-/// ```
-/// use tubecast::{HanLink, Primitive, Ray, RoundCone, V3};
-/// let link = RoundCone::new(V3::new(0.0f64, 0.0, 0.0), 1.0, V3::new(4.0, 0.0, 0.0), 0.5)?;
-/// let ray = Ray::new(V3::new(2.0, -10.0, 0.0), V3::new(0.0, 1.0, 0.0));
-/// let (stable, han) = (link.intersect(&ray), HanLink::new(&link).intersect(&ray));
-/// assert!(han.hit && (han.entry.t - stable.entry.t).abs() < 1e-12);
-/// # Ok::<(), tubecast::GeometryError>(())
-/// ```
-#[derive(Clone, Copy, Debug)]
-pub struct HanLink<T: Real> {
-    /// The link.
-    pub link: RoundCone<T>,
-    /// Its tangent cone (Han §3.2.2).
-    pub cone: TangentCone<T>,
-    /// The unit-cone transform (Han §4.1).
-    pub xf: UnitConeTransform<T>,
-}
-
-impl<T: Real> HanLink<T> {
-    /// Precompute the cone and the transform.
-    #[inline(always)]
-    pub fn new(link: &RoundCone<T>) -> Self {
-        let cone = TangentCone::new(link.a, link.ra, link.b, link.rb);
-        let xf = UnitConeTransform::new(&cone);
-        Self { link: *link, cone, xf }
-    }
-    /// The line interval: spheres ∪ (cone stump, or the textbook cylinder for equal radii).
-    #[inline(always)]
-    pub(crate) fn line(&self, ray: &Ray<T>) -> Interval<T> {
-        let l = &self.link;
-        let s1 = sphere_line(ray, l.a, l.ra, T::zero());
-        let s2 = sphere_line(ray, l.b, l.rb, T::one());
-        let mut iv = s1.hull(s2);
-        if self.cone.is_cone.any() {
-            iv = iv.hull(stump_line(ray, &self.cone, &self.xf));
-        }
-        if self.cone.is_cylinder.any() {
-            let cyl = cylinder_line(ray, l.a, l.b, l.ra).masked(self.cone.is_cylinder);
-            iv = iv.hull(cyl);
-        }
-        iv
     }
 }

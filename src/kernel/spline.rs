@@ -73,7 +73,7 @@
 //! Hence the kernel's interval is, up to a shift `≤ E` along the ray, exactly the interval of a
 //! tube whose radius is within `E` of the given one,
 //!
-//! `E = 1024·ε·R + 8·ε·|o − m|`,
+//! `E = 1024·ε·R + 8·ε·|o − m|` ([`crate::spline_error_band`], [`QuadTube::error_band`]),
 //!
 //! **provided** the entry's critical point is among the polished candidates (the one
 //! assumption, tested, not proven: below; on the certified path, that the root count of `P`

@@ -1,7 +1,8 @@
 //! Voxel traversal of round cones and rays on a unit grid: Kraaijeveld et al.'s conservative
-//! capsule voxelization (their Algorithm 1) generalised to two radii, with axis-aligned box
-//! (AABB) voxelization and Amanatides–Woo DDA as the two baselines, and the DDA ray walk
-//! a grid accelerator traverses with.
+//! capsule voxelization (their Algorithm 1) generalised to two radii, the voxels of a box, and
+//! the DDA ray walk a grid accelerator traverses with. The baselines the conservative
+//! voxelization is measured against (the link's bounding box, a DDA along its axis and the
+//! paper's Eq. 1 radius) are in [`crate::baseline::voxel`].
 //!
 //! Coordinates are **grid coordinates**: voxel `[i, j, k]` is the box `[i, i+1] × [j, j+1] ×
 //! [k, k+1]`, the grid is `[0, n₀] × [0, n₁] × [0, n₂]`; voxels outside it are never visited.
@@ -21,7 +22,8 @@
 //! box of Algorithm 1. With equal radii this is Kraaijeveld's capsule box, except their
 //! projected radius `r/√(1 − (dᵢ/|d|)²)` (Eq. 1), which is smaller than `ρᵢ` when all three
 //! components of `d` are non-zero (for `d ∝ (1, 1, 1)`: `1.22·r` against `1.41·r`) and then
-//! misses voxels the solid meets; `tests/kernels/voxel/conservative.rs` counts them.
+//! misses voxels the solid meets; `tests/kernels/voxel/conservative.rs` counts them
+//! ([`crate::baseline::voxel::voxelize_capsule_eq1`]).
 //!
 //! # Rounding
 //! Inputs (`f32` or `f64`) are converted to `f64` exactly and every bound is computed in `f64`.
@@ -35,6 +37,11 @@ mod occupancy;
 
 pub use occupancy::{clipped_sdf, occupancy, Clip};
 
+// The baselines' old paths, for the renderer's grid build until it imports them from
+// `baseline` (and fills spline boxes with `voxelize_box`).
+#[doc(hidden)]
+pub use crate::baseline::voxel::{voxelize_aabb, voxelize_dda};
+
 use crate::kernel::link::RoundCone;
 use crate::real::Scalar;
 use crate::vec::V3;
@@ -45,18 +52,18 @@ pub type Dims = [u32; 3];
 /// Outward rounding margin `δ = 32·ε·M` of the module docs, in grid units. The input is
 /// converted to `f64` exactly and all bounds are computed in `f64`, so `ε = 2⁻⁵²` for either
 /// precision of the input.
-fn margin<T: Scalar>(l: &RoundCone<T>) -> f64 {
+pub(crate) fn margin<T: Scalar>(l: &RoundCone<T>) -> f64 {
     let m = l.a.max_abs().to_f64().max(l.b.max_abs().to_f64()) + l.ra.to_f64().max(l.rb.to_f64()) + 1.0;
     32.0 * f64::EPSILON * m
 }
 
 /// True when every coordinate and radius is finite (the functions visit nothing otherwise).
-fn finite<T: Scalar>(l: &RoundCone<T>) -> bool {
+pub(crate) fn finite<T: Scalar>(l: &RoundCone<T>) -> bool {
     [l.a.x, l.a.y, l.a.z, l.ra, l.b.x, l.b.y, l.b.z, l.rb].iter().all(|x| x.to_f64().is_finite())
 }
 
 /// The round cone's bounding box `(lo, hi)` in `f64`, widened by `delta`.
-fn bounds<T: Scalar>(l: &RoundCone<T>, delta: f64) -> ([f64; 3], [f64; 3]) {
+pub(crate) fn bounds<T: Scalar>(l: &RoundCone<T>, delta: f64) -> ([f64; 3], [f64; 3]) {
     let (a, b) = (l.a.cast::<f64>().to_array(), l.b.cast::<f64>().to_array());
     let (ra, rb) = (l.ra.to_f64(), l.rb.to_f64());
     let lo = std::array::from_fn(|i| (a[i] - ra).min(b[i] - rb) - delta);
@@ -77,7 +84,7 @@ fn span(x0: f64, x1: f64, n: u32) -> Option<(u32, u32)> {
 }
 
 /// Visit every voxel of the box `[lo, hi]` (grid coordinates, closed) inside the grid.
-fn visit_box(lo: [f64; 3], hi: [f64; 3], dims: Dims, visit: &mut impl FnMut([u32; 3])) {
+pub(crate) fn visit_box(lo: [f64; 3], hi: [f64; 3], dims: Dims, visit: &mut impl FnMut([u32; 3])) {
     let (Some(x), Some(y), Some(z)) =
         (span(lo[0], hi[0], dims[0]), span(lo[1], hi[1], dims[1]), span(lo[2], hi[2], dims[2]))
     else {
@@ -92,41 +99,20 @@ fn visit_box(lo: [f64; 3], hi: [f64; 3], dims: Dims, visit: &mut impl FnMut([u32
     }
 }
 
-/// The AABB baseline: every voxel of the round cone's bounding box (widened by the rounding
-/// margin). Conservative, but visits up to `O(L³)` voxels for a diagonal link of length `L`.
+/// The voxels of the closed box `[lo, hi]` (grid coordinates): voxel `[i, j, k]` for `i` from
+/// `⌊lo.x⌋` to `⌊hi.x⌋` (and so on), clipped to the grid, so that every point of the box lies
+/// in a visited voxel. The bounds are converted to `f64` exactly and only floored: nothing is
+/// rounded, so no margin is added (widen the box first for a voxel that only touches it at a
+/// face). A box with some `lo > hi`, or with a NaN bound, visits nothing.
 ///
 /// ```
-/// use tubecast::{voxel, RoundCone, V3};
-/// let l = RoundCone { a: V3::new(0.5f64, 0.5, 0.5), ra: 0.2, b: V3::new(3.5, 3.5, 0.5), rb: 0.2 };
-/// let mut n = 0;
-/// voxel::voxelize_aabb(&l, [8, 8, 8], |_| n += 1);
-/// assert_eq!(n, 16); // the 4 × 4 × 1 voxels of the box [0.3, 3.7]² × [0.3, 0.7]
-/// ```
-pub fn voxelize_aabb<T: Scalar>(l: &RoundCone<T>, dims: Dims, mut visit: impl FnMut([u32; 3])) {
-    if finite(l) {
-        let (lo, hi) = bounds(l, margin(l));
-        visit_box(lo, hi, dims, &mut visit);
-    }
-}
-
-/// The DDA baseline: the voxels the centre segment `a → b` passes through (Amanatides & Woo),
-/// ignoring the radii. Not conservative for a tube of positive radius.
-///
-/// ```
-/// use tubecast::{voxel, RoundCone, V3};
-/// let l = RoundCone { a: V3::new(0.5f64, 0.5, 0.5), ra: 0.4, b: V3::new(3.5, 0.5, 0.5), rb: 0.4 };
+/// use tubecast::{voxel, V3};
 /// let mut cells = Vec::new();
-/// voxel::voxelize_dda(&l, [8, 8, 8], |c| cells.push(c));
-/// assert_eq!(cells, [[0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0]]);
+/// voxel::voxelize_box(V3::new(0.5f64, 0.5, 0.5), V3::new(2.0, 0.9, 0.9), [8, 8, 8], |c| cells.push(c));
+/// assert_eq!(cells, [[0, 0, 0], [1, 0, 0], [2, 0, 0]]); // x = 2 is in voxel 2
 /// ```
-pub fn voxelize_dda<T: Scalar>(l: &RoundCone<T>, dims: Dims, mut visit: impl FnMut([u32; 3])) {
-    if !finite(l) {
-        return;
-    }
-    dda(l.a, l.b - l.a, T::zero(), T::one(), dims, |c, _, _| {
-        visit(c);
-        true
-    });
+pub fn voxelize_box<T: Scalar>(lo: V3<T>, hi: V3<T>, dims: Dims, mut visit: impl FnMut([u32; 3])) {
+    visit_box(lo.cast::<f64>().to_array(), hi.cast::<f64>().to_array(), dims, &mut visit);
 }
 
 /// Conservative voxelization of a round cone (Kraaijeveld Alg. 1 generalised to two radii,
@@ -135,36 +121,20 @@ pub fn voxelize_dda<T: Scalar>(l: &RoundCone<T>, dims: Dims, mut visit: impl FnM
 ///
 /// ```
 /// use tubecast::{voxel, RoundCone, V3};
-/// // A diagonal link: the AABB walks the whole 6³ box, Algorithm 1 a band around the diagonal.
+/// // A diagonal link: its bounding box holds 6³ voxels, Algorithm 1 a band around the diagonal.
 /// let l = RoundCone { a: V3::new(1.0f64, 1.0, 1.0), ra: 0.3, b: V3::new(5.0, 5.0, 5.0), rb: 0.1 };
 /// let (mut ours, mut boxed) = (0, 0);
 /// voxel::voxelize_round_cone(&l, [8, 8, 8], |_| ours += 1);
-/// voxel::voxelize_aabb(&l, [8, 8, 8], |_| boxed += 1);
+/// voxel::voxelize_box(V3::new(0.7, 0.7, 0.7), V3::new(5.3, 5.3, 5.3), [8, 8, 8], |_| boxed += 1);
 /// assert!(ours < boxed && boxed == 216);
 /// ```
 pub fn voxelize_round_cone<T: Scalar>(l: &RoundCone<T>, dims: Dims, visit: impl FnMut([u32; 3])) {
     march(l, dims, Projection::Exact, visit);
 }
 
-/// Algorithm 1 with the paper's projected radii (Kraaijeveld Eq. 1, `R/√(1 − (dᵢ/|d|)²)`)
-/// in place of `R·√(1 + (dᵢ/d_{a₀})²)`: kept to show, by test, that it misses voxels of
-/// links with three non-zero direction components. Not conservative; do not build on it.
-///
-/// ```
-/// use tubecast::{voxel, RoundCone, V3};
-/// let l = RoundCone { a: V3::new(1.0f64, 1.0, 1.0), ra: 0.3, b: V3::new(5.0, 5.0, 5.0), rb: 0.3 };
-/// let (mut eq1, mut ours) = (0, 0);
-/// voxel::voxelize_capsule_eq1(&l, [8, 8, 8], |_| eq1 += 1);
-/// voxel::voxelize_round_cone(&l, [8, 8, 8], |_| ours += 1);
-/// assert!(eq1 <= ours);
-/// ```
-pub fn voxelize_capsule_eq1<T: Scalar>(l: &RoundCone<T>, dims: Dims, visit: impl FnMut([u32; 3])) {
-    march(l, dims, Projection::Eq1, visit);
-}
-
 /// Which projected radius [`march`] widens the slab boxes by.
 #[derive(Clone, Copy, PartialEq)]
-enum Projection {
+pub(crate) enum Projection {
     /// `R·√(1 + (dᵢ/d_{a₀})²)` (derived in the module docs).
     Exact,
     /// Kraaijeveld Eq. 1, `R/√(1 − (dᵢ/|d|)²)`.
@@ -172,7 +142,7 @@ enum Projection {
 }
 
 /// Algorithm 1: march the major axis slab by slab, visiting each slab's 2-D box.
-fn march<T: Scalar>(l: &RoundCone<T>, dims: Dims, proj: Projection, mut visit: impl FnMut([u32; 3])) {
+pub(crate) fn march<T: Scalar>(l: &RoundCone<T>, dims: Dims, proj: Projection, mut visit: impl FnMut([u32; 3])) {
     if !finite(l) {
         return;
     }
@@ -184,7 +154,7 @@ fn march<T: Scalar>(l: &RoundCone<T>, dims: Dims, proj: Projection, mut visit: i
     // Rank the axes: a0 the major one.
     let a0 = (0..3).fold(0, |m, i| if d[i].abs() > d[m].abs() { i } else { m });
     if d[a0] == 0.0 {
-        return voxelize_aabb(l, dims, visit); // a sphere
+        return visit_box(box_lo, box_hi, dims, &mut visit); // a sphere
     }
     let (a1, a2) = ((a0 + 1) % 3, (a0 + 2) % 3);
     if d[a0] < 0.0 {

@@ -9,9 +9,9 @@
 use crate::spline::common::eval;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
+use tubecast::baseline::HanLink;
 use tubecast::{
-    Aabb, HanLink, Interval, Primitive, QuadTube, Ray, Real, RoundCone, Scalar, Solver, Sphere, WideF32x8, WideF64x4,
-    V3,
+    Aabb, Interval, Primitive, QuadTube, Ray, Real, RoundCone, Scalar, Solver, Sphere, WideF32x8, WideF64x4, V3,
 };
 
 struct Case {

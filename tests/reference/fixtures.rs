@@ -5,11 +5,12 @@
 #![allow(dead_code)]
 
 use serde_json::Value;
+use tubecast::baseline::HanLink;
 use tubecast::csg::{union, Tagged};
 use tubecast::Hit;
 use tubecast::QuadTube;
 use tubecast::Solver;
-use tubecast::{HanLink, Primitive, Ray, RoundCone, V3};
+use tubecast::{Primitive, Ray, RoundCone, V3};
 
 pub type V = V3<f64>;
 

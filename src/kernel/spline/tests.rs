@@ -49,7 +49,7 @@ fn both<T: Scalar>(t: &QuadTube<f64>, ray: &Ray<f64>) -> Option<(Line, Line, boo
 /// and symmetric arcs crossed in their plane of symmetry.
 ///
 /// *Tolerance.* Both are within the kernel's band of the exact interval (parent module,
-/// "Conditioning": a shift `≤ E` and a radius within `E`, `E = 1024εR + 8ε|o − m|`). A radius
+/// "Conditioning": a shift `≤ E` and a radius within `E`, [`crate::spline_error_band`]). A radius
 /// change `E` moves an entry by `E/cos θ`, and `cos θ ≥ c/r_max` for a chord of half length
 /// `c` through a sphere of radius `≤ r_max`; so the two entries (and exits) differ by at most
 /// `2E(1 + r_max/c)`, and the hit flags may differ only where `c ≤ √(2E·r_max)` (the chord of
@@ -104,9 +104,6 @@ fn certified_count_agrees_with_the_cascade() {
             (tube, ray)
         };
         let radii = tube.r;
-        let m = tube.point(0.5);
-        let big = (0..3).map(|i| (tube.b[i] - m).length()).fold(0.0, f64::max)
-            + radii.iter().fold(0.0f64, |a, &x| a.max(x.abs()));
         let rmax = radii.iter().fold(0.0f64, |a, &x| a.max(x));
         for (p, res) in [(0, both::<f32>(&tube, &ray)), (1, both::<f64>(&tube, &ray))] {
             let Some((a, c, cert)) = res else { continue };
@@ -116,7 +113,7 @@ fn certified_count_agrees_with_the_cascade() {
             }
             tally[p][fam][1] += 1;
             let eps = if p == 0 { f32::EPSILON as f64 } else { f64::EPSILON };
-            let e = 1024.0 * eps * big + 8.0 * eps * (ray.o - m).length();
+            let e = tube.error_band(ray.o, eps);
             // Half chords along the line (|d| = 1).
             let half = |x: (bool, f64, f64)| if x.0 { 0.5 * (x.2 - x.1) } else { 0.0 };
             let ch = half(a).max(half(c));

@@ -27,7 +27,8 @@
 use crate::common::check::*;
 use crate::common::*;
 use proptest::prelude::*;
-use tubecast::{HanLink, Interval, Primitive, Ray, RoundCone, Scalar, Sphere, V3};
+use tubecast::baseline::HanLink;
+use tubecast::{Interval, Primitive, Ray, RoundCone, Scalar, Sphere, V3};
 
 fn region() -> impl Strategy<Value = Region> {
     proptest::sample::select(REGIONS.to_vec())

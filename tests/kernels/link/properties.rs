@@ -30,7 +30,8 @@
 use crate::common::check::*;
 use crate::common::*;
 use proptest::prelude::*;
-use tubecast::{HanLink, Interval, LinkShape, Ray, RoundCone, V3};
+use tubecast::baseline::HanLink;
+use tubecast::{Interval, LinkShape, Ray, RoundCone, V3};
 use tubecast::{Primitive, WideF32x8, WideF64x4};
 
 fn region() -> impl Strategy<Value = Region> {

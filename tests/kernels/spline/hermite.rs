@@ -3,8 +3,8 @@
 
 use super::common::*;
 use proptest::prelude::*;
-use tubecast::HermiteSegment;
 use tubecast::Solver;
+use tubecast::{HermiteEnd, HermiteSegment};
 use tubecast::{Primitive, Ray, RoundCone, V3};
 
 fn v(a: [f64; 3]) -> V3<f64> {
@@ -13,8 +13,14 @@ fn v(a: [f64; 3]) -> V3<f64> {
 
 fn seg_strategy() -> impl Strategy<Value = HermiteSegment<f64>> {
     let p = || prop::array::uniform3(-1.0f64..1.0);
-    (p(), p(), p(), p(), 0.2f64..0.6, -0.3f64..0.3, 0.2f64..0.6, -0.3f64..0.3)
-        .prop_map(|(a, ma, b, mb, r0, d0, r1, d1)| HermiteSegment::new(v(a), v(ma), r0, d0, v(b), v(mb), r1, d1))
+    (p(), p(), p(), p(), 0.2f64..0.6, -0.3f64..0.3, 0.2f64..0.6, -0.3f64..0.3).prop_map(
+        |(a, ma, b, mb, r0, d0, r1, d1)| {
+            HermiteSegment::from_ends(
+                HermiteEnd { p: v(a), tangent: v(ma), r: r0, dr: d0 },
+                HermiteEnd { p: v(b), tangent: v(mb), r: r1, dr: d1 },
+            )
+        },
+    )
 }
 
 proptest! {
@@ -43,7 +49,10 @@ proptest! {
     fn straight_split_is_the_link(a in prop::array::uniform3(-1.0f64..1.0), b in prop::array::uniform3(-1.0f64..1.0),
                                   r0 in 0.05f64..0.6, r1 in 0.05f64..0.6, (o, d) in ray_strategy()) {
         let ch = v(b) - v(a);
-        let s = HermiteSegment::new(v(a), ch, r0, r1 - r0, v(b), ch, r1, r1 - r0);
+        let s = HermiteSegment::from_ends(
+            HermiteEnd { p: v(a), tangent: ch, r: r0, dr: r1 - r0 },
+            HermiteEnd { p: v(b), tangent: ch, r: r1, dr: r1 - r0 },
+        );
         let [p, q] = s.split().unwrap();
         let ray = Ray::new(v(o), v(d));
         let iv = p.intersect_with(&ray, Solver::Polynomial).hull(q.intersect_with(&ray, Solver::Polynomial));
@@ -118,15 +127,9 @@ fn model_error_report() {
         rel[150], rel[270], rel[299]
     );
     // Straight segment: zero model error (same sweep).
-    let s = HermiteSegment::new(
-        v([0.0; 3]),
-        v([1.0, 2.0, 0.0]),
-        0.3,
-        0.1,
-        v([1.0, 2.0, 0.0]),
-        v([1.0, 2.0, 0.0]),
-        0.4,
-        0.1,
+    let s = HermiteSegment::from_ends(
+        HermiteEnd { p: v([0.0; 3]), tangent: v([1.0, 2.0, 0.0]), r: 0.3, dr: 0.1 },
+        HermiteEnd { p: v([1.0, 2.0, 0.0]), tangent: v([1.0, 2.0, 0.0]), r: 0.4, dr: 0.1 },
     );
     let [a, b] = s.split().unwrap();
     for k in 0..=100 {
@@ -145,26 +148,14 @@ fn model_error_report() {
 /// Bad input: a Hermite segment whose split has a negative radius is rejected.
 #[test]
 fn negative_sub_radius_rejected() {
-    let s = HermiteSegment::new(
-        v([0.0; 3]),
-        v([1.0, 0.0, 0.0]),
-        0.1,
-        -3.0,
-        v([1.0, 0.0, 0.0]),
-        v([1.0, 0.0, 0.0]),
-        0.1,
-        3.0,
+    let s = HermiteSegment::from_ends(
+        HermiteEnd { p: v([0.0; 3]), tangent: v([1.0, 0.0, 0.0]), r: 0.1, dr: -3.0 },
+        HermiteEnd { p: v([1.0, 0.0, 0.0]), tangent: v([1.0, 0.0, 0.0]), r: 0.1, dr: 3.0 },
     );
     assert_eq!(s.split(), Err(tubecast::GeometryError::NegativeRadius));
-    let s = HermiteSegment::new(
-        v([0.0; 3]),
-        v([f64::NAN, 0.0, 0.0]),
-        0.1,
-        0.0,
-        v([1.0, 0.0, 0.0]),
-        v([1.0, 0.0, 0.0]),
-        0.1,
-        0.0,
+    let s = HermiteSegment::from_ends(
+        HermiteEnd { p: v([0.0; 3]), tangent: v([f64::NAN, 0.0, 0.0]), r: 0.1, dr: 0.0 },
+        HermiteEnd { p: v([1.0, 0.0, 0.0]), tangent: v([1.0, 0.0, 0.0]), r: 0.1, dr: 0.0 },
     );
     assert!(matches!(s.split(), Err(tubecast::GeometryError::NonFinite { .. })));
 }
@@ -177,7 +168,8 @@ fn helix_segments(n: usize, big: f64, r: f64) -> Vec<HermiteSegment<f64>> {
         V3::new(big * a.cos(), big * a.sin(), big * k as f64 / n as f64)
     };
     let m = |k: i64| (p(k + 1) - p(k - 1)) * 0.5;
-    (0..n as i64).map(|k| HermiteSegment::new(p(k), m(k), r, 0.0, p(k + 1), m(k + 1), r, 0.0)).collect()
+    let node = |k: i64| HermiteEnd { p: p(k), tangent: m(k), r, dr: 0.0 };
+    (0..n as i64).map(|k| HermiteSegment::from_ends(node(k), node(k + 1))).collect()
 }
 
 /// Entry/exit of the line through the union of `n + 1` sampled spheres of the cubic with radius

@@ -30,7 +30,7 @@ fn decode(data: &[u8]) -> (RoundCone<f64>, Ray<f64>) {
 /// passes 1.8·10⁻⁴ from c, so it meets the circle almost head on (cos > 1 − 10⁻¹⁰):
 /// a distance error E on the surface is an error E/|d| in t.
 ///
-/// *Band.* The spline kernel's band (src/kernel/spline.rs, "Conditioning") in f32 is
+/// *Band.* The spline kernel's band in f32 ([`tubecast::spline_error_band`]) is
 /// E = 1024ε·R + 8ε|o − m| with R ≤ L/2 + r ≤ 65,584 and |o − m| ≤ 65,551 (m the midpoint):
 /// E ≤ 8.07 + 0.07 = 8.14, to which forming the f32 middle control point adds
 /// ε(√3|m| + r) ≤ 0.014 (fuzz/checks/differential.rs); t within 8.2/|d| = 0.042 of the exact.
@@ -51,12 +51,14 @@ fn thin_tube_crossed_at_right_angles_near_its_end() {
     let root = (b1 * b1 - a2 * c0).sqrt();
     let (t_in, t_out) = ((-b1 - root) / a2, (-b1 + root) / a2);
     assert!(t_in < 0.0 && t_out > 0.16 && t_out < 0.17, "derivation: {t_in} {t_out}");
-    let band = 8.2 / ray.d.length();
-
     let l32: RoundCone<f32> = link.cast();
     let r32 = Ray::new(ray.o.cast::<f32>(), ray.d.cast::<f32>());
     let q32 = QuadTube::from_link(&l32).unwrap();
     let q64 = QuadTube::from_link(&link).unwrap();
+    let eps = f32::EPSILON as f64;
+    let forming = eps * (3f64.sqrt() * q64.point(0.5).length() + link.ra.max(link.rb));
+    let band = (q64.error_band(ray.o, eps) + forming) / ray.d.length();
+    assert!(band <= 8.2 / ray.d.length(), "derivation: band {band}");
     for solver in [Solver::Polynomial, Solver::Newton, Solver::Itp] {
         let iv = q32.intersect_with(&r32, solver);
         assert!(iv.hit, "{solver:?} f32 misses");

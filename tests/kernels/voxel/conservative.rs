@@ -13,6 +13,7 @@
 //! the oracle judges).
 
 use std::collections::HashSet;
+use tubecast::baseline;
 use tubecast::voxel::{self, Dims};
 use tubecast::{RoundCone, Scalar, V3};
 use tubecast_oracle::golden_min;
@@ -179,9 +180,9 @@ type Method<T> = fn(&RoundCone<T>, Dims, &mut dyn FnMut([u32; 3]));
 fn methods<T: Scalar>() -> [(&'static str, Method<T>); 4] {
     [
         ("round_cone", |l, d, f| voxel::voxelize_round_cone(l, d, f)),
-        ("aabb", |l, d, f| voxel::voxelize_aabb(l, d, f)),
-        ("dda", |l, d, f| voxel::voxelize_dda(l, d, f)),
-        ("eq1", |l, d, f| voxel::voxelize_capsule_eq1(l, d, f)),
+        ("aabb", |l, d, f| baseline::voxel::voxelize_aabb(l, d, f)),
+        ("dda", |l, d, f| baseline::voxel::voxelize_dda(l, d, f)),
+        ("eq1", |l, d, f| baseline::voxel::voxelize_capsule_eq1(l, d, f)),
     ]
 }
 

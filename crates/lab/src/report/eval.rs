@@ -4,9 +4,10 @@
 use super::oracle::{self, link_bound, LinkCase, LinkTruth, SplineCase, SplineTruth};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
+use tubecast::baseline::HanLink;
 use tubecast::QuadTube;
 use tubecast::Solver;
-use tubecast::{HanLink, Interval, Primitive, Ray, Real, RoundCone, Scalar};
+use tubecast::{Interval, Primitive, Ray, Real, RoundCone, Scalar};
 
 /// Lane type of a method.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -461,15 +462,13 @@ pub fn score_links(prec: Precision, cases: &[LinkCase], truth: &[LinkTruth], out
 }
 
 /// Score spline outcomes against the dense oracle. Band: the kernel's derived backward-error
-/// band (`src/kernel/spline.rs`, "Conditioning") `E = 1024·ε·R + 8·ε·|o − p(½)|`, `R =
-/// max|bᵢ − p(½)| + max rᵢ`, plus `1e-9·R` for the sampled oracle.
+/// band [`tubecast::spline_error_band`] (`QuadTube::error_band`), plus `1e-9·R` for the
+/// sampled oracle.
 pub fn score_splines(prec: Precision, cases: &[SplineCase], truth: &[SplineTruth], out: &[Outcome]) -> Score {
     let mut s = Score { n: cases.len(), ..Score::default() };
     for ((c, tr), o) in cases.iter().zip(truth).zip(out) {
-        let m = c.tube.point(0.5);
-        let ext = c.tube.b.iter().map(|&p| (p - m).length()).fold(0.0, f64::max) + c.radius;
-        let dist = (c.ray.o - m).length();
-        let band = 1024.0 * prec.eps() * ext + 8.0 * prec.eps() * dist + 1e-9 * ext;
+        let tube = oracle::quad_tube(&c.tube);
+        let band = tube.error_band(oracle::v3(c.ray.o), prec.eps()) + 1e-9 * tube.bounding_radius();
         let dl = c.ray.d.length();
         let must_hit = tr.gap < -band && tr.iv.is_some_and(|iv| iv.1 > band / dl);
         let must_miss = tr.gap > band || tr.iv.is_some_and(|iv| iv.1 < -band / dl);

@@ -48,9 +48,10 @@ struct Tally {
     max_band_r: f64,
 }
 
-/// The band `E` of a case (length units) for machine epsilon `eps`.
+/// The band `E` of a case (length units) for machine epsilon `eps`
+/// ([`tubecast::spline_error_band`], with the oracle's `R` and `|o − p(½)|`).
 fn band(eps: f64, c: &ThinCase) -> f64 {
-    1024.0 * eps * c.extent + 8.0 * eps * c.origin_dist
+    tubecast::spline_error_band(eps, c.extent, c.origin_dist)
 }
 
 /// The kernel's line interval in precision `T` (the case's numbers are `f32`-representable).

@@ -1,13 +1,15 @@
 //! Voxelization timings by repeated median (not criterion): the three round-cone voxelizations
-//! (`tubecast::voxel`) against link length and orientation, and the occupancy pyramid's build on
-//! one thread against all threads. Each figure is the median of `REPS` timed repetitions, with
-//! the interquartile range beside it so a loaded machine shows as spread, not as a number.
+//! (`tubecast::voxel` and the baselines of `tubecast::baseline::voxel`) against link length
+//! and orientation, and the occupancy pyramid's build on one thread against all threads. Each
+//! figure is the median of `REPS` timed repetitions, with the interquartile range beside it so
+//! a loaded machine shows as spread, not as a number.
 
 use super::voxel_clock::Clock;
 use super::{ensure_dir, fmt_num, machine, write_text, ReportError, ReportFiles, ReportOptions};
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
+use tubecast::baseline;
 use tubecast::voxel::{self, Dims};
 use tubecast::{RoundCone, V3};
 use tubecast_render::accel::grid::Pyramid;
@@ -47,8 +49,8 @@ fn voxelize_table(md: &mut String) -> Result<(), ReportError> {
         .map_err(|e| ReportError::Render(format!("thread pool: {e}")))?;
     let methods: [(&str, Method); 3] = [
         ("Alg. 1", |l, d, f| voxel::voxelize_round_cone(l, d, f)),
-        ("AABB", |l, d, f| voxel::voxelize_aabb(l, d, f)),
-        ("DDA", |l, d, f| voxel::voxelize_dda(l, d, f)),
+        ("AABB", |l, d, f| baseline::voxel::voxelize_aabb(l, d, f)),
+        ("DDA", |l, d, f| baseline::voxel::voxelize_dda(l, d, f)),
     ];
     md.push_str(
         "| orientation | length (voxels) | method | voxels per link | ns per link: median | q1 – q3 |\n\

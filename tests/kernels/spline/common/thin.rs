@@ -1,6 +1,6 @@
 //! The backward-error judge of the length/radius sweep (`tests/kernels/spline/conditioning.rs`,
-//! `tests/kernels/spline/approximate_solvers.rs`); the band `E` is derived in `src/kernel/spline.rs`
-//! ("Conditioning").
+//! `tests/kernels/spline/approximate_solvers.rs`); the band `E` is
+//! [`tubecast::spline_error_band`], derived in `src/kernel/spline.rs` ("Conditioning").
 
 use tubecast::{QuadTube, Ray, Scalar, Solver, V3};
 use tubecast_oracle::{quad_crossing_offset, ThinCase, Vec3};
@@ -9,9 +9,10 @@ use tubecast_oracle::{quad_crossing_offset, ThinCase, Vec3};
 /// which is approximate: `tests/kernels/spline/approximate_solvers.rs`).
 pub const ACCURATE: [Solver; 4] = [Solver::Polynomial, Solver::Itp, Solver::Newton, Solver::Bisection { iters: 40 }];
 
-/// The backward-error band `E` of a case (length units), for machine epsilon `eps`.
+/// The backward-error band `E` of a case (length units), for machine epsilon `eps`: the
+/// kernel's [`tubecast::spline_error_band`] with the oracle's own `R` and `|o − p(½)|`.
 pub fn band(eps: f64, c: &ThinCase) -> f64 {
-    1024.0 * eps * c.extent + 8.0 * eps * c.origin_dist
+    tubecast::spline_error_band(eps, c.extent, c.origin_dist)
 }
 
 /// The kernel's line interval in precision `T` (inputs are `T`-representable).

@@ -1,6 +1,9 @@
 //! View presets, the orthographic camera, framing, antialiasing and the legend's contrast.
 
-use tubecast_render::render::{Camera, Preset};
+use tubecast::V3;
+use tubecast_render::accel::Bvh;
+use tubecast_render::render::{contrasting_ink, render, Camera, Colormap, Image, Options, Preset, Shading};
+use tubecast_render::scene::{Node, Radii, Scene};
 
 #[test]
 fn presets_look_along_their_axes_and_frame_the_box() {
@@ -38,11 +41,6 @@ fn orthographic_rays_are_parallel_and_span_the_framed_height() {
     assert!((top.o.y - 0.9 * half).abs() < 1e-12 && (bottom.o.y + 0.9 * half).abs() < 1e-12);
     assert!((top.o.z - c.eye.z).abs() < 1e-12);
 }
-
-use tubecast::V3;
-use tubecast_render::accel::Bvh;
-use tubecast_render::render::{contrasting_ink, render, Colormap, Image, Options, Shading};
-use tubecast_render::scene::{Node, Radii, Scene};
 
 /// Spheres of a scene that does not fill its bounding box: a diagonal streak of small spheres
 /// and one big sphere off to the side.
