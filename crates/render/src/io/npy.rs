@@ -141,14 +141,18 @@ pub fn read(data: &[u8], name: &str, cols: Option<usize>) -> Result<Array2, IoEr
     } else {
         npy.into_vec::<f64>().map_err(read_err)?
     };
-    let mut out = flat.clone();
-    if fortran {
+    // Column-major data is transposed into a second array; row-major data is the array.
+    let data = if fortran {
+        let mut out = vec![0.0; flat.len()];
         for (k, v) in flat.into_iter().enumerate() {
             let (r, c) = (k % rows.max(1), k / rows.max(1));
             out[r * ncols + c] = v;
         }
-    }
-    Ok(Array2 { rows, cols: ncols, data: out })
+        out
+    } else {
+        flat
+    };
+    Ok(Array2 { rows, cols: ncols, data })
 }
 
 /// Whether `h` is a flat Python dict literal `{'key': value, ...}` whose values are quoted
