@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# GPU against CPU closest-hit speed on Russig's bundle, 10⁵ to 10⁸ links (as memory allows):
+# GPU against CPU speed (closest hits, all crossings) on Russig's bundle, 10⁵ to 10⁸ links (as memory allows):
 # run unchanged on a machine with a Vulkan GPU. On Mesa's lavapipe the GPU column measures the
 # CPU emulating a GPU. Override the sizes with TUBECAST_GPU_BENCH_LINKS=10000,100000.
 set -euo pipefail

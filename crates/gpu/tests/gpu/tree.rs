@@ -220,3 +220,19 @@ fn tree_walk_matches_the_cpu_with_spheres_stored_whole() {
     let (_, hits, _) = compare_with(&gpu, &scene, &bvh, 3000, "beads");
     assert!(hits > 1000, "{hits} hits");
 }
+
+/// A tree over spline pieces is refused with an error naming them (the spline kernel is not on
+/// the GPU), not a panic or a wrong answer.
+#[test]
+fn spline_trees_are_refused() {
+    let Some(gpu) = crate::gpu("spline_trees_are_refused") else { return };
+    let scene = Scene::from_polylines(&generate::bundle(4, 6, 1), 0.1, "bundle").unwrap();
+    let bvh = WideBvh::from_scene(&scene, Model::Splines).unwrap();
+    match GpuScene::upload(&gpu, &bvh) {
+        Err(e @ tubecast_gpu::GpuError::Unsupported(_)) => {
+            assert!(e.to_string().contains("spline"), "{e}");
+        }
+        Err(e) => panic!("another error: {e}"),
+        Ok(_) => panic!("a spline tree uploaded"),
+    }
+}
