@@ -25,7 +25,7 @@ fn unsupported(what: &str) -> CliError {
 }
 
 /// `render --device gpu`: exact links (no --splines, --model, --tolerance, --pixel-error),
-/// the 8-wide tree, opaque.
+/// the 8-wide tree; opaque or transparent.
 pub fn check_render(a: &RenderArgs) -> Result<(), CliError> {
     if a.device == Device::Cpu {
         return Ok(());
@@ -39,9 +39,6 @@ pub fn check_render(a: &RenderArgs) -> Result<(), CliError> {
     }
     if a.accel != Accel::Bvh {
         return Err(unsupported("--accel other than bvh"));
-    }
-    if a.opacity < 1.0 {
-        return Err(unsupported("--opacity below 1"));
     }
     Ok(())
 }

@@ -1,13 +1,17 @@
 //! `render --device gpu`: the CPU renderer's own shading ([`tubecast_render::render::render`]),
-//! with every ray it casts (primary, shadow, ambient-occlusion) answered on the GPU.
+//! with every ray it casts (primary, shadow, ambient-occlusion, union boundaries) answered on
+//! the GPU.
 //!
 //! The renderer asks one ray at a time through [`Tracer`]; a GPU answers batches. So the frame
 //! is rendered in rounds: each round runs the renderer against the answers known so far,
-//! records the rays it asked that have no answer yet (answering them "miss" for the moment),
-//! and sends them to the GPU as one batch. Round 1 gathers the primary rays, round 2 the shadow
-//! and AO rays from the surface points they found, round 3 finds every ray answered and is
-//! the image. The renderer is deterministic (AO seeds by pixel), so each round asks the same
-//! rays as the last plus those that its new answers open.
+//! records the rays it asked that have no answer yet (answering them "miss", or "no
+//! intervals", for the moment), and sends them to the GPU as one batch. Round 1 gathers the
+//! primary rays, round 2 the shadow and AO rays from the surface points they found, round 3
+//! finds every ray answered and is the image. A transparent render asks each primary ray's
+//! line intervals in round 1 and is done in round 2; a faded thin tube asks its ray's in
+//! round 2 and the shadow and AO rays of the layers behind it in round 3. The renderer is
+//! deterministic (AO seeds by pixel), so each round asks the same rays as the last plus those
+//! that its new answers open.
 
 use crate::device::GpuError;
 use crate::scene::{GpuScene, Walk};
@@ -19,8 +23,9 @@ use tubecast_render::accel::{closest_table, crossings_table, Tracer, WideBvh, HI
 use tubecast_render::render::{render, Camera, Image, Options};
 use tubecast_render::scene::{Prim, Scene};
 
-/// Rounds before giving up: primary, secondary, final (one spare).
-const ROUNDS: usize = 4;
+/// Rounds before giving up: primary; secondary (shadow and AO rays, a faded thin tube's union
+/// boundaries); the shadow and AO rays of the layers behind a faded tube; final; one spare.
+const ROUNDS: usize = 5;
 
 /// A ray as a hash key: its bits.
 type Key = [u64; 8];
@@ -37,9 +42,7 @@ struct Answers<'a> {
     lines: HashMap<Key, Vec<Tagged<f64>>>,
     ask_closest: Mutex<Vec<Ray<f64>>>,
     ask_any: Mutex<Vec<Ray<f64>>>,
-    /// A ray's line intervals were asked with no answer: the render's (transparency, faded
-    /// thin tubes), which the GPU does not answer, or a table's ray that went unanswered.
-    unsupported: Mutex<bool>,
+    ask_lines: Mutex<Vec<Ray<f64>>>,
 }
 
 impl<'a> Answers<'a> {
@@ -51,7 +54,7 @@ impl<'a> Answers<'a> {
             lines: HashMap::new(),
             ask_closest: Mutex::new(Vec::new()),
             ask_any: Mutex::new(Vec::new()),
-            unsupported: Mutex::new(false),
+            ask_lines: Mutex::new(Vec::new()),
         }
     }
 }
@@ -61,9 +64,9 @@ impl Answers<'_> {
     /// table is answered in one batch, so that would be a bug, not a round to run).
     fn table(&self, rays: &[Ray<f64>], table: Table) -> Result<Vec<[f64; HIT_COLUMNS]>, GpuError> {
         let rows = table(self, rays);
-        let asked = !self.ask_closest.lock().expect("ray log").is_empty()
-            || !self.ask_any.lock().expect("ray log").is_empty()
-            || *self.unsupported.lock().expect("flag");
+        let asked = [&self.ask_closest, &self.ask_any, &self.ask_lines]
+            .iter()
+            .any(|log| !log.lock().expect("ray log").is_empty());
         if asked {
             return Err(GpuError::Dispatch("a ray of the table went unanswered".into()));
         }
@@ -103,11 +106,12 @@ impl Tracer for Answers<'_> {
         }
     }
     /// The intervals reaching `[t_min, t_max]` only ([`GpuScene::line_intervals`]): enough for
-    /// the union's boundaries within the range, not for a component's entry before `t_min`.
+    /// the union's boundaries within the range (all that the renderer and the `all` table
+    /// take), not for a component's entry before `t_min`.
     fn line_intervals(&self, ray: &Ray<f64>, out: &mut Vec<Tagged<f64>>) {
         match self.lines.get(&key(ray)) {
             Some(ivs) => out.extend_from_slice(ivs),
-            None => *self.unsupported.lock().expect("flag") = true,
+            None => self.ask_lines.lock().expect("ray log").push(*ray),
         }
     }
     fn memory_bytes(&self) -> usize {
@@ -116,9 +120,9 @@ impl Tracer for Answers<'_> {
 }
 
 /// Render `scene` through `cam` as [`render`] does, every ray answered by `gpu_scene` (uploaded
-/// from `bvh`). Errors: the GPU's, and [`GpuError::Unsupported`] for transparent renders
-/// (`opacity < 1`) and thin tubes faded by `--min-px` (both need line intervals, not on the GPU
-/// yet). Render-option errors are returned as [`GpuError::Unsupported`] with their message.
+/// from `bvh`): closest hits, shadow and AO rays, and the union boundaries of transparent
+/// renders (`opacity < 1`) and faded thin tubes. Errors: the GPU's; render-option errors are
+/// returned as [`GpuError::Unsupported`] with their message.
 pub fn render_gpu(
     gpu_scene: &GpuScene<'_>,
     scene: &Scene,
@@ -130,16 +134,14 @@ pub fn render_gpu(
     let quiet = Options { progress: false, ..*opts };
     for _ in 0..ROUNDS {
         let img = render(scene, &ans, cam, &quiet).map_err(|e| GpuError::Unsupported(e.to_string()))?;
-        if *ans.unsupported.lock().expect("flag") {
-            return Err(GpuError::Unsupported("transparency and faded thin tubes (line intervals)".into()));
-        }
         let mut closest = std::mem::take(&mut *ans.ask_closest.lock().expect("ray log"));
         let mut any = std::mem::take(&mut *ans.ask_any.lock().expect("ray log"));
-        if closest.is_empty() && any.is_empty() {
+        let mut lines = std::mem::take(&mut *ans.ask_lines.lock().expect("ray log"));
+        if closest.is_empty() && any.is_empty() && lines.is_empty() {
             return Ok(img);
         }
         // Rows run in parallel: the same ray may be logged twice, in any order.
-        for rays in [&mut closest, &mut any] {
+        for rays in [&mut closest, &mut any, &mut lines] {
             rays.sort_unstable_by_key(key);
             rays.dedup_by_key(|r| key(r));
         }
@@ -147,6 +149,8 @@ pub fn render_gpu(
         ans.closest.extend(closest.iter().map(key).zip(hits));
         let hits = gpu_scene.any_hits(&any)?;
         ans.any.extend(any.iter().map(key).zip(hits));
+        let ivs = gpu_scene.line_intervals(&lines)?;
+        ans.lines.extend(lines.iter().map(key).zip(ivs));
     }
     Err(GpuError::Dispatch(format!("rays still unanswered after {ROUNDS} rounds")))
 }
