@@ -25,7 +25,7 @@ use tubecast::V3;
 use tubecast_gpu::{render_gpu, GpuScene, Walk};
 use tubecast_oracle::{line_gap, Line};
 use tubecast_render::accel::{crossings_table, Tracer, WideBvh};
-use tubecast_render::render::{render, Camera, Options};
+use tubecast_render::render::{clamp_thin, render, Camera, Options};
 use tubecast_render::scene::generate;
 use tubecast_render::scene::{Model, Scene};
 
@@ -83,9 +83,17 @@ fn check(scene: &Scene, name: &str) {
 
     // Transparent: every union boundary of the primary rays, from the GPU's line intervals.
     let clear = Options { opacity: 0.4, ..opts };
-    let cpu = render(scene, &bvh, &cam, &clear).unwrap();
-    let img = render_gpu(&gs, scene, &bvh, &cam, &clear).unwrap();
-    let (g_rows, c_rows) = (tubecast_gpu::crossings_table_gpu(&gs, &bvh, &rays).unwrap(), crossings_table(&bvh, &rays));
+    layers(&gs, scene, &bvh, &cam, &clear, &format!("{name} transparent"));
+}
+
+/// A render whose pixels composite union boundaries (transparent, or faded thin tubes) on the
+/// GPU against the CPU's, by the module docs' layered tolerance where the boundaries pair up.
+fn layers(gs: &GpuScene<'_>, scene: &Scene, bvh: &WideBvh, cam: &Camera, opts: &Options, name: &str) {
+    let cpu = render(scene, bvh, cam, opts).unwrap();
+    let img = render_gpu(gs, scene, bvh, cam, opts).unwrap();
+    let rays: Vec<_> = (0..cam.height).flat_map(|y| (0..cam.width).map(move |x| cam.ray(x, y))).collect();
+    let delta = gs.band();
+    let (g_rows, c_rows) = (tubecast_gpu::crossings_table_gpu(gs, bvh, &rays).unwrap(), crossings_table(bvh, &rays));
     let per_ray = |rows: &[[f64; 8]]| {
         let mut m: HashMap<usize, Vec<[f64; 8]>> = HashMap::new();
         for r in rows {
@@ -119,20 +127,20 @@ fn check(scene: &Scene, name: &str) {
             .flatten();
         match tols {
             Some(t) if t.is_empty() => {
-                assert!(diff == 0.0, "{name} pixel {i}: transparent background differs by {diff:e}")
+                assert!(diff == 0.0, "{name} pixel {i}: background differs by {diff:e}")
             }
             Some(t) => {
                 let tol = t.iter().fold(0.0f64, |m, &x| m.max(x));
-                assert!(diff <= tol, "{name} pixel {i}: transparent colour differs by {diff:e} > {tol:e}");
+                assert!(diff <= tol, "{name} pixel {i}: colour differs by {diff:e} > {tol:e}");
                 worst = worst.max(diff);
                 layered += 1;
             }
             None => unpaired += 1,
         }
     }
-    assert!(layered > 100, "{name}: {layered} transparent pixels on tubes");
+    assert!(layered > 100, "{name}: {layered} pixels on tubes");
     eprintln!(
-        "{name} transparent: {layered} pixels with paired boundaries, max colour difference {worst:e}; {unpaired} \
+        "{name}: {layered} pixels with paired boundaries, max colour difference {worst:e}; {unpaired} \
          unpaired (graze or near-touch)"
     );
 }
@@ -149,4 +157,20 @@ fn gpu_render_matches_the_cpu_on_neurons() {
     let bases: Vec<_> = (0..2).map(generate::base_neuron).collect();
     let scene = Scene::from_swc(&generate::neurons(2, &bases, 5), "neurons").unwrap();
     check(&scene, "neurons");
+}
+
+/// Thin tubes widened to a pixel and faded (`clamp_thin`): an opaque render composites the
+/// union's entries behind a faded tube, from the GPU's line intervals.
+#[test]
+fn gpu_render_fades_thin_tubes_as_the_cpu() {
+    let Some(gpu) = crate::gpu("gpu_render_fades_thin_tubes_as_the_cpu") else { return };
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut scene = Scene::load(&root.join("reference/readers/nibabel/standard.trk"), 0.02).unwrap();
+    let st = scene.stats();
+    let cam = Camera::fit(st.bounds.0, st.bounds.1, 40.0, 160, 120).unwrap();
+    let faded = clamp_thin(&mut scene, &cam, 1.5);
+    assert!(faded > 0, "no tube was thin enough to fade");
+    let bvh = WideBvh::from_scene(&scene, Model::Links).unwrap();
+    let gs = GpuScene::upload(&gpu, &bvh).unwrap();
+    layers(&gs, &scene, &bvh, &cam, &Options::default(), &format!("standard.trk, {faded} faded"));
 }
