@@ -1,5 +1,6 @@
 //! The CPU's wide BVH on the GPU: its nodes uploaded as they are ([`WideBvh::export`]), its
-//! items' primitives in leaf order, and closest-hit / any-hit queries for batches of `f64` rays.
+//! items' primitives in leaf order, and closest-hit, any-hit, first-component and line-interval
+//! queries for batches of `f64` rays.
 //!
 //! # Rays
 //! Each ray is clipped to the scene box and restarted before it in `f64` on the CPU, exactly as
