@@ -14,7 +14,6 @@
 
 use super::stream::Src;
 use super::{parse_finite, IoError, Polyline};
-use std::collections::HashMap;
 use std::io::BufRead;
 
 /// One SWC row.
@@ -43,6 +42,58 @@ pub struct SwcFile {
     pub replaced: usize,
     /// Of those, the radii that were `≤ 0` (placeholders).
     pub placeholders: usize,
+}
+
+/// Node index by SWC id: a table where the ids are dense (files number their nodes 1..n, or
+/// nearly), a hash map otherwise. Looking up a million parents in a table instead of a hashed
+/// map is most of what reading a large file costs.
+#[derive(Clone, Debug, Default)]
+pub struct IdIndex {
+    /// Smallest id of a dense table.
+    base: i64,
+    /// Node index per `id − base` (`u32::MAX`: no node), when dense.
+    dense: Vec<u32>,
+    /// The map, when sparse.
+    sparse: std::collections::HashMap<i64, u32>,
+}
+
+impl IdIndex {
+    /// The index of nodes with ids `ids` (in file order, each `≥ 0`); on a repeated id,
+    /// `Err((first, second))`: the positions of its first two occurrences, the second the
+    /// earliest repeat in file order.
+    pub fn new(ids: &[i64]) -> Result<Self, (usize, usize)> {
+        let (lo, hi) = ids.iter().fold((i64::MAX, i64::MIN), |(l, h), &id| (l.min(id), h.max(id)));
+        let span = hi.checked_sub(lo).and_then(|d| usize::try_from(d).ok()).map(|d| d + 1);
+        if let Some(span) = span.filter(|&n| n <= 2 * ids.len() + 16) {
+            let mut dense = vec![u32::MAX; span];
+            for (i, &id) in ids.iter().enumerate() {
+                let slot = &mut dense[(id - lo) as usize];
+                if *slot != u32::MAX {
+                    return Err((*slot as usize, i));
+                }
+                *slot = i as u32;
+            }
+            return Ok(Self { base: lo, dense, sparse: Default::default() });
+        }
+        let mut sparse = std::collections::HashMap::with_capacity(ids.len());
+        for (i, &id) in ids.iter().enumerate() {
+            if let Some(&prev) = sparse.get(&id) {
+                return Err((prev as usize, i));
+            }
+            sparse.insert(id, i as u32);
+        }
+        Ok(Self { base: 0, dense: Vec::new(), sparse })
+    }
+
+    /// The position of the node with id `id`.
+    #[inline]
+    pub fn get(&self, id: i64) -> Option<usize> {
+        if self.dense.is_empty() {
+            return self.sparse.get(&id).map(|&i| i as usize);
+        }
+        let k = usize::try_from(id.checked_sub(self.base)?).ok()?;
+        self.dense.get(k).filter(|&&i| i != u32::MAX).map(|&i| i as usize)
+    }
 }
 
 /// The hint every placeholder-radius error carries.
@@ -85,7 +136,6 @@ pub fn read_from(r: impl BufRead, name: &str, min_radius: Option<f64>) -> Result
     let (mut replaced, mut placeholders) = (0, 0);
     let mut nodes = Vec::new();
     let mut lines = Vec::new(); // line number of each node
-    let mut index: HashMap<i64, usize> = HashMap::new();
     let (mut src, mut buf) = (Src::new(r, name), Vec::new());
     for ln in 1.. {
         let at = src.pos;
@@ -98,12 +148,19 @@ pub fn read_from(r: impl BufRead, name: &str, min_radius: Option<f64>) -> Result
         if line.is_empty() {
             continue;
         }
-        let cols: Vec<&str> = line.split_whitespace().collect();
-        if cols.len() != 7 {
+        let mut cols = [""; 7];
+        let mut found = 0;
+        for tok in line.split_whitespace() {
+            if found < 7 {
+                cols[found] = tok;
+            }
+            found += 1;
+        }
+        if found != 7 {
             return Err(IoError::line(
                 name,
                 ln,
-                format!("expected 7 columns (id type x y z radius parent), found {}", cols.len()),
+                format!("expected 7 columns (id type x y z radius parent), found {found}"),
             ));
         }
         let id =
@@ -139,23 +196,25 @@ pub fn read_from(r: impl BufRead, name: &str, min_radius: Option<f64>) -> Result
         if parent == id {
             return Err(IoError::line(name, ln, format!("node {id} is its own parent")));
         }
-        if let Some(&prev) = index.get(&id) {
-            return Err(IoError::line(name, ln, format!("duplicate id {id} (first on line {})", lines[prev])));
-        }
-        index.insert(id, nodes.len());
         lines.push(ln);
         nodes.push(SwcNode { id, kind, pos: [v[0], v[1], v[2]], radius: v[3], parent });
     }
+    let ids: Vec<i64> = nodes.iter().map(|n| n.id).collect();
+    let index = IdIndex::new(&ids).map_err(|(a, b)| {
+        IoError::line(name, lines[b], format!("duplicate id {} (first on line {})", ids[b], lines[a]))
+    })?;
+    drop(ids);
     check_parents(&nodes, &lines, &index, name)?;
     Ok(SwcFile { nodes, lines, replaced, placeholders })
 }
 
 /// Parents exist, and following parents always reaches a root (no cycles). `lines`: the line
 /// of each node; `index`: node index by id.
-fn check_parents(nodes: &[SwcNode], lines: &[usize], index: &HashMap<i64, usize>, name: &str) -> Result<(), IoError> {
+fn check_parents(nodes: &[SwcNode], lines: &[usize], index: &IdIndex, name: &str) -> Result<(), IoError> {
     let mut state = vec![0u8; nodes.len()]; // 0 unknown, 1 on current path, 2 reaches a root
+    let mut path = Vec::new();
     for start in 0..nodes.len() {
-        let mut path = Vec::new();
+        path.clear();
         let mut cur = start;
         loop {
             match state[cur] {
@@ -175,8 +234,8 @@ fn check_parents(nodes: &[SwcNode], lines: &[usize], index: &HashMap<i64, usize>
             if p == -1 {
                 break;
             }
-            match index.get(&p) {
-                Some(&pi) => cur = pi,
+            match index.get(p) {
+                Some(pi) => cur = pi,
                 None => {
                     return Err(IoError::line(
                         name,
@@ -186,7 +245,7 @@ fn check_parents(nodes: &[SwcNode], lines: &[usize], index: &HashMap<i64, usize>
                 }
             }
         }
-        for k in path {
+        for &k in &path {
             state[k] = 2;
         }
     }
@@ -226,4 +285,35 @@ pub fn from_polylines(lines: &[Polyline], default_radius: f64) -> Vec<SwcNode> {
 /// Read the SWC file at `path` ([`read`], streamed, named by its path in errors).
 pub fn load(path: &std::path::Path) -> Result<Vec<SwcNode>, IoError> {
     Ok(read_from(super::stream::open(path)?.0, &path.display().to_string(), None)?.nodes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::IdIndex;
+
+    /// Both layouts answer every id of the file with its position, nothing for other ids, and
+    /// report the earliest repeat with its first occurrence.
+    #[test]
+    fn id_index_dense_and_sparse() {
+        let dense: Vec<i64> = (1..=1000).rev().collect();
+        let sparse: Vec<i64> = (0..1000).map(|i| i * 7919 + 3).collect();
+        for ids in [&dense, &sparse] {
+            let ix = IdIndex::new(ids).unwrap();
+            assert_eq!(ix.dense.is_empty(), std::ptr::eq(ids, &sparse), "layout");
+            for (k, &id) in ids.iter().enumerate() {
+                assert_eq!(ix.get(id), Some(k));
+            }
+            for id in [-1, 0, 1001, 4, i64::MAX, i64::MIN] {
+                if !ids.contains(&id) {
+                    assert_eq!(ix.get(id), None, "id {id}");
+                }
+            }
+            let mut dup = ids.clone();
+            dup[700] = ids[300];
+            dup[900] = ids[100];
+            assert_eq!(IdIndex::new(&dup).unwrap_err(), (300, 700));
+        }
+        assert_eq!(IdIndex::new(&[]).map(|ix| ix.get(0)), Ok(None));
+        assert_eq!(IdIndex::new(&[0, i64::MAX]).map(|ix| (ix.get(0), ix.get(i64::MAX))), Ok((Some(0), Some(1))));
+    }
 }

@@ -8,7 +8,8 @@ pub(super) type Parts = (Vec<Node>, Links, Vec<i32>, Radii);
 
 impl Scene {
     /// A scene from SWC rows (links child → parent; ids mapped to indices). No rows give the
-    /// empty scene.
+    /// empty scene. Errors: two rows with one id ([`SceneError::DuplicateId`]), a parent id no
+    /// row has, and whatever [`Scene::from_polylines`]' checks refuse.
     pub fn from_swc(rows: &[io::swc::SwcNode], name: &str) -> Result<Self, SceneError> {
         let (nodes, links, kinds, radii) = Self::swc_parts(rows, name)?;
         Self::finish((nodes, links, kinds, radii), name)
@@ -16,17 +17,16 @@ impl Scene {
 
     /// The nodes and links of SWC rows.
     pub(super) fn swc_parts(rows: &[io::swc::SwcNode], name: &str) -> Result<Parts, SceneError> {
-        let mut index = std::collections::HashMap::new();
-        for (i, r) in rows.iter().enumerate() {
-            index.insert(r.id, i as u32);
-        }
+        let ids: Vec<i64> = rows.iter().map(|r| r.id).collect();
+        let index = io::swc::IdIndex::new(&ids)
+            .map_err(|(_, second)| SceneError::DuplicateId { file: name.to_string(), id: ids[second] })?;
         let nodes = rows.iter().map(|r| Node { pos: r.pos }).collect();
         let radii = Radii::from_vec(rows.iter().map(|r| r.radius).collect());
         let kinds = rows.iter().map(|r| r.kind).collect();
         let mut links = Links::default();
         for (i, r) in rows.iter().enumerate() {
             if r.parent >= 0 {
-                let p = *index.get(&r.parent).ok_or_else(|| SceneError::MissingParent {
+                let p = index.get(r.parent).map(|p| p as u32).ok_or_else(|| SceneError::MissingParent {
                     file: name.to_string(),
                     parent: r.parent,
                     node: r.id,

@@ -20,6 +20,13 @@ pub enum SceneError {
         /// The node's id.
         node: i64,
     },
+    /// Two SWC rows share an id (so a parent id would name either).
+    DuplicateId {
+        /// Input name.
+        file: String,
+        /// The id.
+        id: i64,
+    },
     /// The radius for points without one is not a positive number.
     DefaultRadius(f64),
     /// The minimum radius is not a positive number.
@@ -94,6 +101,7 @@ impl fmt::Display for SceneError {
             Self::MissingParent { file, parent, node } => {
                 write!(f, "{file}: parent {parent} of node {node} does not exist")
             }
+            Self::DuplicateId { file, id } => write!(f, "{file}: two nodes have id {id}"),
             Self::DefaultRadius(r) => write!(f, "radius {r} must be a positive number"),
             Self::MinRadius(r) => write!(f, "minimum radius {r} must be a positive number"),
             Self::ZeroRadius { file, line, node, parent: Some((p, pl)) } => write!(

@@ -75,3 +75,16 @@ fn zero_radius_link_is_a_scene_error() {
     let e = tubecast_render::scene::Scene::from_swc(&n, "z.swc").unwrap_err();
     assert!(e.to_string().contains("zero radius at both ends"), "{e}");
 }
+
+/// Rows built by hand (not read, so not checked by the reader) with a repeated id are refused:
+/// a parent id naming two rows has no one link.
+#[test]
+fn repeated_id_in_rows_is_a_scene_error() {
+    use tubecast_render::scene::{Scene, SceneError};
+    let row = |id, parent| SwcNode { id, kind: 3, pos: [id as f64, 0.0, 0.0], radius: 0.5, parent };
+    for ids in [[1, 2, 3, 2], [1, 2_000_000, 3, 2_000_000]] {
+        let rows: Vec<SwcNode> = ids.iter().enumerate().map(|(k, &id)| row(id, if k == 0 { -1 } else { 1 })).collect();
+        let e = Scene::from_swc(&rows, "rows").unwrap_err();
+        assert_eq!(e, SceneError::DuplicateId { file: "rows".into(), id: ids[1] }, "{e}");
+    }
+}
