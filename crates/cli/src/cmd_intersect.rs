@@ -3,7 +3,7 @@
 
 use crate::args::{Device, IntersectArgs, Query, Surface};
 use crate::error::CliError;
-use crate::hits_io::{write_hits, HitsOut};
+use crate::hits_io::{write_hits, HitsOut, CROSSING_COLUMNS, HIT_COLUMNS};
 use crate::setup::{self, Plan};
 use tubecast_render::accel::{closest_rows, crossings_table, hit_rows, MISS_ROW};
 use tubecast_render::io;
@@ -25,19 +25,23 @@ pub fn intersect(a: &IntersectArgs) -> Result<(), CliError> {
     let scene = crate::quantized::model_scene(Surface::from(a.model), scene, &a.quant, a.run.quiet)?;
     if a.device == Device::Gpu {
         let rows = crate::gpu::table(a.query, &scene, &rays.rays(&name)?)?;
-        return write_hits(&a.out, &rows, a.csv);
+        let columns = if matches!(a.query, Query::All) { &CROSSING_COLUMNS } else { &HIT_COLUMNS };
+        return write_hits(&a.out, &rows, a.csv, columns);
     }
     setup::with_threads(a.run.threads, || {
         let bvh = setup::scene_tracer(a.accel, &scene, m, None, Some(rays.rows as f64))?;
         let fill = match a.query {
             Query::Hit => closest_rows,
             Query::Piece => hit_rows,
-            Query::All => return write_hits(&a.out, &crossings_table(bvh.as_ref(), &rays.rays(&name)?), a.csv),
+            Query::All => {
+                let rows = crossings_table(bvh.as_ref(), &rays.rays(&name)?);
+                return write_hits(&a.out, &rows, a.csv, &CROSSING_COLUMNS);
+            }
         };
         // One row per ray: stream the table chunk by chunk instead of holding it (and its
         // bytes) whole; fresh pages for a table of 10⁶ rows cost more system time than the
         // tracing takes.
-        let mut out = HitsOut::create(&a.out, a.csv, rays.rows)?;
+        let mut out = HitsOut::create(&a.out, a.csv, rays.rows, &HIT_COLUMNS)?;
         let mut rows = vec![MISS_ROW; CHUNK.min(rays.rows)];
         let mut chunk = Vec::with_capacity(CHUNK.min(rays.rows));
         for start in (0..rays.rows).step_by(CHUNK) {

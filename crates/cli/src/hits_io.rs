@@ -5,8 +5,11 @@ use std::io::{Read, Write};
 use std::path::Path;
 use tubecast_render::io::{self, IoError};
 
-/// The hit table's columns, in order (see `tubecast intersect --help`).
+/// The hit table's columns, in order (`--query hit` and `piece`; see `tubecast intersect --help`).
 pub const HIT_COLUMNS: [&str; 8] = ["t_in", "t_out", "nx", "ny", "nz", "link", "u", "hit"];
+
+/// The crossing table's columns (`--query all`): one row per boundary, with its ray's index.
+pub const CROSSING_COLUMNS: [&str; 8] = ["ray", "t", "nx", "ny", "nz", "link", "u", "flag"];
 
 /// The bytes of `path`, or of stdin for `-`.
 pub fn read_input(path: &Path) -> Result<Vec<u8>, CliError> {
@@ -18,7 +21,7 @@ pub fn read_input(path: &Path) -> Result<Vec<u8>, CliError> {
     Ok(io::read_bytes(path)?)
 }
 
-/// One CSV line of a hit row: `link` and `hit` as integers, the other columns with Rust's
+/// One CSV line of a table row: columns 5 and 7 (`link`, and `hit` or `flag`) as integers, the other columns with Rust's
 /// shortest round-trip formatting (`inf` for misses).
 fn csv_line(out: &mut String, row: &[f64]) {
     use std::fmt::Write as _;
@@ -43,8 +46,9 @@ pub struct HitsOut {
 }
 
 impl HitsOut {
-    /// Open `path` (`-`: stdout) for a table of `rows` rows and write its header.
-    pub fn create(path: &Path, csv: bool, rows: usize) -> Result<Self, CliError> {
+    /// Open `path` (`-`: stdout) for a table of `rows` rows and write its header (`columns`
+    /// name the CSV columns).
+    pub fn create(path: &Path, csv: bool, rows: usize, columns: &[&str; 8]) -> Result<Self, CliError> {
         let csv = csv || path.extension().is_some_and(|e| e.eq_ignore_ascii_case("csv"));
         let name = path.display().to_string();
         let w: Box<dyn Write> = if path.as_os_str() == "-" {
@@ -54,7 +58,7 @@ impl HitsOut {
             Box::new(f)
         };
         let mut out = Self { w: std::io::BufWriter::with_capacity(1 << 20, w), csv, name, rows_left: rows };
-        let head = if csv { format!("{}\n", HIT_COLUMNS.join(",")).into_bytes() } else { io::npy::header(rows, 8) };
+        let head = if csv { format!("{}\n", columns.join(",")).into_bytes() } else { io::npy::header(rows, 8) };
         out.put(&head)?;
         Ok(out)
     }
@@ -88,10 +92,10 @@ impl HitsOut {
     }
 }
 
-/// Write the hits to `path` (`-`: stdout) as CSV when `csv` or the name ends in `.csv`, as
+/// Write a table to `path` (`-`: stdout) as CSV when `csv` or the name ends in `.csv`, as
 /// `.npy` otherwise.
-pub fn write_hits(path: &Path, rows: &[[f64; 8]], csv: bool) -> Result<(), CliError> {
-    let mut out = HitsOut::create(path, csv, rows.len())?;
+pub fn write_hits(path: &Path, rows: &[[f64; 8]], csv: bool, columns: &[&str; 8]) -> Result<(), CliError> {
+    let mut out = HitsOut::create(path, csv, rows.len(), columns)?;
     out.write(rows)?;
     out.finish()
 }

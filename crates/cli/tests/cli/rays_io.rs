@@ -71,4 +71,18 @@ fn float32_fortran_rays_from_stdin_csv_hits_to_stdout() {
         .status();
     assert!(st.unwrap().success());
     assert_eq!(std::fs::read_to_string(&out).unwrap(), text);
+    // `--query all`: one row per boundary, under its own header; the miss has no row.
+    let all = bin()
+        .arg("intersect")
+        .arg(&scene)
+        .args(["--radius", "1", "--query", "all", "--csv", "--out", "-", "--rays"])
+        .arg(&rays_path)
+        .output()
+        .unwrap();
+    assert!(all.status.success(), "{}", String::from_utf8_lossy(&all.stderr));
+    let text = String::from_utf8(all.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], "ray,t,nx,ny,nz,link,u,flag");
+    assert_eq!(lines.len(), 3, "{text}");
+    assert!(lines[1].starts_with("0,") && lines[1].ends_with(",1") && lines[2].ends_with(",-1"), "{text}");
 }
