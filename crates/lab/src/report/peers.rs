@@ -166,12 +166,23 @@ pub fn run_peers(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
     if opts.max_segments >= 1_000_000 {
         sizes.push(1_000_000);
     }
-    let mut speed_rows = Vec::new();
+    // And a real tractogram: nibabel's standard.trk (the largest the repository ships).
+    use super::peers_speed::{measure, Rays};
+    let render_err = |e: tubecast_render::scene::SceneError| ReportError::Render(e.to_string());
+    let mut scenes = Vec::new();
     for &m in &sizes {
         let fur = generate::furball(m.div_ceil(78), 78, opts.seed);
-        speed_rows.push(super::peers_speed::measure(&dev, "Furball", &fur, 0.05, side)?);
+        scenes.push(("Furball", Scene::from_polylines(&fur, 0.05, "furball").map_err(render_err)?));
         let bun = generate::bundle(m.div_ceil(84), 84, opts.seed);
-        speed_rows.push(super::peers_speed::measure(&dev, "Bundle", &bun, 0.12, side)?);
+        scenes.push(("Bundle", Scene::from_polylines(&bun, 0.12, "bundle").map_err(render_err)?));
+    }
+    let trk = concat!(env!("CARGO_MANIFEST_DIR"), "/../../reference/readers/nibabel/standard.trk");
+    scenes.push(("standard.trk", Scene::load(std::path::Path::new(trk), 0.5).map_err(render_err)?));
+    let mut speed_rows = Vec::new();
+    for (name, scene) in &scenes {
+        for kind in [Rays::Camera, Rays::Random] {
+            speed_rows.push(measure(&dev, name, scene, side, kind)?);
+        }
     }
     bar.finish_and_clear();
 
@@ -240,10 +251,13 @@ pub fn run_peers(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Report
     );
     let _ = write!(
         md,
-        "\n## Speed and memory per scene (one run, same {side}×{side} f32 camera rays)\n\n\
-         Embree `rtcIntersect1` on `ROUND_LINEAR_CURVE` isolated segments (quality high, robust) against our \
-         binary `Bvh` (lane packets) and the 8-wide `WideBvh` (obvhs CWBVH, static link filter; what the CLI \
-         uses); ratios above 1 favour us. All threads: rays in chunks of 256 over rayon's pool, both sides. \
+        "\n## Speed and memory per scene (one run, the same {side}×{side} f32 rays on both sides)\n\n\
+         Camera rays: a fitted camera's pixels; random rays: origins uniform in the scene's box, directions \
+         uniform on the sphere. Embree `rtcIntersect1` on `ROUND_LINEAR_CURVE` isolated segments (quality \
+         high, robust) against our binary `Bvh` (lane packets) and the 8-wide `WideBvh` (float SoA tree over \
+         obvhs's PLOC build, static link filter; \"compact\" is what the CLI uses); ratios above 1 favour us. \
+         Tracing only: scene loading, building and output are not in Mrays/s (build times have their own \
+         column). All threads: rays in chunks of 256 over rayon's pool, both sides. \
          Embree's bytes: its device memory monitor after the build (vertex, index and flag buffers, BVH); \
          ours: primitives + tree (`Tracer::memory_bytes`; the scene's nodes and links are extra).\n\n{}",
         super::peers_speed::table(&speed_rows)

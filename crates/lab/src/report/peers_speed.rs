@@ -13,10 +13,10 @@ use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::sync::Arc;
 use std::time::Instant;
-use tubecast::Ray;
+use tubecast::{Ray, V3};
 use tubecast_render::accel::{Bvh, Tracer, WideBvh};
-use tubecast_render::io::Polyline;
 use tubecast_render::render::Camera;
+use tubecast_render::scene::generate::Rng;
 use tubecast_render::scene::{Model, Scene};
 
 /// One scene's figures.
@@ -41,21 +41,42 @@ fn count<T: Tracer>(t: &T, rays: &[Ray<f64>]) -> usize {
     rays.iter().filter(|r| t.closest_hit(r).is_some()).count()
 }
 
-/// Measure `lines` (radius `radius` where a point has none) seen by a fitted camera at
-/// `side × side` pixels.
+/// Which rays a row measures.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Rays {
+    /// A fitted camera's `side × side` pixel rays (coherent, from outside the scene).
+    Camera,
+    /// `side²` rays with origins uniform in the scene's box and directions uniform on the
+    /// sphere (incoherent; many start inside a tube or between tubes).
+    Random,
+}
+
+/// Measure `scene` on `side²` rays of kind `kind`.
 pub(super) fn measure(
     dev: &Arc<Device>,
     name: &str,
-    lines: &[Polyline],
-    radius: f64,
+    scene: &Scene,
     side: u32,
+    kind: Rays,
 ) -> Result<SceneSpeed, ReportError> {
     let perr = |e: crate::peer::embree::EmbreeError| ReportError::Peer(e.to_string());
-    let scene = Scene::from_polylines(lines, radius, name).map_err(|e| ReportError::Render(e.to_string()))?;
     let st = scene.stats();
     let cam =
         Camera::fit(st.bounds.0, st.bounds.1, 35.0, side, side).map_err(|e| ReportError::Render(e.to_string()))?;
-    let SceneInputs { rays32, rays64, links32 } = crate::peer::scene_inputs(&scene, &cam, side);
+    let SceneInputs { mut rays32, mut rays64, links32 } = crate::peer::scene_inputs(scene, &cam, side);
+    if kind == Rays::Random {
+        let (lo, hi) = st.bounds;
+        let mut rng = Rng::new(0x5eed);
+        rays32 = rays32
+            .iter()
+            .map(|_| {
+                let o: [f64; 3] = std::array::from_fn(|i| lo[i] + (hi[i] - lo[i]) * rng.uniform());
+                (o.map(|x| x as f32), rng.unit().map(|x| x as f32))
+            })
+            .collect();
+        rays64 = rays32.iter().map(|(o, d)| Ray::new(V3::from(*o).cast(), V3::from(*d).cast())).collect();
+    }
+    let name = format!("{name}, {} rays", if kind == Rays::Camera { "camera" } else { "random" });
     let m0 = dev.memory_bytes();
     let t0 = Instant::now();
     let emb = EScene::round_linear(dev, &links32).map_err(perr)?;
@@ -68,7 +89,7 @@ pub(super) fn measure(
     let wide = WideBvh::build(scene.primitives());
     let b_wide = t0.elapsed().as_secs_f64();
     let t0 = Instant::now();
-    let compact = WideBvh::from_scene(&scene, Model::Links).map_err(|e| ReportError::Render(e.to_string()))?;
+    let compact = WideBvh::from_scene(scene, Model::Links).map_err(|e| ReportError::Render(e.to_string()))?;
     let b_compact = t0.elapsed().as_secs_f64();
     let reps = 3;
     let (t_emb, h_emb) = best_of(reps, || emb.count_hits(&rays32));
@@ -83,7 +104,7 @@ pub(super) fn measure(
     let mr = |t: f64| nr / t / 1e6;
     let nl = scene.links.len() as f64;
     Ok(SceneSpeed {
-        name: name.to_string(),
+        name,
         links: scene.links.len(),
         build: [b_emb, b_bvh, b_wide, b_compact],
         one: [mr(t_emb), mr(t_bvh), mr(t_wide), mr(t_compact)],
