@@ -52,7 +52,7 @@ struct Count {
     _pad: [u32; 3],
 }
 
-/// The kernel pipeline of [`Gpu::line_intervals`].
+/// The kernel pipeline of [`Pairs::line_intervals`].
 pub struct Pairs {
     kernel: Kernel,
 }

@@ -98,7 +98,7 @@ fn real_intervals(gap: &dyn Fn(f64) -> f64) -> Vec<(f64, f64)> {
 }
 
 /// The sweep's signed gap to the line, `min_t dist(line, p(t)) − r(t)`: every local minimum of
-/// [`GAP_SAMPLES`] samples refined by golden section, the least kept. Where the line grazes two
+/// `GAP_SAMPLES` samples refined by golden section, the least kept. Where the line grazes two
 /// parts of a segment, the least *sample* need not lie next to the least minimum
 /// ([`crate::quad_gap`] refines that sample only).
 pub fn quad_gap_fine(q: &Quad, line: &Line) -> f64 {

@@ -25,12 +25,12 @@ use tubecast::Ray;
 /// assert_eq!(tracer.prim(hit.id).link, 0);
 /// ```
 pub trait Tracer: Send + Sync {
-    /// The primitives the tracer stores whole: ids `0..prims().len()` of [`Hit::prim`] and
+    /// The primitives the tracer stores whole: ids `0..prims().len()` of [`Hit::id`] and
     /// [`Tagged::id`]. Every tracer stores all of them so, except a compact
     /// [`WideBvh::from_scene`](super::WideBvh::from_scene), whose clustered links follow them:
     /// reach any id through [`Tracer::prim`] and [`Tracer::prim_count`].
     fn prims(&self) -> &[Prim];
-    /// The primitive with id `id` (a [`Hit::prim`] or [`Tagged::id`]), `id < prim_count()`.
+    /// The primitive with id `id` (a [`Hit::id`] or [`Tagged::id`]), `id < prim_count()`.
     fn prim(&self, id: u32) -> Prim {
         self.prims()[id as usize]
     }

@@ -226,7 +226,7 @@ pub fn write(a: &Array2) -> Vec<u8> {
     out
 }
 
-/// The header of a `rows × cols` `float64` array as [`write`] writes it (`.npy` version 1.0,
+/// The header of a `rows × cols` `float64` array as [`write()`] writes it (`.npy` version 1.0,
 /// little endian, C order), for a writer that streams the values after it.
 pub fn header(rows: usize, cols: usize) -> Vec<u8> {
     let mut h = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({rows}, {cols}), }}");
