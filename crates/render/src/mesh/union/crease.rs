@@ -39,7 +39,9 @@ pub(super) fn on_tubes(field: &Field, x: V3<f64>) -> Vec<u32> {
 pub(super) fn split(field: &Field, raw: &mut Raw) -> Creases {
     let mut out = Creases { split: 0, min_sin_half: 1.0 };
     for _ in 0..3 {
+        snap(field, raw);
         let n = round(field, raw, &mut out);
+        flip(field, raw);
         if n == 0 {
             break;
         }
@@ -142,6 +144,162 @@ fn round(field: &Field, raw: &mut Raw, out: &mut Creases) -> usize {
     0
 }
 
+/// Where a crease passes within this fraction of an edge of one of its ends, that end is moved
+/// onto the crease instead of the edge being split: splitting there would leave a sliver that
+/// turns over at the least error in the crease point.
+const SNAP: f64 = 0.4;
+
+/// Moves vertices that lie near a crease onto it (to the crease point of one of their crossing
+/// edges, the nearest), so that their edges to either tube no longer cross it. A vertex is
+/// moved only when none of the triangles around it shares a corner with another moved one's,
+/// and kept where it was when a triangle around it would turn over (against its tube's
+/// outward direction, or its own former normal) or cross another triangle. Returns how many
+/// moved.
+fn snap(field: &Field, raw: &mut Raw) -> usize {
+    let on: Vec<Vec<u32>> = raw.positions.iter().map(|&x| on_tubes(field, x)).collect();
+    let mut want: HashMap<u32, (f64, V3<f64>)> = HashMap::new();
+    let mut seen: HashMap<(u32, u32), ()> = HashMap::new();
+    let mut ring: Vec<Vec<usize>> = vec![Vec::new(); raw.positions.len()];
+    for (k, t) in raw.triangles.iter().enumerate() {
+        for e in 0..3 {
+            ring[t[e] as usize].push(k);
+            let (u, v) = (t[e].min(t[(e + 1) % 3]), t[e].max(t[(e + 1) % 3]));
+            if seen.insert((u, v), ()).is_some() || on[u as usize].iter().any(|k| on[v as usize].contains(k)) {
+                continue;
+            }
+            let (xu, xv) = (raw.positions[u as usize], raw.positions[v as usize]);
+            let Some((w, _)) = crease_point(field, xu, xv) else { continue };
+            let d = xv - xu;
+            let s = (w - xu).dot(d) / d.length2();
+            for (end, x, near) in [(u, xu, s < SNAP), (v, xv, s > 1.0 - SNAP)] {
+                let dist = (w - x).length();
+                if near && want.get(&end).map_or(true, |&(d0, _)| dist < d0) {
+                    want.insert(end, (dist, w));
+                }
+            }
+        }
+    }
+    let mut order: Vec<(u32, f64, V3<f64>)> = want.into_iter().map(|(v, (d, w))| (v, d, w)).collect();
+    order.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+    for _ in 0..4 {
+        // An independent set: no two moved vertices on one triangle's corners' rings.
+        let mut taken = vec![false; raw.positions.len()];
+        let mut moved = Vec::new();
+        for &(v, _, w) in &order {
+            let touch = ring[v as usize].iter().flat_map(|&k| raw.triangles[k]);
+            if touch.clone().any(|c| taken[c as usize]) {
+                continue;
+            }
+            touch.for_each(|c| taken[c as usize] = true);
+            moved.push((v, w));
+        }
+        if moved.is_empty() {
+            return 0;
+        }
+        let mut pos = raw.positions.clone();
+        for &(v, w) in &moved {
+            pos[v as usize] = w;
+        }
+        let mut dirty: Vec<usize> = moved.iter().flat_map(|&(v, _)| ring[v as usize].iter().copied()).collect();
+        dirty.sort_unstable();
+        dirty.dedup();
+        let mut bad: Vec<usize> = dirty
+            .iter()
+            .copied()
+            .filter(|&k| {
+                let t = raw.triangles[k];
+                let p = t.map(|i| pos[i as usize]);
+                let n0 = normal(t.map(|i| raw.positions[i as usize]));
+                facing(field, p).unwrap_or(n0).dot(normal(p)) <= 0.0
+            })
+            .collect();
+        if bad.is_empty() {
+            bad = super::embed::crossing(&raw.triangles, &dirty, &pos, 2.0 * field.h);
+        }
+        if bad.is_empty() {
+            raw.positions = pos;
+            return moved.len();
+        }
+        let drop: std::collections::HashSet<u32> = bad.iter().flat_map(|&k| raw.triangles[k]).collect();
+        order.retain(|(v, _, _)| !drop.contains(v) || !moved.iter().any(|m| m.0 == *v));
+    }
+    0
+}
+
+/// Flips crease-crossing edges whose two triangles' far corners are both on each side's tube
+/// (typically on the crease itself, split or snapped there): triangles `u v p` and `v u q`,
+/// `u` on tube A only and `v` on B, become `u q p` (all on A) and `v p q` (all on B). Where a
+/// crease passes through a vertex, the split point of the edge beside it is that vertex to
+/// rounding, and the split's pieces would be slivers that turn over; the flip needs no new
+/// point. A flip is kept only where the edge `p q` is new (the mesh stays 2-manifold) and
+/// neither new triangle turns over or crosses another. Returns how many were made.
+fn flip(field: &Field, raw: &mut Raw) -> usize {
+    let on: Vec<Vec<u32>> = raw.positions.iter().map(|&x| on_tubes(field, x)).collect();
+    let share = |a: &[u32], b: &[u32], c: &[u32]| a.iter().any(|k| b.contains(k) && c.contains(k));
+    let mut edge: HashMap<(u32, u32), usize> = HashMap::new();
+    for (k, t) in raw.triangles.iter().enumerate() {
+        for e in 0..3 {
+            edge.insert((t[e], t[(e + 1) % 3]), k);
+        }
+    }
+    let mut plan: Vec<(usize, usize, [u32; 3], [u32; 3])> = Vec::new();
+    let mut used = vec![false; raw.triangles.len()];
+    for (k, t) in raw.triangles.iter().enumerate() {
+        for e in 0..3 {
+            let (u, v, p) = (t[e], t[(e + 1) % 3], t[(e + 2) % 3]);
+            let (ou, ov) = (&on[u as usize], &on[v as usize]);
+            if used[k] || ou.iter().any(|x| ov.contains(x)) {
+                continue;
+            }
+            let Some(&k2) = edge.get(&(v, u)) else { continue };
+            let t2 = raw.triangles[k2];
+            let Some(q) = t2.iter().copied().find(|&x| x != u && x != v) else { continue };
+            let (op, oq) = (&on[p as usize], &on[q as usize]);
+            if used[k2] || p == q || edge.contains_key(&(p, q)) || edge.contains_key(&(q, p)) {
+                continue;
+            }
+            if !(share(ou, oq, op) && share(ov, op, oq)) {
+                continue;
+            }
+            used[k] = true;
+            used[k2] = true;
+            plan.push((k, k2, [u, q, p], [v, p, q]));
+        }
+    }
+    for _ in 0..4 {
+        if plan.is_empty() {
+            return 0;
+        }
+        let mut tris = raw.triangles.clone();
+        let mut dirty = Vec::new();
+        for &(k, k2, a, b) in &plan {
+            tris[k] = a;
+            tris[k2] = b;
+            dirty.extend([k, k2]);
+        }
+        let pos = &raw.positions;
+        let mut bad: Vec<usize> = dirty
+            .iter()
+            .copied()
+            .filter(|&k| {
+                let p = tris[k].map(|i| pos[i as usize]);
+                let n0 = normal(raw.triangles[k].map(|i| pos[i as usize]));
+                facing(field, p).unwrap_or(n0).dot(normal(p)) <= 0.0
+            })
+            .collect();
+        if bad.is_empty() {
+            bad = super::embed::crossing(&tris, &dirty, pos, 2.0 * field.h);
+        }
+        if bad.is_empty() {
+            let n = plan.len();
+            raw.triangles = tris;
+            return n;
+        }
+        plan.retain(|&(k, k2, _, _)| !bad.contains(&k) && !bad.contains(&k2));
+    }
+    0
+}
+
 /// The outward direction of a tube holding all three corners of a piece, at its centroid.
 fn facing(field: &Field, p: [V3<f64>; 3]) -> Option<V3<f64>> {
     let c = (p[0] + p[1] + p[2]) * (1.0 / 3.0);
@@ -200,6 +358,11 @@ fn split_triangle(t: [u32; 3], mid: [Option<u32>; 3], pos: &[V3<f64>], out: &mut
     }
 }
 
+/// How far (in grid steps) a crease point may lie from the crossing edge it splits: where
+/// two tubes meet at a sharp angle, the contour bridges the notch between them where it is
+/// about a grid step wide, up to `h/(2·tan(β/2))` above the crease (β the notch's opening).
+const REACH: f64 = 3.0;
+
 /// A point of the crease between the tubes of two vertices, near the segment between them,
 /// with `sin(β/2)` there (`β` the exterior opening); `None` where the tubes do not meet
 /// near it (Newton does not converge within a grid step), the crease is buried in a third
@@ -245,7 +408,7 @@ fn crease_point(field: &Field, xu: V3<f64>, xv: V3<f64>) -> Option<(V3<f64>, f64
         // Least-norm step to the two tangent planes: x − Jᵀ(JJᵀ)⁻¹F.
         let (l0, l1) = ((fa - c * fb) / det, (fb - c * fa) / det);
         x = x - ga * l0 - gb * l1;
-        if (x - start).length() > h {
+        if (x - start).length() > REACH * h {
             return None;
         }
         if fa.abs().max(fb.abs()) <= 1e-13 * h && (l0.abs() + l1.abs()) <= 1e-12 * h {
