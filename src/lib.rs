@@ -53,9 +53,6 @@ pub use error::GeometryError;
 pub use kernel::csg::{self, union, Tagged};
 pub use kernel::hermite::{AdaptiveSplit, HermiteEnd, HermiteSegment};
 pub use kernel::link::{LinkShape, PendingInterval, RoundCone};
-// The faithful link's old path, for the fuzz checks until they import it from `baseline`.
-#[doc(hidden)]
-pub use baseline::HanLink;
 pub use kernel::mesh::{
     tessellate_chain, tessellate_chain_solid, tessellate_link, tessellate_spline, Mesh, Part, MAX_RING,
 };

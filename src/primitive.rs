@@ -1,9 +1,10 @@
 //! The [`Primitive`] trait — one call across primitives, after parry3d's `RayCast` +
 //! `compute_aabb` — and the [`Sphere`] primitive.
 
+use crate::baseline::HanLink;
 use crate::bounds::{Aabb, Obb};
 use crate::error::GeometryError;
-use crate::kernel::link::{HanLink, RoundCone};
+use crate::kernel::link::RoundCone;
 use crate::kernel::roots::Solver;
 use crate::kernel::sdf;
 use crate::kernel::sphere::sphere_line;

@@ -13,7 +13,8 @@
 // Any disagreement outside its bound is a finding. Inputs whose lengths span ≥ 1e12 get only
 // check 1 (the bounds are stated below that span, as in checks/link.rs).
 #[allow(unused_imports)]
-use tubecast::{HanLink, Interval, Primitive, Ray, RoundCone, WideF32x8, WideF64x4, V3};
+use tubecast::baseline::HanLink;
+use tubecast::{Interval, Primitive, Ray, RoundCone, WideF32x8, WideF64x4, V3};
 include!("decode.rs");
 
 fn r32(x: f64) -> f64 {

@@ -4,7 +4,8 @@
 // f32: no NaN, t_in <= t_out, unit normals; and for the stable kernel hit points on the surface
 // within E = 64ε(S + D) + 8εS/max(c², 32ε) (the bound derived in tests/kernels/link/properties.rs).
 #[allow(unused_imports)]
-use tubecast::{HanLink, Primitive, Ray, RoundCone, V3};
+use tubecast::baseline::HanLink;
+use tubecast::{Primitive, Ray, RoundCone, V3};
 include!("decode.rs");
 include!("sane.rs");
 

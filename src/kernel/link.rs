@@ -5,7 +5,7 @@
 //!
 //! * **faithful** — Han et al. 2019: apex, unit-cone transform, quadratic, slab `[z_cap, 1]`,
 //!   plus the two spheres; a textbook cylinder when the radii are exactly equal. With the
-//!   transform precomputed ([`HanLink`], Han Table 1 option d) or built per call
+//!   transform precomputed ([`HanLink`](crate::baseline::HanLink), Han Table 1 option d) or built per call
 //!   ([`RoundCone::intersect_han_on_the_fly`], option c). A baseline: it lives in
 //!   [`crate::baseline`].
 //! * **stable** — [`RoundCone`] ([`Primitive`](crate::Primitive)): no apex. The cone is written with its half-angle,
@@ -21,9 +21,6 @@
 mod stable;
 pub use stable::PendingInterval;
 
-// The faithful link's `Primitive` impl (`src/primitive.rs`) still names it by this path.
-pub(crate) use crate::baseline::HanLink;
-
 use crate::error::GeometryError;
 use crate::ray::{Interval, Ray};
 use crate::real::{Real, Scalar};
@@ -36,7 +33,7 @@ use crate::vec::V3;
 /// [`RoundCone::from_lanes`] from validated scalar links. Ray queries, the box and the
 /// distance come from [`Primitive`](crate::Primitive): the **stable** formulation (no apex: the cone by its
 /// half-angle in coordinates centred on the link, the ray origin moved to the point of the
-/// line closest to it; derivation in `src/kernel/link.rs`). [`HanLink`] is the faithful one, a
+/// line closest to it; derivation in `src/kernel/link.rs`). [`HanLink`](crate::baseline::HanLink) is the faithful one, a
 /// baseline.
 ///
 /// ```

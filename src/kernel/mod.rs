@@ -2,7 +2,6 @@
 //! crate root re-exports what callers use.
 #![deny(missing_docs)]
 
-pub mod cone;
 pub mod csg;
 pub mod link;
 pub mod sdf;

@@ -54,7 +54,7 @@ fn unit<T: Real>(v: V3<T>) -> V3<T> {
 }
 
 /// A unit vector orthogonal to the unit vector `n` (Duff et al. 2017): the first vector of
-/// [`crate::kernel::cone::orthonormal_basis`].
+/// [`crate::math::frame::orthonormal_basis`].
 #[inline(always)]
 pub fn orthogonal<T: Real>(n: V3<T>) -> V3<T> {
     orthonormal_basis(n).0

@@ -37,11 +37,6 @@ mod occupancy;
 
 pub use occupancy::{clipped_sdf, occupancy, Clip};
 
-// The baselines' old paths, for the renderer's grid build until it imports them from
-// `baseline` (and fills spline boxes with `voxelize_box`).
-#[doc(hidden)]
-pub use crate::baseline::voxel::{voxelize_aabb, voxelize_dda};
-
 use crate::kernel::link::RoundCone;
 use crate::real::Scalar;
 use crate::vec::V3;

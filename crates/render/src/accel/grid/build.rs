@@ -218,12 +218,16 @@ impl Grid {
                 let (a, b) = p.aabb();
                 let a = self.to_grid(V3::from(a.map(|x| x - pad)));
                 let b = self.to_grid(V3::from(b.map(|x| x + pad)));
-                return voxel::voxelize_aabb(&RoundCone { a, ra: 0.0, b, rb: 0.0 }, self.dims, |c| f(self.index(c)));
+                return tubecast::baseline::voxel::voxelize_aabb(
+                    &RoundCone { a, ra: 0.0, b, rb: 0.0 },
+                    self.dims,
+                    |c| f(self.index(c)),
+                );
             }
         };
         match how {
             Voxelizer::Conservative => voxel::voxelize_round_cone(&cone, self.dims, |c| f(self.index(c))),
-            Voxelizer::CentreLine => voxel::voxelize_dda(&cone, self.dims, |c| f(self.index(c))),
+            Voxelizer::CentreLine => tubecast::baseline::voxel::voxelize_dda(&cone, self.dims, |c| f(self.index(c))),
         }
     }
 }
