@@ -345,10 +345,18 @@ impl<T: Scalar> Interval<T> {
         if !self.hit {
             return None;
         }
-        if self.entry.t >= t_min && self.entry.t <= t_max {
-            Some(Hit::new(self.entry, 0, true))
-        } else if self.exit.t >= t_min && self.exit.t <= t_max {
-            Some(Hit::new(self.exit, 0, false))
+        let entering = Self::first_end(self.entry.t, self.exit.t, t_min, t_max)?;
+        Some(Hit::new(if entering { self.entry } else { self.exit }, 0, entering))
+    }
+    /// Which end of an interval `[t_in, t_out]` is its first crossing inside `[t_min, t_max]`:
+    /// `Some(true)` the entry, `Some(false)` the exit (the ray starts inside), `None` neither —
+    /// the rule of [`Self::first_hit`], for callers that hold only the two `t`.
+    #[inline]
+    pub fn first_end(t_in: T, t_out: T, t_min: T, t_max: T) -> Option<bool> {
+        if t_in >= t_min && t_in <= t_max {
+            Some(true)
+        } else if t_out >= t_min && t_out <= t_max {
+            Some(false)
         } else {
             None
         }

@@ -4,7 +4,7 @@
 use super::RoundCone;
 use crate::math::frame::orthonormal_basis;
 use crate::math::quadric::{quadric_in_slab_disc, slab, sphere_chord, Chord};
-use crate::ray::{Crossing, Interval, Ray};
+use crate::ray::{in_range, Crossing, Interval, Ray};
 use crate::real::{Mask, Real};
 use crate::vec::V3;
 
@@ -93,6 +93,14 @@ impl<T: Real> PendingInterval<T> {
         let h = &self.hull;
         let (n, u) = self.f.finish(link, h.t_out, h.out_a, h.out_b, h.cone_out, h.side_out);
         Crossing { t: self.t_out, n, u }
+    }
+
+    /// The lanes whose interval overlaps the ray's range keep `hit`, as
+    /// [`Interval::clip`] does (the step from a line interval to an `intersect`).
+    #[inline(always)]
+    pub fn clip(mut self, ray: &Ray<T>) -> Self {
+        self.hit = self.hit & in_range(ray, self.t_in, self.t_out);
+        self
     }
 
     /// The whole line interval, as [`Primitive::line_interval`](crate::Primitive) gives it.

@@ -216,8 +216,7 @@ impl Clusters {
         len: f64,
         mut f: impl FnMut(usize, Interval<f64>) -> bool,
     ) -> bool {
-        let (o, tc) = local_origin(self.heads[c].origin, ray.o, dn);
-        let rl = Ray::with_range(o, dn.cast::<f32>(), f32::NEG_INFINITY, f32::INFINITY);
+        let (rl, tc) = self.local_ray(c, ray, dn);
         for i in i0..i1 {
             let iv = link_interval(&self.cone(c, i), &rl, tc, len, ray);
             if iv.hit && !f(i, iv) {
@@ -240,13 +239,20 @@ impl Clusters {
         id: impl Fn(usize) -> u32,
         best: &mut Best,
     ) {
-        let (o, tc) = local_origin(self.heads[c].origin, ray.o, dn);
-        let rl = Ray::with_range(o, dn.cast::<f32>(), f32::NEG_INFINITY, f32::INFINITY);
+        let (rl, tc) = self.local_ray(c, ray, dn);
         for i in i0..i1 {
             if let Some(p) = PendingHit::of_link(&self.cone(c, i), &rl, tc, len, ray, id(i)) {
                 best.keep(Best::Pending(p));
             }
         }
+    }
+
+    /// The local ray of cluster `c` (its origin moved to the line's point nearest the
+    /// cluster's origin, unit direction, unbounded) and that point's distance `tc` along `dn`.
+    #[inline(always)]
+    fn local_ray(&self, c: usize, ray: &Ray<f64>, dn: V3<f64>) -> (Ray<f32>, f64) {
+        let (o, tc) = local_origin(self.heads[c].origin, ray.o, dn);
+        (Ray::with_range(o, dn.cast::<f32>(), f32::NEG_INFINITY, f32::INFINITY), tc)
     }
 
     /// Bytes held (allocated capacity).

@@ -41,17 +41,20 @@ pub fn closest_table(tracer: &dyn Tracer, rays: &[Ray<f64>]) -> Vec<[f64; HIT_CO
 /// [`closest_table`] into `rows` (one per ray, `rows.len() == rays.len()`), for a caller that
 /// streams the table in chunks through one buffer.
 pub fn closest_rows(tracer: &dyn Tracer, rays: &[Ray<f64>], rows: &mut [[f64; HIT_COLUMNS]]) {
-    assert_eq!(rays.len(), rows.len(), "one row per ray");
-    rows.par_iter_mut().zip(rays.par_iter()).for_each(|(row, ray)| {
-        *row = match tracer.closest_hit_exit(ray) {
-            Some((h, exit)) => {
-                let p = tracer.prim(h.id);
-                let flag = if h.entering { 1.0 } else { -1.0 };
-                [h.t, exit, h.n.x, h.n.y, h.n.z, p.link as f64, h.u, flag]
-            }
-            None => MISS_ROW,
+    fill(rays, rows, |ray| match tracer.closest_hit_exit(ray) {
+        Some((h, exit)) => {
+            let p = tracer.prim(h.id);
+            let flag = if h.entering { 1.0 } else { -1.0 };
+            [h.t, exit, h.n.x, h.n.y, h.n.z, p.link as f64, h.u, flag]
         }
+        None => MISS_ROW,
     });
+}
+
+/// `rows[k] = row(&rays[k])` for every ray, in parallel.
+fn fill(rays: &[Ray<f64>], rows: &mut [[f64; HIT_COLUMNS]], row: impl Fn(&Ray<f64>) -> [f64; HIT_COLUMNS] + Sync) {
+    assert_eq!(rays.len(), rows.len(), "one row per ray");
+    rows.par_iter_mut().zip(rays.par_iter()).for_each(|(r, ray)| *r = row(ray));
 }
 
 /// The `--query piece` table of `rays`: `t_in`, `t_out` of the first component of the union
@@ -65,12 +68,9 @@ pub fn hit_table(tracer: &dyn Tracer, rays: &[Ray<f64>]) -> Vec<[f64; HIT_COLUMN
 
 /// [`hit_table`] into `rows` (one per ray, `rows.len() == rays.len()`).
 pub fn hit_rows(tracer: &dyn Tracer, rays: &[Ray<f64>], rows: &mut [[f64; HIT_COLUMNS]]) {
-    assert_eq!(rays.len(), rows.len(), "one row per ray");
-    rows.par_iter_mut().zip(rays.par_iter()).for_each(|(row, ray)| {
-        *row = match first_component(tracer, ray) {
-            Some((e, x)) => [e.t, x.t, e.n.x, e.n.y, e.n.z, tracer.prim(e.id).link as f64, e.u, 1.0],
-            None => MISS_ROW,
-        }
+    fill(rays, rows, |ray| match first_component(tracer, ray) {
+        Some((e, x)) => [e.t, x.t, e.n.x, e.n.y, e.n.z, tracer.prim(e.id).link as f64, e.u, 1.0],
+        None => MISS_ROW,
     });
 }
 

@@ -11,7 +11,7 @@
 //! the eight slab tests of a node run as one eight-lane computation.
 //!
 //! # Conservative planes
-//! The walk's trees ([`Tree::from_cwbvh_exact`]) store each child's **exact** box: the union
+//! The walk's trees ([`Tree::from_cwbvh`]) store each child's **exact** box: the union
 //! (`f32` min and max, exact) of the padded `f32` boxes of the items under it, the boxes the
 //! build was given. So every plane contains what it stands for with no rounding of its own,
 //! and the traversal's slab arithmetic is the one the parent module's bound covers (the box
@@ -79,17 +79,6 @@ impl TreeRay {
     }
 }
 
-/// The next `f32` after `x` towards `dir`'s sign (`x` finite; `±0` steps to the smallest
-/// subnormal of that sign).
-fn step(x: f32, dir: f32) -> f32 {
-    if x == 0.0 {
-        return f32::from_bits(1).copysign(dir);
-    }
-    let b = x.to_bits();
-    let away = (x > 0.0) == (dir > 0.0);
-    f32::from_bits(if away { b + 1 } else { b - 1 })
-}
-
 /// Stack entries of a walk: seven per level of a tree of depth at most
 /// `cwbuild::MAX_DEPTH + 1`, rounded up.
 const STACK: usize = 7 * (super::cwbuild::MAX_DEPTH + 2);
@@ -127,27 +116,17 @@ pub struct Leaf {
 }
 
 impl Tree {
-    /// The same tree as obvhs's `bvh` with its quantised planes evaluated (`p + q·2ᵏ` in `f64`,
-    /// rounded to `f32` and one step outward): the structure [`Self::from_cwbvh_exact`] then
-    /// tightens.
-    pub fn from_cwbvh(bvh: &CwBvh) -> Self {
+    /// The tree of obvhs's `bvh` (its nodes and leaf ranges) with every child's planes set to
+    /// its exact box: the union of the boxes `item_box(k)` of its leaf-order items `k` (for an
+    /// inner child, of everything under it), the boxes the build was given (module docs).
+    /// obvhs's quantised planes are not used.
+    pub fn from_cwbvh(bvh: &CwBvh, item_box: impl Fn(u32) -> ([f32; 3], [f32; 3])) -> Self {
         let nodes = bvh
             .nodes
             .iter()
             .map(|n| {
                 let mut out = Node::VOID;
-                let e = [n.e[0], n.e[1], n.e[2]].map(|e| f64::from(f32::from_bits(u32::from(e) << 23)));
-                let p = [n.p.x, n.p.y, n.p.z].map(f64::from);
-                for ch in 0..WIDTH {
-                    if n.is_child_empty(ch) {
-                        continue;
-                    }
-                    let lo = [n.child_min_x[ch], n.child_min_y[ch], n.child_min_z[ch]];
-                    let hi = [n.child_max_x[ch], n.child_max_y[ch], n.child_max_z[ch]];
-                    for a in 0..3 {
-                        out.lo[a][ch] = step((p[a] + f64::from(lo[a]) * e[a]) as f32, -1.0);
-                        out.hi[a][ch] = step((p[a] + f64::from(hi[a]) * e[a]) as f32, 1.0);
-                    }
+                for ch in (0..WIDTH).filter(|&ch| !n.is_child_empty(ch)) {
                     if n.is_leaf(ch) {
                         let (first, count) = n.child_primitives(ch);
                         (out.child[ch], out.count[ch]) = (first, count);
@@ -158,21 +137,14 @@ impl Tree {
                 out
             })
             .collect();
-        Self { nodes }
-    }
-
-    /// [`Self::from_cwbvh`] with every child's planes replaced by its exact box: the union of
-    /// the boxes `item_box(k)` of its leaf-order items `k` (for an inner child, of everything
-    /// under it), the boxes the build was given (module docs).
-    pub fn from_cwbvh_exact(bvh: &CwBvh, item_box: impl Fn(u32) -> ([f32; 3], [f32; 3])) -> Self {
-        let mut tree = Self::from_cwbvh(bvh);
+        let mut tree = Self { nodes };
         if !tree.nodes.is_empty() {
             tree.tighten(0, &item_box);
         }
         tree
     }
 
-    /// Set node `ni`'s child planes to the exact boxes (see [`Self::from_cwbvh_exact`]) and
+    /// Set node `ni`'s child planes to the exact boxes (see [`Self::from_cwbvh`]) and
     /// return the node's own box.
     fn tighten(&mut self, ni: usize, item_box: &impl Fn(u32) -> ([f32; 3], [f32; 3])) -> ([f32; 3], [f32; 3]) {
         let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);

@@ -188,7 +188,7 @@ impl WideBvh {
         let mut bvh = super::chunked::build(n, |j| frame.padded(world(j)), chunk);
         let order = std::mem::take(&mut bvh.primitive_indices);
         assert!(order.len() < 1 << 30, "leaf items are addressed in 30 bits");
-        let tree = Tree::from_cwbvh_exact(&bvh, |k| {
+        let tree = Tree::from_cwbvh(&bvh, |k| {
             let b = frame.padded(world(order[k as usize] as usize));
             (b.min.into(), b.max.into())
         });

@@ -158,24 +158,14 @@ impl PendingHit {
         if link_surely_misses(c, rl.o, rl.d) {
             return None;
         }
-        let line = c.pending_line(rl);
-        // `Primitive::intersect`'s clip to the local ray's range.
-        if !(line.hit && line.t_in <= line.t_out && line.t_out >= rl.t_min && line.t_in <= rl.t_max) {
+        // `Primitive::intersect`, `Prim::to_world`, then `Interval::first_hit`.
+        let line = c.pending_line(rl).clip(rl);
+        if !line.hit {
             return None;
         }
-        // `Prim::to_world`, then `Interval::first_hit`.
-        let t_in = (tc + line.t_in as f64) / len;
-        let t_out = (tc + line.t_out as f64) / len;
-        if !(t_in <= t_out && t_out >= ray.t_min && t_in <= ray.t_max) {
-            return None;
-        }
-        let (t, entering) = if t_in >= ray.t_min && t_in <= ray.t_max {
-            (t_in, true)
-        } else if t_out >= ray.t_min && t_out <= ray.t_max {
-            (t_out, false)
-        } else {
-            return None;
-        };
+        let (t_in, t_out) = Prim::world_range(line.t_in, line.t_out, tc, len, ray)?;
+        let entering = Interval::first_end(t_in, t_out, ray.t_min, ray.t_max)?;
+        let t = if entering { t_in } else { t_out };
         Some(Self { t, t_out, id, entering, cone: *c, line })
     }
 
@@ -494,14 +484,20 @@ impl Prim {
         if !iv.hit {
             return Interval::miss();
         }
-        let t_in = (tc + iv.entry.t as f64) / len;
-        let t_out = (tc + iv.exit.t as f64) / len;
-        let hit = t_in <= t_out && t_out >= ray.t_min && t_in <= ray.t_max;
-        if !hit {
+        let Some((t_in, t_out)) = Self::world_range(iv.entry.t, iv.exit.t, tc, len, ray) else {
             return Interval::miss();
-        }
+        };
         let (entry, exit) = (iv.entry.to_f64(), iv.exit.to_f64());
-        Interval::new(Crossing { t: t_in, ..entry }, Crossing { t: t_out, ..exit }, hit)
+        Interval::new(Crossing { t: t_in, ..entry }, Crossing { t: t_out, ..exit }, true)
+    }
+
+    /// A local `f32` interval's ends as world `t` (`(tc + τ)/len`), where it is non-empty and
+    /// overlaps the ray's range.
+    #[inline(always)]
+    pub(crate) fn world_range(t_in: f32, t_out: f32, tc: f64, len: f64, ray: &Ray<f64>) -> Option<(f64, f64)> {
+        let t_in = (tc + t_in as f64) / len;
+        let t_out = (tc + t_out as f64) / len;
+        (t_in <= t_out && t_out >= ray.t_min && t_in <= ray.t_max).then_some((t_in, t_out))
     }
 }
 
