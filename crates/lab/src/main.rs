@@ -1,7 +1,7 @@
 //! `tubecast-lab`: writes the reports (SVG charts, markdown, CSV) into a folder.
 //!
 //! ```text
-//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|thin|mesh|mesh-real|peers|voxel|voxel-ao|voxel-quantized|voxel-timing|spline-lanes|all|tables [--out DIR]
+//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|thin|mesh|mesh-real|mesh-size|peers|voxel|voxel-ao|voxel-quantized|voxel-timing|spline-lanes|all|tables [--out DIR]
 //!     [--seed N] [--quick] [--big] [--threads N] [--quiet]
 //! ```
 //!
@@ -59,6 +59,8 @@ enum Which {
     Voxel,
     /// Mesh and automatic choice on real-world-like scenes: cost against certified error.
     MeshReal,
+    /// Triangles and bytes against certified error: link models, shells and the union mesh.
+    MeshSize,
     /// Write `<name>.tables.json` beside every markdown report in --out (measures nothing).
     Tables,
     /// Ambient occlusion: voxel cone tracing vs rays, error against cost.
@@ -110,6 +112,9 @@ fn jobs(which: Which) -> Result<Vec<(&'static str, Job)>, String> {
     }
     if all || which == Which::MeshReal {
         jobs.push(("mesh-real", report::run_mesh_real));
+    }
+    if all || which == Which::MeshSize {
+        jobs.push(("mesh-size", report::run_mesh_size));
     }
     #[cfg(feature = "embree")]
     if all || which == Which::Peers {

@@ -18,6 +18,8 @@
 //!   image difference) versus segment count;
 //! * [`run_mesh_real`] — the same trade-off on real-world-like scenes (nibabel's `standard.trk`,
 //!   a fibre bundle, the README's neuron assembly), frame time and memory against certified error;
+//! * [`run_mesh_size`] — on the same scenes, triangles and bytes against certified error for the
+//!   exact links, the simplified link model, the per-chain shells and the union mesh;
 //! * [`run_spline_lanes`] — what a spline costs: the spline kernel against the link per call, in
 //!   scalar and lanes, on the spline bench's rays, and the floor of any per-call lane kernel;
 //! * `run_peers` (feature `embree`) — Embree 3's round linear curves on the same `f32` rays.
@@ -28,6 +30,7 @@ pub mod chart;
 pub mod eval;
 mod mesh;
 mod mesh_real;
+mod mesh_size;
 pub mod oracle;
 #[cfg(feature = "embree")]
 mod peers;
@@ -48,6 +51,7 @@ mod voxel_timing;
 
 pub use mesh::run_mesh;
 pub use mesh_real::run_mesh_real;
+pub use mesh_size::{measure_sizes, ply_bytes, run_mesh_size, size_table, union_estimate, SizeRow, KINDS, SIZE_EPS};
 #[cfg(feature = "embree")]
 pub use peers::run_peers;
 pub use runs::{run_accuracy, run_stability};
