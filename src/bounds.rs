@@ -125,7 +125,7 @@ impl<T: Real> RoundCone<T> {
 /// Both the radius change and the shift are within `E`. One assumption is tested, not proven:
 /// the entry's critical point is among the polished candidates. The full derivation is the
 /// "Conditioning" section of `src/kernel/spline.rs`; `docs/design/spline-kernel.md` has the
-/// reasoning and `tests/kernels/spline/conditioning.rs` the test over `L/r = 1 … 10⁵`.
+/// reasoning and `tests/splines/conditioning.rs` the test over `L/r = 1 … 10⁵`.
 ///
 /// `E/r` grows linearly in `L/r`: in `f32` it reaches the radius itself near `L/r ≈ 10⁴`.
 ///

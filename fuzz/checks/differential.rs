@@ -94,7 +94,13 @@ fn to64(iv: Interval<f32>) -> Interval<f64> {
 
 /// Both hits' entry and exit `t` inside the E-bands of the line ([`e_bands`]), plus 1e-12·|t|
 /// for the oracle's own rounding.
-pub fn same_t(a: &Interval<f64>, b: &Interval<f64>, link: &RoundCone<f64>, ray: &Ray<f64>, e: f64) -> Result<(), String> {
+pub fn same_t(
+    a: &Interval<f64>,
+    b: &Interval<f64>,
+    link: &RoundCone<f64>,
+    ray: &Ray<f64>,
+    e: f64,
+) -> Result<(), String> {
     let [in_lo, in_hi, out_lo, out_hi] = e_bands(link, ray, e)?;
     for (what, iv) in [("first", a), ("second", b)] {
         if !within(iv.entry.t, in_lo, in_hi) {
@@ -245,11 +251,16 @@ fn spline_agrees_with_stable(link: &RoundCone<f64>, ray: &Ray<f64>) -> Result<()
     let r32 = Ray::new(ray.o.cast::<f32>(), ray.d.cast::<f32>());
     let runs = [
         ("spline (f64) vs stable link", f64::EPSILON, tubecast::QuadTube::from_link(link).map(|q| q.intersect(ray))),
-        ("spline (f32) vs stable link", f32::EPSILON as f64, tubecast::QuadTube::from_link(&l32).map(|q| to64(q.intersect(&r32)))),
+        (
+            "spline (f32) vs stable link",
+            f32::EPSILON as f64,
+            tubecast::QuadTube::from_link(&l32).map(|q| to64(q.intersect(&r32))),
+        ),
     ];
     for (what, eps, b) in runs {
         let Ok(b) = b else { continue };
-        let e = e64 + 1024.0 * eps * big_r + 8.0 * eps * om + eps * (3f64.sqrt() * m.length() + link.ra.max(link.rb));
+        let e =
+            e64 + tubecast::spline_error_band(eps, big_r, om) + eps * (3f64.sqrt() * m.length() + link.ra.max(link.rb));
         within_band(&a, &b, gap, e, link, ray, what)?;
     }
     Ok(())

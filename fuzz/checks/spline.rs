@@ -4,7 +4,7 @@
 // panicking); otherwise coordinates are i16/1000 (|x| ≤ 32.8). Valid input must give, in f64
 // and f32 and for every solver: no NaN, t_in ≤ t_out, unit normals, u ∈ [0, 1]; and in f64,
 // on intervals at least 1e-6·S long, hit points not outside the tube by more than
-// E = √(64ε)·S + 8εS (tests/kernels/spline/kernel.rs) + 8ε(D + |t·d|) (rounding of o + t·d), and for
+// E = √(64ε)·S + 8εS (tests/splines/kernel.rs) + 8ε(D + |t·d|) (rounding of o + t·d), and for
 // the polynomial solver within E of the surface (exact tube SDF).
 #[allow(unused_imports)]
 use tubecast::{Primitive, QuadTube, Ray, Solver, V3};
@@ -54,11 +54,11 @@ pub fn scale(t: &QuadTube<f64>) -> f64 {
 }
 
 /// The bound E on the distance of a hit at `tt` from the surface: √(64ε)·S + 8εS
-/// (tests/kernels/spline/kernel.rs), plus the rounding of the hit point o + t·d itself (and of t),
+/// (tests/splines/kernel.rs), plus the rounding of the hit point o + t·d itself (and of t),
 /// ≤ 8ε(D + |t·d|) with D = |o − b₀| (a far origin cancels against t·d), plus, with `subnormal`,
 /// the absolute rounding of a subnormal t (|t| < MIN_POSITIVE: a multiple of q = 2⁻¹⁰⁷⁴,
 /// whatever the kernel does): t = tc + s·(big·(1/|d|)), |s| ≤ 1, is four roundings of ≤ q/2
-/// each there, 2q in all: |d|·4q covers it (a fuzz finding, tests/kernels/spline/extreme_scales.rs: tiny tubes
+/// each there, 2q in all: |d|·4q covers it (a fuzz finding, tests/splines/extreme_scales.rs: tiny tubes
 /// hit by rays with |d| ~ 1e149; that test calls it without the term to show it is needed).
 pub fn surface_bound(t: &QuadTube<f64>, ray: &Ray<f64>, tt: f64, subnormal: bool) -> f64 {
     let s = scale(t);
@@ -88,7 +88,7 @@ pub fn check(data: &[u8]) {
     }
     // Every solver reports points of the closed tube (sdf ≤ bound); the polynomial solver,
     // which rests on no empirical claim, reports surface points (|sdf| ≤ bound). The Russig
-    // cascade can miss a minimum where the claims fail (tests/kernels/spline/derivative_roots.rs documents a
+    // cascade can miss a minimum where the claims fail (tests/splines/derivative_roots.rs documents a
     // case) and then reports a point inside.
     if iv.hit {
         let s = scale(&t);

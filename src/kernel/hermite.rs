@@ -6,7 +6,7 @@
 //! `c₁ = c₂ = 1/3` (the Hermite → cubic Bézier basis change). The junction is C¹: both
 //! sub-segments have derivative `b₂ − a₂` there (in their own parameters). The pair is a
 //! **model**, not a reparametrisation of the cubic: the sweep differs from the cubic Hermite
-//! sweep (`tests/kernels/spline/hermite.rs` measures by how much); it is exact for straight segments
+//! sweep (`tests/splines/hermite.rs` measures by how much); it is exact for straight segments
 //! whose node derivatives are the chord (`tᵢ = tⱼ = nⱼ − nᵢ`).
 //!
 //! **Faithful split** ([`HermiteSegment::split_adaptive`], unlike Russig's fixed pair): the cubic (its Bézier
@@ -244,7 +244,7 @@ impl<T: Scalar> HermiteSegment<T> {
     /// Certified distance (see the module docs) between the cubic's sweep and Russig's pair's
     /// ([`Self::split`]): each half of the pair against the cubic's half (de Casteljau), greatest
     /// of the two. On Catmull–Rom helices of 8/12/16 points per turn it is a few 10⁻² of the
-    /// helix radius (`tests/kernels/spline/hermite.rs`), radii for thin tubes.
+    /// helix radius (`tests/splines/hermite.rs`), radii for thin tubes.
     pub fn pair_distance(&self) -> T {
         let ((pa, ra), (pb, rb)) = self.quad_controls();
         let (l, r) = halve(&self.bezier());

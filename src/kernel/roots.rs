@@ -26,13 +26,13 @@ pub enum Solver {
     /// by `f'''` → `f''` → `f'` on each real interval) with fixed-iteration bisection in every
     /// bracket. `iters = 10` is Salm's setting; the `t` error is `2^-iters` of the bracket.
     /// The cascade relies on Russig's empirical claim (at most one root of `f'''` per real
-    /// interval), which has counterexamples (`tests/kernels/spline/derivative_roots.rs`); so do `Itp`, `Newton`.
+    /// interval), which has counterexamples (`tests/splines/derivative_roots.rs`); so do `Itp`, `Newton`.
     ///
     /// **Approximate below about 30 steps**: a `t` located to `2^-iters` puts a thin tube's
     /// entry far from the critical point (its width in `t` is `~r/L`) and can lose a real
     /// interval narrower than `2^-iters` — false misses and late entries outside the kernel's
-    /// band (`tests/kernels/spline/approximate_solvers.rs` measures them). Never a default; `iters ≥ 40` meets
-    /// the band of the accurate solvers (`tests/kernels/spline/conditioning.rs`).
+    /// band (`tests/splines/approximate_solvers.rs` measures them). Never a default; `iters ≥ 40` meets
+    /// the band of the accurate solvers (`tests/splines/conditioning.rs`).
     Bisection {
         /// Bisection steps per bracket.
         iters: u32,
@@ -41,7 +41,7 @@ pub enum Solver {
     ///
     /// **Not exact where Russig's claim fails** (as `Bisection` and `Newton`): it can take a
     /// segment end for an interior extremum, e.g. an exit 0.055 inside a bulging tube
-    /// (`tests/kernels/spline/regressions.rs`, `bulge_itp_ci_finding`). Every value it reports is a real
+    /// (`tests/splines/regressions.rs`, `bulge_itp_ci_finding`). Every value it reports is a real
     /// sphere's entry or exit, so its interval lies inside the true one; the renderer and the
     /// CLI use [`Solver::Polynomial`].
     Itp,

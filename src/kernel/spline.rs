@@ -23,7 +23,7 @@
 //!   so they stay finite at the interval ends: `F₁ = 2h'√g − g'`,
 //!   `F₂ = 4h''g√g − 2g''g + g'²`, `F₃ = −4g'''g² + 6g'g''g − 3g'³`), and the same for the exit
 //!   with `h → −h`. This assumes Russig's empirical claim that `f'''` has at most one root per
-//!   real interval (`f'` at most three). `tests/kernels/spline/derivative_roots.rs` tests it: it holds on random
+//!   real interval (`f'` at most three). `tests/splines/derivative_roots.rs` tests it: it holds on random
 //!   segments, but **fails** on a real interval bounded by the segment ends (a radius
 //!   shrinking 600-fold; f''' has two roots, the middle of f''s three roots is the minimum), where
 //!   these solvers report a point inside the tube instead of the entry.
@@ -80,7 +80,7 @@
 //! as formed holds for `F₁`, `F̄₁` from the vectors — the same assumption in another form). `E/r ≈ 1024ε·L/(2r)` is linear in `L/r`, like the
 //! stable link's; the old formulation's was quadratic. What `E` excludes is exact: a phantom
 //! hit needs the tube inflated by `E` to be hit, a false miss the tube deflated by `E` to be
-//! missed. `tests/kernels/spline/conditioning.rs` asserts both, and the interval between the inflated
+//! missed. `tests/splines/conditioning.rs` asserts both, and the interval between the inflated
 //! and deflated tubes' intervals, for every accurate solver in `f32` and `f64` across
 //! `L/r = 1 … 10⁵` in eleven families (unit, bulge, cusp, taper to `r ≈ 0`, grazing, far origin,
 //! inside, inside beside an end crossed at right angles, pinched `r(½) = 0`, scales `2^±50`,
@@ -93,7 +93,7 @@
 //! point and no hit deeper than `E` is lost. (The ends alone were not enough: √g = 0 there, and
 //! a line that crosses a thin tube at right angles has `h' ≡ 0`, so `P = −g'²` has only double
 //! roots, which the cascade can miss — differential finding `regression-spline-f32-exit-at-end`,
-//! `tests/kernels/spline/straight_link.rs`.) The best candidate is then polished by a bracketed
+//! `tests/splines/straight_link.rs`.) The best candidate is then polished by a bracketed
 //! solve of `F₁ = 2σh'√g − g'` towards the side its sign points to, up to the nearest candidate
 //! there whose `F₁` has the other sign (at a real interval's ends `F₁ = −g'` has the sign that
 //! closes the bracket).

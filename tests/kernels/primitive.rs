@@ -6,13 +6,13 @@
 //! * the line interval ignores the ray's range and `intersect` applies it;
 //! * boxes contain sampled points of each solid, `RoundCone::obb` is conservative and tight;
 //! * the signed distance vanishes at hit points.
-use crate::spline::common::eval;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use tubecast::baseline::HanLink;
 use tubecast::{
     Aabb, Interval, Primitive, QuadTube, Ray, Real, RoundCone, Scalar, Solver, Sphere, WideF32x8, WideF64x4, V3,
 };
+use tubecast_oracle::Quad;
 
 struct Case {
     link: RoundCone<f64>,
@@ -142,45 +142,13 @@ const FNV0: u64 = 0xcbf2_9ce4_8422_2325;
 #[test]
 fn bit_identical_to_the_replaced_functions() {
     let cs = cases(256);
-    // Recorded from the replaced functions (commit 6959ba4) with the same fingerprints; the
-    // spline slot (index 3: `QuadTube::intersect` plus its boxes) re-recorded for issue 10's
-    // reformulation of the spline kernel (g from the ray-space vectors: different rounding,
-    // answers within the derived band E, tests/kernels/spline/conditioning.rs; the old kernel's were
-    // off by ε(L/r)² and had phantom hits). Slot 1 (the stable link's interval) re-recorded for
-    // issue 15's fix of its local frame (formed relative to the end `a`, not in world
-    // coordinates: different rounding, answers within E, tests/kernels/link/far_from_world.rs). Slot 3
-    // re-recorded again for the differential finding regression-spline-f32-exit-at-end (79ef2f2:
-    // g's maxima are candidates and a polish bracket ends at a candidate whose F₁ has the other
-    // sign, so other points are polished; answers within E, tests/kernels/spline/conditioning.rs).
-    // Slot 3, and the scalar distance's slot 3, re-recorded for issue 10's cost work: Newton
-    // takes a bracket end that its step overshoots by at most tol where the value there is
-    // rounding noise (`math::roots::newton`), g'''s roots in closed form, P isolated about the
-    // vertex only (candidates placed differently within rounding; answers within E,
-    // tests/kernels/spline/conditioning.rs). Slot 3 (not the distance) re-recorded once more for the
-    // certified count (`RaySpace::certified`: the entry and exit solved on certified brackets
-    // instead of polished from P's roots; answers within E, tests/kernels/spline/conditioning.rs and
-    // the unit test against the cascade). Slot 3 (not the distance) re-recorded for the next
-    // cost step: Halley's step in g's extrema and roots, the certified roots by Halley on P
-    // from the vectors, and g's Bernstein hull as an early rejection (roots placed differently
-    // within the tolerance, rejected lines miss exactly; answers within E, same tests).
-    // Slot 3 re-recorded in f32 and f32x8 only for the Taylor certificate of P's monotonicity
-    // (`Direct::p_monotone`: nodes the Bernstein count left to the cascade are now certified,
-    // so those queries take the certified solve; answers within E, same tests; f64 unchanged).
-    // Slot 3 re-recorded in every precision for the start of the Halley solves for g's roots
-    // (`Direct::g_root_start`: the root of g's second-order Taylor model about a bracket end
-    // instead of the regula-falsi point; the same roots to the solve's tolerance, answers
-    // within E, same tests). Slot 3 re-recorded in every precision for the start of the
-    // certified path's Halley solves on P (the regula-falsi point of the side's own sign
-    // function instead of P's; the same roots to the tolerance, answers within E, same tests).
-    // Slot 3 re-recorded in f64 and f64x4 (f32 unchanged) for the start of the solves for g''s
-    // roots (`Direct::g1_root_start`: the model g' + ½g'''δ² about a root of g''; same roots
-    // to the tolerance, answers within E, same tests).
-    // Slot 3 re-recorded in every precision for the certified count on real pieces bounded
-    // from outside (`Direct::g_piece_bounds`: points past g's roots, proven off the tube,
-    // instead of the roots, each root solved only where its bound fails; the same count and
-    // crossings, the solves start from other brackets: the same roots to the tolerance,
-    // answers within E, same tests).
-    // Slots 0 and 2 (sphere, Han) are unchanged.
+    // Fingerprints of every answer (intervals, normals, curve parameters) of the four kernels
+    // (slot 0 sphere, 1 stable link, 2 Han's link, 3 spline piece) on the same cases, so that
+    // any change of rounding fails here. A slot is re-recorded only when a kernel's arithmetic
+    // is changed on purpose and its answers are shown within the derived band E by the accuracy
+    // tests (tests/splines/conditioning.rs, tests/kernels/link/far_from_world.rs); each
+    // such change and its reason is in CHANGELOG.md. Slots 0 and 2 hold the answers of the
+    // functions these replaced.
     assert_eq!(
         fingerprint::<f64>(&cs),
         [0xba79df740085b444, 0x20be78c5e185ac86, 0x403afd8b99b02e6f, 0xbabb30bcf6f17bb8]
@@ -327,7 +295,7 @@ fn solid_samples(centre_radius: impl Fn(f64) -> (V3<f64>, f64)) -> Vec<V3<f64>> 
 
 /// Boxes contain the sampled points of each solid, to a margin: a box coordinate is formed
 /// with at most 1 rounding (`c ± r`, sphere and link) or, for the tube, the Obb extents
-/// (≤ 16ε·S, the bound of tests/kernels/spline/obb.rs) plus moving them to world coordinates (ε·S),
+/// (≤ 16ε·S, the bound of tests/splines/obb.rs) plus moving them to world coordinates (ε·S),
 /// where S is the largest coordinate or radius magnitude; the samples' own f64 rounding is
 /// ≤ 4ε₆₄·S. So 32ε·S (ε of the box's precision) bounds it.
 fn check_boxes<T: Scalar>(cs: &[Case]) {
@@ -337,9 +305,8 @@ fn check_boxes<T: Scalar>(cs: &[Case]) {
         let (lf, qf) = (l.cast::<f64>(), q.cast::<f64>());
         let lerp = |u: f64| (lf.a + (lf.b - lf.a) * u, lf.ra + (lf.rb - lf.ra) * u);
         let quad = |t: f64| {
-            let b = qf.b.map(|v| v.to_array());
-            let (p, r) = eval(&b, &qf.r, t);
-            (V3::from(p), r)
+            let q = Quad::new(qf.b.map(|v| v.to_array()), qf.r);
+            (V3::from(q.point(t).to_array()), q.radius(t))
         };
         let ball = Sphere { c: l.a, r: l.ra };
         let sets: [Samples<T>; 4] = [
@@ -381,7 +348,7 @@ fn boxes_contain_the_solids() {
 
 /// `RoundCone::obb` contains the solid and each face touches it: along a unit axis `a` the
 /// hull of two spheres reaches `max(a·A + ra, a·B + rb)` (closed form); the box is formed
-/// from a few dot products of size-S numbers (≤ 16εS, as in tests/kernels/spline/obb.rs).
+/// from a few dot products of size-S numbers (≤ 16εS, as in tests/splines/obb.rs).
 #[test]
 fn round_cone_obb_conservative_and_tight() {
     for c in cases(64) {
@@ -410,7 +377,7 @@ fn round_cone_obb_conservative_and_tight() {
 ///   for links without a pointed end or a nearly flat stump (the cases here: radii ≥ 0.05,
 ///   `c² = 1 − s² ≥ 0.01`, else skipped);
 /// * faithful link: 64ε·D'·max(D'/r_min, 1), D' = D + 100S (tests/kernels/link/properties.rs);
-/// * tube: √(64ε)·S + 8εS + 8εS, S = scale + 2 (tests/kernels/spline/kernel.rs);
+/// * tube: √(64ε)·S + 8εS + 8εS, S = scale + 2 (tests/splines/kernel.rs);
 ///
 /// plus forming `x = o + t·d` in absolute coordinates: 4ε(|o| + |t·d| + S).
 #[test]
@@ -424,7 +391,7 @@ fn sdf_vanishes_at_hits() {
         let sin = (l.ra - l.rb) / len.max(1e-300);
         let plain = l.ra.min(l.rb) >= 0.05 && 1.0 - sin * sin >= 0.01;
         let dd = d + 100.0 * s;
-        let qs = crate::spline::common::scale(&c.quad.b.map(|v| v.to_array()), &c.quad.r) + 2.0;
+        let qs = crate::spline_common::scale(&c.quad.b.map(|v| v.to_array()), &c.quad.r) + 2.0;
         let bounds = [
             16.0 * eps * ((ray.o - l.a).length() + l.ra),
             if plain { 64.0 * eps * (s + d) } else { f64::NAN },

@@ -78,9 +78,6 @@ impl Answers<'_> {
 type Table = fn(&dyn Tracer, &[Ray<f64>]) -> Vec<[f64; HIT_COLUMNS]>;
 
 impl Tracer for Answers<'_> {
-    fn prims(&self) -> &[Prim] {
-        self.bvh.prims()
-    }
     fn prim(&self, id: u32) -> Prim {
         self.bvh.prim(id)
     }

@@ -258,7 +258,7 @@ impl<T: Real> Direct<T> {
         // of the vectors, rounded like g'' evaluated from them.
         // With a fixed-step bracket method (Bisection) the cascade from g''''s vertex is
         // kept: the vertex stays a breakpoint, narrowing g''s pieces, and its false-miss rates
-        // (tests/kernels/spline/approximate_solvers.rs) are those measured.
+        // (tests/splines/approximate_solvers.rs) are those measured.
         let (b, a) = self.g3_coeffs();
         let bp = if m == Bracket::Newton {
             let c = self.rb * self.rb + T::cst(2.0) * self.ra * self.rc
@@ -321,7 +321,7 @@ impl<T: Real> Direct<T> {
     /// certified count needs only that the roots bound `g`'s real pieces to the solve's
     /// tolerance). Russig's cascade ([`Solver::Newton`]) keeps the regula-falsi start: its
     /// real intervals' ends decide the signs of its scaled sign functions there, and on fuzz
-    /// finding `tiny_ball_like_tube_with_large_direction` (tests/kernels/spline/extreme_scales.rs) a root
+    /// finding `tiny_ball_like_tube_with_large_direction` (tests/splines/extreme_scales.rs) a root
     /// of `g` at 9e-23 instead of 2.7e-20 — both within the tolerance 9e-16 of the true 2.7e-20
     /// — made its cascade take the end of the real interval for the entry (t = 0 for −R/|d|).
     ///

@@ -414,7 +414,7 @@ impl<T: Real> RaySpace<T> {
             let n = v.normalize_or_zero();
             V3::select(n.length2().gt(T::zero()), n, fallback)
         };
-        // Where big/|d| is subnormal (a tiny tube, a long d: tests/kernels/spline/extreme_scales.rs,
+        // Where big/|d| is subnormal (a tiny tube, a long d: tests/splines/extreme_scales.rs,
         // a 7e-171 tube with |d| = 4e149) so are these t: multiples of q = 2⁻¹⁰⁷⁴ (f64), which
         // no formula can beat: the hit o + t·d is then up to |d|·q/2 off along the ray, beyond
         // the relative error model. Here tc, big·(1/|d|), s·that and the sum each round by

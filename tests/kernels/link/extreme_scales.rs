@@ -1,5 +1,5 @@
 //! Extreme scales and huge direction ratios for the link, Han and sphere kernels, in f32 and
-//! f64 (issue 15: the region where two fuzz campaigns found defects in the spline kernel).
+//! f64 (the region where two fuzz campaigns found defects in the spline kernel).
 //!
 //! ## Why the expected answers are exact
 //! Multiplying every input length (centres, radii, ray origin) by `2ᵏ` and the direction by
@@ -11,8 +11,8 @@
 //! The constructors and [`Ray::validate`] reject inputs whose squares under- or overflow (the
 //! rule of `RoundCone::new`); every scaled case that they accept must scale exactly. A kernel
 //! with an absolute threshold (a fixed `1e-300`, a `MIN_POSITIVE` compare on a quantity that
-//! is not a square of an input) would fail here, which is the defect class the fuzz findings of
-//! issue 15 belong to.
+//! is not a square of an input) would fail here, which is the defect class those fuzz findings
+//! belong to.
 //!
 //! What holds, as the proptests found it: in f64 every kernel (stable, Han, sphere, SDF) scales
 //! bit-exactly over the whole range below. In f32 the sphere and the SDF do; the stable kernel

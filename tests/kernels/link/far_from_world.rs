@@ -1,4 +1,4 @@
-//! The stable link kernel on links far from the world origin (issue 15, a fuzz finding of the
+//! The stable link kernel on links far from the world origin (a fuzz finding of the
 //! `differential` target).
 //!
 //! The error analysis of `tests/kernels/link/properties.rs` bounds a hit point's distance from the surface by

@@ -1,4 +1,4 @@
-//! `tubecast intersect --splines` (issue 10) and the spline fidelity line of `info --splines`.
+//! `tubecast intersect --splines` and the spline fidelity line of `info --splines`.
 
 use crate::common::bin;
 crate::common::tmp_fn!();

@@ -111,8 +111,11 @@ fn to32(v: V3<f64>) -> [f32; 3] {
 }
 
 impl Tracer for EmbreeTracer {
-    fn prims(&self) -> &[Prim] {
-        &self.prims
+    fn prim(&self, id: u32) -> Prim {
+        self.prims[id as usize]
+    }
+    fn prim_count(&self) -> usize {
+        self.prims.len()
     }
 
     fn closest_hit(&self, ray: &Ray<f64>) -> Option<Hit> {

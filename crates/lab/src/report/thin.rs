@@ -1,6 +1,6 @@
 //! The spline kernel's length/radius sweep, which shows whether its error stays linear in `L/r`:
 //! `L/r = 10 … 10⁵` over the eleven thin-tube
-//! families of `tests/kernels/spline/conditioning.rs` ([`tubecast_oracle::thin_case`]), every solver in
+//! families of `tests/splines/conditioning.rs` ([`tubecast_oracle::thin_case`]), every solver in
 //! `f32` and `f64`, judged against the independent thin-tube oracle
 //! ([`tubecast_oracle::quad_crossing_offset`]) with the kernel's derived backward-error band
 //! (`src/kernel/spline.rs`, "Conditioning")
@@ -12,7 +12,7 @@
 //! outside the inflated/deflated tubes' (± `E` along the ray). Error: `|Δt|·|d|` over the
 //! largest control radius against the exact tube, max over the hits of every family but
 //! grazing (there `t` is ill-conditioned by the angle, not by the kernel). Lanes are not run:
-//! every lane equals the scalar call bit for bit (`tests/kernels/spline/kernel.rs`).
+//! every lane equals the scalar call bit for bit (`tests/splines/kernel.rs`).
 
 use super::chart::{self, Chart, Marker, Pt, Series, XAxis};
 use super::eval::{solver_name, Precision};
@@ -147,7 +147,7 @@ pub fn run_thin(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, ReportE
     );
     let _ = write!(
         md,
-        "The eleven thin-tube families of `tests/kernels/spline/conditioning.rs` (unit, bulge, cusp, taper, grazing, far \
+        "The eleven thin-tube families of `tests/splines/conditioning.rs` (unit, bulge, cusp, taper, grazing, far \
          origin, inside, inside beside an end crossed at right angles, pinched, scale 2^±50, direction ratio \
          2⁴⁰), {seeds} seeds each per ratio, every solver \
          in `f32` and `f64`, against the independent thin-tube oracle. Band `E = 1024·ε·R + 8·ε·|o − p(½)|` \

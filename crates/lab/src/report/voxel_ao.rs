@@ -62,7 +62,7 @@ pub(super) fn shaded_points(scene: &Scene, bvh: &dyn Tracer, side: u32) -> Resul
             if let Some(hit) = bvh.closest_hit(&ray) {
                 let p = ray.at(hit.t);
                 let n = if hit.n.dot(ray.d) > 0.0 { -hit.n } else { hit.n };
-                let eps = 1e-3 * bvh.prims()[hit.id as usize].max_radius() as f64 + 1e-12 * p.max_abs();
+                let eps = 1e-3 * bvh.prim(hit.id).max_radius() as f64 + 1e-12 * p.max_abs();
                 pts.push((p + n * eps, n));
             }
         }

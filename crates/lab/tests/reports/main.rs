@@ -10,6 +10,8 @@ mod common;
 mod accuracy;
 mod charts;
 mod cli;
+mod mesh;
+mod mesh_real;
 mod speed;
 mod spline_lanes;
 mod stability;

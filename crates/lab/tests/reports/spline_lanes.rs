@@ -1,4 +1,4 @@
-//! The spline-lanes report (issue 10's cost per call): a quick run writes all twelve timed rows
+//! The spline-lanes report (the spline kernel's cost per call): a quick run writes all twelve timed rows
 //! and a floor table that obeys identities derived by hand from its own inputs. (No assertion
 //! on the times themselves: speed is measured, not tested.)
 

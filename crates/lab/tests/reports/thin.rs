@@ -1,4 +1,4 @@
-//! The spline length/radius sweep report (issue 10): a quick seeded run writes its files and
+//! The spline length/radius sweep report: a quick seeded run writes its files and
 //! its numbers obey the kernel's band: no false answers from the accurate solvers, no phantom
 //! hits from any solver, and f64 far more accurate than f32.
 

@@ -34,8 +34,8 @@
 //! The tree is built over **pieces** of [`super::wide`]'s `PIECE` links of a cluster (one link:
 //! the same boxes as one item per link), not over whole clusters: a cluster's box is far
 //! looser than its links' boxes (a run of eight diagonal links has about 16 times their
-//! volume), and in a dense bundle a ray entered so many that tracing was 6× slower (peers
-//! report, Bundle 10⁵: 0.14 against 0.82 Mrays/s; pieces of two links: 0.41).
+//! volume), and in a dense bundle a ray enters so many of them that tracing slows several-fold
+//! (the peers report, `tubecast-lab peers`, measures the trade on Bundle 10⁵).
 
 use crate::scene::{link_interval, local_origin, stored_as_sphere, Best, PendingHit, Prim, Scene, Shape};
 use tubecast::{Interval, Ray, RoundCone, V3};

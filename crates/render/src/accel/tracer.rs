@@ -10,7 +10,7 @@ use tubecast::Ray;
 /// Ray queries over a scene's primitives, answered with exact kernel results in `f64`.
 ///
 /// Every implementation must give the same answers as [`Bvh`](super::Bvh) on the same
-/// primitives (the hit's `prim` indexes [`Tracer::prims`]); only the culling differs.
+/// primitives (the hit's `id` names [`Tracer::prim`]); only the culling differs.
 ///
 /// ```
 /// use tubecast::{Ray, V3};
@@ -25,19 +25,12 @@ use tubecast::Ray;
 /// assert_eq!(tracer.prim(hit.id).link, 0);
 /// ```
 pub trait Tracer: Send + Sync {
-    /// The primitives the tracer stores whole: ids `0..prims().len()` of [`Hit::id`] and
-    /// [`Tagged::id`]. Every tracer stores all of them so, except a compact
-    /// [`WideBvh::from_scene`](super::WideBvh::from_scene), whose clustered links follow them:
-    /// reach any id through [`Tracer::prim`] and [`Tracer::prim_count`].
-    fn prims(&self) -> &[Prim];
     /// The primitive with id `id` (a [`Hit::id`] or [`Tagged::id`]), `id < prim_count()`.
-    fn prim(&self, id: u32) -> Prim {
-        self.prims()[id as usize]
-    }
-    /// Number of primitive ids.
-    fn prim_count(&self) -> usize {
-        self.prims().len()
-    }
+    /// Every tracer answers every id, whether it stores the primitive whole or, as a compact
+    /// [`WideBvh::from_scene`](super::WideBvh::from_scene) does, in a cluster.
+    fn prim(&self, id: u32) -> Prim;
+    /// Number of primitive ids: ids run over `0..prim_count()`.
+    fn prim_count(&self) -> usize;
     /// The closest surface crossing in `[t_min, t_max]` (entry, or exit when the ray starts
     /// inside a primitive). The ray must be valid ([`Ray::validate`]).
     fn closest_hit(&self, ray: &Ray<f64>) -> Option<Hit>;
@@ -58,8 +51,11 @@ pub trait Tracer: Send + Sync {
 }
 
 impl Tracer for super::Bvh {
-    fn prims(&self) -> &[Prim] {
-        &self.prims
+    fn prim(&self, id: u32) -> Prim {
+        self.prims[id as usize]
+    }
+    fn prim_count(&self) -> usize {
+        self.prims.len()
     }
     fn closest_hit(&self, ray: &Ray<f64>) -> Option<Hit> {
         super::Bvh::closest_hit(self, ray)

@@ -102,9 +102,8 @@ fn grid_work(links: u64, rays: f64, work: Work) -> (PerLink, Work) {
 /// `VmHWM` in kB, one run each, niced at load 5–6): `render --width 512 --height 512 --ao
 /// off` (262 144 rays per build; `--thin auto`, on for `.tck`) and `intersect --rays` of 10⁵
 /// rays. The grid's resolution, and with it its bytes per link, follow the link count and
-/// the rays (`grid_footprint`); the former estimate took a sample's grid, built at the
-/// sample's own coarser resolution with the static model, and said 0.49 GB against the
-/// 10⁶ render's 0.61 GB (0.40× what the static model's build then took).
+/// the rays (`grid_footprint`); an estimate from a sample's grid, built at the
+/// sample's own coarser resolution, would miss the full build's resolution and undercount.
 #[test]
 fn the_grid_estimate_covers_its_measured_peaks() {
     let render = Work { thin_nodes: 85.0 / 84.0, pixels: 512 * 512, prim_list: true, ..Work::INFO };

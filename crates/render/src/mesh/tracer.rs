@@ -29,7 +29,7 @@ use tubecast::{Crossing, Interval, Ray, V3};
 /// let tracer = MeshTracer::build(&mesh, scene.primitives());
 /// let hit = tracer.closest_hit(&Ray::new(V3::new(2.0, 3.0, 0.0), V3::new(0.0, -1.0, 0.0))).unwrap();
 /// assert!((hit.t - 2.5).abs() <= tracer.error()); // exact: 3 − 0.5
-/// assert_eq!(tracer.prims()[hit.id as usize].link, 0);
+/// assert_eq!(tracer.prim(hit.id).link, 0);
 /// ```
 pub struct MeshTracer {
     bvh: Bvh2,
@@ -141,8 +141,11 @@ impl MeshTracer {
 }
 
 impl Tracer for MeshTracer {
-    fn prims(&self) -> &[Prim] {
-        &self.prims
+    fn prim(&self, id: u32) -> Prim {
+        self.prims[id as usize]
+    }
+    fn prim_count(&self) -> usize {
+        self.prims.len()
     }
     fn closest_hit(&self, ray: &Ray<f64>) -> Option<Hit> {
         let len = ray.d.length();

@@ -1,4 +1,4 @@
-//! Issue 15, the `accel` fuzz finding `regression-long-link-epsilon`: six links near the origin
+//! The `accel` fuzz finding `regression-long-link-epsilon`: six links near the origin
 //! and one link 7.26·10⁶ long. The 8-wide tree missed a hit that brute force finds, because
 //! obvhs's wide node test culls every box a ray leaves before its absolute `t = 10⁻⁴` and the
 //! clipped ray restarted only `4·pad·scale ≤ 8.6·10⁻⁵` before the scene (root cause and bound:

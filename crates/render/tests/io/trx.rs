@@ -197,7 +197,7 @@ impl std::io::Seek for Counting {
     }
 }
 
-/// Issue 15 (readers stream): the `dpv`/`dps` arrays are read streamline by streamline beside
+/// The readers stream: the `dpv`/`dps` arrays are read streamline by streamline beside
 /// the positions, not whole. Two streamlines of 1 and 262,143 vertices, stored (trx-python's
 /// default) with a 1 MiB per-vertex array; the consumer stops after the first streamline. Read
 /// whole, the per-vertex array alone is 1 MiB of reads; streamed, the first streamline needs

@@ -34,7 +34,7 @@ fn catmull_rom(l: &Polyline) -> Vec<HermiteSegment<f64>> {
 }
 
 /// The pieces the faithful model traces, computed here from the independently built segments
-/// with the kernel's certified split (tested against the cubic in `tests/kernels/spline/hermite.rs`),
+/// with the kernel's certified split (tested against the cubic in `tests/splines/hermite.rs`),
 /// in `f64`, and the greatest certified distance to the cubic's sweep among them.
 fn pieces(segs: &[HermiteSegment<f64>]) -> (Vec<QuadTube<f64>>, f64) {
     let mut out = Vec::new();
@@ -125,7 +125,7 @@ fn cubic_hit(segs: &[HermiteSegment<f64>], ray: &Ray<f64>) -> Option<(f64, V3<f6
 /// * Storing the controls in `f32` relative to the sub-segment midpoint and moving the ray
 ///   there: offsets ≤ `s` are rounded by ≤ `ε·s` (ε = 2⁻²³, generous for round-to-nearest),
 ///   moving the surface by a few `ε·s`.
-/// * The `f32` kernel (bound of `tests/kernels/spline/kernel.rs`): `g(t*)` carries an absolute error
+/// * The `f32` kernel (bound of `tests/splines/kernel.rs`): `g(t*)` carries an absolute error
 ///   ≤ 64ε·s², `h` ≤ 8ε·s. At an entry with `|n·d̂| ≥ c`, `√g = r(t*)·|n·d̂| ≥ r_min·c` (the
 ///   half chord of the entry sphere), so `√g` errs by ≤ 64ε·s²/(2·r_min·c).
 ///

@@ -1,4 +1,4 @@
-//! Issue 15, the `accel` fuzz finding `regression-underflow-touch`, and the renderer's lower
+//! The `accel` fuzz finding `regression-underflow-touch`, and the renderer's lower
 //! radius limit [`MIN_RADIUS`] (`2⁻⁴⁴`, the counterpart of `MAX_COORD`; derivation at the
 //! constant in `scene/mod.rs`).
 //!

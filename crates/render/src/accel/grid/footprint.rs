@@ -169,8 +169,8 @@ mod tests {
     /// random offsets and turns of the voxels a capsule meets; the voxelizer is conservative
     /// (more voxels than the solid meets, never fewer) and grows the radii by the margin, while
     /// links along an axis meet fewer voxels than a randomly turned one (`l/h` against `1.5·l/h`
-    /// per unit length): the bundle runs along x. The lab's sweep measured 0.96–1.08× (issue
-    /// 11); a band of ±25 % holds both effects at these sizes and fails on a wrong term of `E`
+    /// per unit length): the bundle runs along x. The lab's voxel sweep (`tubecast-lab voxel`)
+    /// charts the ratio over scenes; a band of ±25 % holds both effects at these sizes and fails on a wrong term of `E`
     /// (without its `1.5Λ/h` term the bundle's static grid lists 1.93× the expectation).
     #[test]
     fn the_expected_references_are_near_the_built_ones() {

@@ -173,9 +173,8 @@ pub struct GridParams {
     /// Coarse occupancy levels the walk skips empty space on (module docs): 0 none (a plain
     /// DDA over the voxels), 1 the [`BLOCK`]³ blocks only (the default); larger values stop at
     /// the level with at most `BLOCK` cells along every axis (`u32::MAX`: all of them). More
-    /// levels did not pay at the default resolution (`tubecast-lab voxel`, "Grid ablations":
-    /// 0.8–1.3× the one-level frame time on bundle, Furball and two bundles apart, with no
-    /// consistent sign over three runs).
+    /// levels did not pay at the default resolution (`tubecast-lab voxel`, "Grid ablations",
+    /// compares the frame times level by level).
     pub skip_levels: u32,
     /// Voxelize each primitive once into (voxel, primitive) pairs and sort them by voxel
     /// (the default), instead of voxelizing twice (count, then fill): 8 more bytes per
@@ -306,8 +305,11 @@ impl Grid {
 }
 
 impl Tracer for Grid {
-    fn prims(&self) -> &[Prim] {
-        &self.prims
+    fn prim(&self, id: u32) -> Prim {
+        self.prims[id as usize]
+    }
+    fn prim_count(&self) -> usize {
+        self.prims.len()
     }
     fn closest_hit(&self, ray: &Ray<f64>) -> Option<Hit> {
         self.closest(ray)

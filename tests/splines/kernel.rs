@@ -116,7 +116,7 @@ proptest! {
                 prop_assert!((iv.exit.t - to).abs() * norm(d) <= bound(f64::EPSILON, s));
                 // Russig's cascade rests on a claim with counterexamples (`Solver::Itp`'s docs):
                 // on bulges it can take a segment end for the exit, 0.055 inside the tube
-                // (`tests/kernels/spline/regressions.rs`, `bulge_itp_ci_finding`). Every value it reports
+                // (`tests/splines/regressions.rs`, `bulge_itp_ci_finding`). Every value it reports
                 // is a real sphere's entry or exit, so its interval lies inside the true one.
                 let iv = t.intersect_with(&ray, Solver::Itp);
                 prop_assert!(iv.hit);
@@ -273,7 +273,7 @@ proptest! {
     }
 }
 
-/// The families of `tests/kernels/spline/conditioning.rs` (issue 10 and issue 15's region) as a
+/// The families of `tests/splines/conditioning.rs` (thin tubes and the extreme-scale region) as a
 /// generator: any seed, any family, `L/r` log-uniform over `1 … 10⁵`.
 fn thin_strategy() -> impl Strategy<Value = (ThinCase, f64, ThinFamily)> {
     (any::<u64>(), 0.0f64..5.0, 0..THIN_FAMILIES.len()).prop_map(|(seed, lg, k)| {
@@ -286,7 +286,7 @@ fn thin_strategy() -> impl Strategy<Value = (ThinCase, f64, ThinFamily)> {
 /// `E` (derived in `src/kernel/spline.rs`, "Conditioning"): the accurate solvers must be right
 /// up to `E` (no phantom hit, no false miss, entry/exit between the inflated and deflated
 /// tubes'); the approximate `Bisection{10}` must never report a phantom hit (its reality test
-/// is the same gap from the vectors; its misses are measured in `tests/kernels/spline/approximate_solvers.rs`).
+/// is the same gap from the vectors; its misses are measured in `tests/splines/approximate_solvers.rs`).
 fn judge_all<T: tubecast::Scalar>(c: &ThinCase) -> Result<(), String> {
     let e = band(T::EPS.to_f64(), c);
     for solver in SOLVERS {

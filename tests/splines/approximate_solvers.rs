@@ -1,7 +1,7 @@
-//! Issue 10: the approximate solvers. `Solver::Bisection { iters }` with few steps locates
+//! The approximate solvers. `Solver::Bisection { iters }` with few steps locates
 //! `t` to `2^-iters`, but a thin tube is crossed over `~r/L` of `t`: it loses real intervals
 //! (false misses) and puts entries late, outside the kernel's band `E` (derived in
-//! `src/kernel/spline.rs`, judged as in `tests/kernels/spline/conditioning.rs`). These tests **measure**
+//! `src/kernel/spline.rs`, judged as in `tests/splines/conditioning.rs`). These tests **measure**
 //! its rates on the length/radius sweep (eleven families × `SEEDS` seeds per ratio, f64) and pin
 //! them at the figures the API docs and notes quote, so a change that makes them worse fails.
 //! It can never report a phantom hit: reality is decided by the gap from the vectors, whatever

@@ -1,4 +1,4 @@
-//! Issue 15: findings of the `spline` fuzz target (fuzz/checks/spline.rs), decoded exactly as
+//! Findings of the `spline` fuzz target (fuzz/checks/spline.rs), decoded exactly as
 //! the check decodes them, with their answers derived by hand below.
 //!
 //! All three have hits whose ray parameters are **subnormal** (|t| < f64::MIN_POSITIVE): the
@@ -17,7 +17,7 @@
 //!   E = √(64ε)·S + 8εS + 8ε(D + |t·d|), which models the rounding of t as relative (8ε|t·d|)
 //!   and so assumes t is normal (asserted below with `relative_bound`). The validators cannot
 //!   reject them alone: the tube is valid on its own (QuadTube::new accepts tubes down to
-//!   1e-304, tests/kernels/spline/kernel.rs `tiny_tube_sdf_does_not_underflow`), and so is the ray;
+//!   1e-304, tests/splines/kernel.rs `tiny_tube_sdf_does_not_underflow`), and so is the ray;
 //!   only the pair makes t subnormal. The check's bound now has the absolute term |d|·4q (the
 //!   kernel's ≤ 2q, `T_QUANTA`), so both are in fuzz/corpus/spline and replayed by
 //!   tests/kernels/fuzz_corpus.rs: `BALL` (regression-subnormal-t-ball, the default solver,
@@ -28,18 +28,18 @@
 // The check is not this file's (clippy's style lints on it are for its owner).
 #[allow(clippy::needless_range_loop)]
 mod check {
-    include!("../../../fuzz/checks/spline.rs");
+    include!("../../fuzz/checks/spline.rs");
 }
 
 use tubecast::{Primitive, QuadTube, Ray, Solver};
 
-/// Finding 1 (issue 15), as kept in the corpus.
-const PINCHED: &[u8] = include_bytes!("../../../fuzz/corpus/spline/regression-subnormal-t-pinched");
+/// Finding 1, as kept in the corpus.
+const PINCHED: &[u8] = include_bytes!("../../fuzz/corpus/spline/regression-subnormal-t-pinched");
 
 /// Found by this fix's campaign (seed 1515, 22 204 runs), as kept in the corpus.
-const TINY_EXTENT: &[u8] = include_bytes!("../../../fuzz/corpus/spline/regression-tiny-extent");
+const TINY_EXTENT: &[u8] = include_bytes!("../../fuzz/corpus/spline/regression-tiny-extent");
 
-/// Finding 2 (issue 15), as kept in the corpus (regression-subnormal-t-ball).
+/// Finding 2, as kept in the corpus (regression-subnormal-t-ball).
 const BALL: &[u8] =
     b"\x80\x00\x00\x00\x00\x00\x00\xf8\x00\xf8\x7f\x00\x00\x00\x00\x00\x02\x00\x00\x00\x00\x00\x00\x00\x00\x00\
     \x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x3f\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\
@@ -208,7 +208,7 @@ fn tiny_extent_tube_with_huge_direction() {
 /// underflowed bound 9.5e-284 and within the intended 8ε(|o − b₀| + |t·d|) ≈ 9.4e-280.
 #[test]
 fn far_term_of_the_bound_must_not_underflow() {
-    const BYTES: &[u8] = include_bytes!("../../../fuzz/corpus/spline/regression-underflowed-bound");
+    const BYTES: &[u8] = include_bytes!("../../fuzz/corpus/spline/regression-underflowed-bound");
     let (t, ray, solver) = check::input(BYTES).expect("valid input");
     assert_eq!(solver, Solver::Polynomial);
     let (r0, ox, dx) = (t.r[0], ray.o.x, ray.d.x.abs());
@@ -269,5 +269,5 @@ fn ball_far_from_the_world_origin() {
         assert!((iv.exit.t - exact).abs() <= 3.0 * f64::EPSILON * exact, "{solver:?} t_out {} vs {exact}", iv.exit.t);
     }
     // The corpus entry replays clean through the (corrected) check.
-    check::check(include_bytes!("../../../fuzz/corpus/spline/regression-ball-far-from-origin"));
+    check::check(include_bytes!("../../fuzz/corpus/spline/regression-ball-far-from-origin"));
 }

@@ -58,7 +58,7 @@ proptest! {
         let iv = p.intersect_with(&ray, Solver::Polynomial).hull(q.intersect_with(&ray, Solver::Polynomial));
         let link = RoundCone::new(v(a), r0, v(b), r1).unwrap().intersect(&ray);
         if link.hit && link.exit.t - link.entry.t > 1e-3 {
-            // Both are exact to √(64ε)·S (tests/kernels/spline/kernel.rs), S ≤ 6.
+            // Both are exact to √(64ε)·S (tests/splines/kernel.rs), S ≤ 6.
             let tol = 2.0 * (64.0 * f64::EPSILON).sqrt() * 6.0;
             prop_assert!(iv.hit);
             prop_assert!((iv.entry.t - link.entry.t).abs() * d_len(d) <= tol && (iv.exit.t - link.exit.t).abs() * d_len(d) <= tol);
@@ -191,7 +191,7 @@ fn cubic_sweep_crossing(s: &HermiteSegment<f64>, o: V3<f64>, d: V3<f64>, dr: f64
     best
 }
 
-/// Issue 10, faithful to the cubic: on Catmull–Rom helices with 8, 12, 16 points per turn and
+/// Faithful to the cubic: on Catmull–Rom helices with 8, 12, 16 points per turn and
 /// tube radii 0.07, 0.01, 0.001 of the helix radius, the adaptive split meets the default
 /// tolerance (certified distance ≤ 1e-3 of the local radius), and rays agree with the cubic's
 /// own sweep, sampled: the pieces' sweep lies between the cubic's sweeps of `r − D` and

@@ -1,6 +1,6 @@
 //! Spline kernel regressions found by fuzzing (each replays one committed input of
 //! `fuzz/corpus/spline/regression-*` as a unit test) — moved verbatim from
-//! `tests/kernels/spline/kernel.rs`.
+//! `tests/splines/kernel.rs`.
 
 use super::common::*;
 use proptest::prelude::*;

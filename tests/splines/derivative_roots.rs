@@ -69,7 +69,7 @@ fn kernel_still_right(b: &[[f64; 3]; 3], r: &[f64; 3], o: [f64; 3], d: [f64; 3])
         if depth > 1e-3 {
             let iv = t.intersect_with(&ray, Solver::Polynomial);
             let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-            // Same bound as tests/kernels/spline/kernel.rs: √(64ε)·S with S ≤ scale + 2.
+            // Same bound as tests/splines/kernel.rs: √(64ε)·S with S ≤ scale + 2.
             let tol = (64.0 * f64::EPSILON).sqrt() * (scale(b, r) + 2.0);
             prop_assert!(iv.hit && (iv.entry.t - ti).abs() * l <= tol && (iv.exit.t - to).abs() * l <= tol);
         }

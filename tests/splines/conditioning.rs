@@ -1,5 +1,5 @@
-//! Issue 10: the spline kernel's error is linear in `L/r`, in `f32` and `f64`, for every
-//! accurate solver, across `L/r = 1 … 10⁵` and the failure families (and issue 15's region:
+//! The spline kernel's error is linear in `L/r`, in `f32` and `f64`, for every
+//! accurate solver, across `L/r = 1 … 10⁵` and the failure families (and the fuzz findings' region:
 //! pinched and zero-radius middles, extreme scales, huge direction ratios).
 //!
 //! The judge is a **backward-error** band (derived in `src/kernel/spline.rs`, "Conditioning"):
@@ -66,7 +66,7 @@ fn f32_within_the_linear_band_for_every_family_and_ratio() {
     sweep::<f32>(6);
 }
 
-/// Issue 10's example: the line misses this L/r ≈ 10³ tube by 2.2 r; `Polynomial<f32>`
+/// The example that first showed the defect: the line misses this L/r ≈ 10³ tube by 2.2 r; `Polynomial<f32>`
 /// reported a hit at t ≈ 5.4727 (its `g` from expanded coefficients, whose rounding ≈ ε of
 /// terms of size 1 exceeded the values ≈ (r/L)²). Every solver in both precisions must miss,
 /// and the inflated tube misses too (so the miss is inside no band).

@@ -1,12 +1,12 @@
-//! The backward-error judge of the length/radius sweep (`tests/kernels/spline/conditioning.rs`,
-//! `tests/kernels/spline/approximate_solvers.rs`); the band `E` is
+//! The backward-error judge of the length/radius sweep (`tests/splines/conditioning.rs`,
+//! `tests/splines/approximate_solvers.rs`); the band `E` is
 //! [`tubecast::spline_error_band`], derived in `src/kernel/spline.rs` ("Conditioning").
 
 use tubecast::{QuadTube, Ray, Scalar, Solver, V3};
 use tubecast_oracle::{quad_crossing_offset, ThinCase, Vec3};
 
 /// The accurate solvers (every one the renderer or `intersect` can select but `Bisection{10}`,
-/// which is approximate: `tests/kernels/spline/approximate_solvers.rs`).
+/// which is approximate: `tests/splines/approximate_solvers.rs`).
 pub const ACCURATE: [Solver; 4] = [Solver::Polynomial, Solver::Itp, Solver::Newton, Solver::Bisection { iters: 40 }];
 
 /// The backward-error band `E` of a case (length units), for machine epsilon `eps`: the

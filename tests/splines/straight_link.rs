@@ -5,7 +5,7 @@ use tubecast::{Primitive, QuadTube, Ray, RoundCone, Solver, V3};
 
 /// Differential campaign on fbab6e0 (seed 2002, 167,721 executions), kept as
 /// fuzz/corpus/differential/regression-spline-f32-exit-at-end.
-const EXIT_AT_END: &[u8] = include_bytes!("../../../fuzz/corpus/differential/regression-spline-f32-exit-at-end");
+const EXIT_AT_END: &[u8] = include_bytes!("../../fuzz/corpus/differential/regression-spline-f32-exit-at-end");
 
 /// The check's decoding: f64 words 0…13, each rounded to f32.
 fn decode(data: &[u8]) -> (RoundCone<f64>, Ray<f64>) {
