@@ -12,6 +12,7 @@ mod charts;
 mod cli;
 mod mesh;
 mod mesh_real;
+mod mesh_size;
 mod speed;
 mod spline_lanes;
 mod stability;
