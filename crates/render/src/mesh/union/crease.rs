@@ -358,31 +358,78 @@ fn split_triangle(t: [u32; 3], mid: [Option<u32>; 3], pos: &[V3<f64>], out: &mut
     }
 }
 
-/// How far (in grid steps) a crease point may lie from the crossing edge it splits: where
-/// two tubes meet at a sharp angle, the contour bridges the notch between them where it is
-/// about a grid step wide, up to `h/(2·tan(β/2))` above the crease (β the notch's opening).
-const REACH: f64 = 3.0;
+/// Samples along an edge when looking for the first tube below the start's.
+const SCAN: usize = 32;
+
+/// The first tube `k ≠ a` with `f_k < f_a` at one of [`SCAN`] samples along `xu → xv`, with
+/// the parameters of the sample before it and of that sample; `None` where none is.
+fn first_undercut(field: &Field, a: u32, xu: V3<f64>, xv: V3<f64>) -> Option<(u32, f64, f64)> {
+    let ta = &field.tubes[a as usize];
+    for j in 1..=SCAN {
+        let t = j as f64 / SCAN as f64;
+        let x = xu + (xv - xu) * t;
+        let fa = ta.sdf(x);
+        let below = field.near(x)?.iter().copied().filter(|&k| k != a).map(|k| (field.tubes[k as usize].sdf(x), k));
+        if let Some((f, k)) = below.min_by(|p, q| p.0.total_cmp(&q.0)) {
+            if f < fa {
+                return Some((k, (j - 1) as f64 / SCAN as f64, t));
+            }
+        }
+    }
+    None
+}
+
+/// How far a crease point may lie from the point of the crossing edge it is found from, for a
+/// crease of exterior opening β (`sin_half = sin(β/2)`): a wedge of opening β holds a ball of
+/// radius `d·sin(β/2)` centred `d` above its edge, and every ball of radius `√3·h/2` (a grid
+/// cube's circumradius) holds a grid vertex, so above `d = √3·h/(2·sin(β/2))` the contour sees
+/// the notch; its bridging edges lie within a cube's diagonal `√3·h` of that. A guard against
+/// converging on an unrelated crease, not part of the certificate (which measures every
+/// triangle as made).
+fn reach(h: f64, sin_half: f64) -> f64 {
+    3f64.sqrt() * h * (1.0 + 0.5 / sin_half.max(1e-3))
+}
 
 /// A point of the crease between the tubes of two vertices, near the segment between them,
 /// with `sin(β/2)` there (`β` the exterior opening); `None` where the tubes do not meet
-/// near it (Newton does not converge within a grid step), the crease is buried in a third
-/// tube, or the surfaces are too close to parallel to place it.
+/// near it (Newton leaves [`reach`]), the crease is buried in a third tube and neither its
+/// crease with that tube nor the three tubes' common point is near, or the surfaces are too
+/// close to parallel to place it.
 fn crease_point(field: &Field, xu: V3<f64>, xv: V3<f64>) -> Option<(V3<f64>, f64)> {
-    let h = field.h;
     let pick = |x: V3<f64>, other: V3<f64>| {
         on_tubes(field, x).into_iter().min_by(|&i, &j| {
             let (fi, fj) = (field.tubes[i as usize].sdf(other), field.tubes[j as usize].sdf(other));
             fi.total_cmp(&fj)
         })
     };
-    let (ka, kb) = (pick(xu, xv)?, pick(xv, xu)?);
-    let (ta, tb) = (&field.tubes[ka as usize], &field.tubes[kb as usize]);
-    // On the segment, g = f_A − f_B goes from ≤ 0 (u on A) to ≥ 0 (v on B): bisect it.
+    let ka = pick(xu, xv)?;
+    let kv = pick(xv, xu)?;
+    // First the tube that first undercuts A along the edge: where a third tube lies between
+    // the ends' tubes the edge crosses two creases, and the crease of the ends' tubes is
+    // buried in the third; the first crease is split here, the second in the next round (its
+    // piece runs from this point, on A and the third tube, to v). Then v's own tube.
+    let first = first_undercut(field, ka, xu, xv).filter(|&(k, _, _)| k != kv);
+    first
+        .and_then(|(k, lo, hi)| crease_between(field, [ka, k], xu, xv, [lo, hi]))
+        .or_else(|| crease_between(field, [ka, kv], xu, xv, [0.0, 1.0]))
+}
+
+/// The crease point of tubes `k[0]` (least at `xu`) and `k[1]`, from the root of
+/// `f_A − f_B` on the part `[lo, hi]` of the segment `xu → xv`.
+fn crease_between(
+    field: &Field,
+    k: [u32; 2],
+    xu: V3<f64>,
+    xv: V3<f64>,
+    [mut lo, mut hi]: [f64; 2],
+) -> Option<(V3<f64>, f64)> {
+    let h = field.h;
+    let (ta, tb) = (&field.tubes[k[0] as usize], &field.tubes[k[1] as usize]);
+    // On [lo, hi], g = f_A − f_B goes from ≤ 0 (A least) to ≥ 0 (B below A): bisect it.
     let g = |t: f64| {
         let x = xu + (xv - xu) * t;
         ta.sdf(x) - tb.sdf(x)
     };
-    let (mut lo, mut hi) = (0.0, 1.0);
     if g(lo) > 0.0 || g(hi) < 0.0 {
         return None;
     }
@@ -395,6 +442,38 @@ fn crease_point(field: &Field, xu: V3<f64>, xv: V3<f64>) -> Option<(V3<f64>, f64
         }
     }
     let start = xu + (xv - xu) * lo;
+    let (x, sin_half) = newton(field, k, start)?;
+    let (f, kc) = field.eval(x);
+    if f >= -ON * h {
+        return Some((x, sin_half));
+    }
+    if kc == u32::MAX {
+        return None;
+    }
+    // The nearest point of A ∩ B is buried in a third tube C: under the bridging edge the
+    // surface runs from A over C to B. Split at the crease of A and C (the next round splits
+    // the piece from there to v), else where A, B and C meet, the visible crease's end.
+    let visible = |w: &(V3<f64>, f64)| field.eval(w.0).0 >= -ON * h;
+    newton(field, [k[0], kc], start).filter(visible).or_else(|| {
+        let w = super::triple::meet(field, [k[0], k[1], kc], x)?;
+        let s = sin_half_at(field, k, w);
+        ((w - start).length() <= reach(h, s)).then_some((w, s))
+    })
+}
+
+/// `sin(β/2)` of the crease of tubes `k` at `x`, β its exterior opening: the angle between
+/// the outward normals is π − β, so `cos(π − β) = g_A·g_B` and `sin²(β/2) = (1 + g_A·g_B)/2`.
+fn sin_half_at(field: &Field, k: [u32; 2], x: V3<f64>) -> f64 {
+    let c = gradient(&field.tubes[k[0] as usize], x).dot(gradient(&field.tubes[k[1] as usize], x));
+    (0.5 * (1.0 + c)).max(0.0).sqrt()
+}
+
+/// A point of `A ∩ B` (tubes `k`) near `start` by Newton's least-norm steps on the two exact
+/// SDFs, with `sin(β/2)` there; `None` where it leaves [`reach`] or the surfaces are too close
+/// to parallel. It may be buried in a third tube (the caller checks).
+fn newton(field: &Field, k: [u32; 2], start: V3<f64>) -> Option<(V3<f64>, f64)> {
+    let h = field.h;
+    let (ta, tb) = (&field.tubes[k[0] as usize], &field.tubes[k[1] as usize]);
     let mut x = start;
     let mut c = 0.0;
     for _ in 0..30 {
@@ -408,7 +487,7 @@ fn crease_point(field: &Field, xu: V3<f64>, xv: V3<f64>) -> Option<(V3<f64>, f64
         // Least-norm step to the two tangent planes: x − Jᵀ(JJᵀ)⁻¹F.
         let (l0, l1) = ((fa - c * fb) / det, (fb - c * fa) / det);
         x = x - ga * l0 - gb * l1;
-        if (x - start).length() > REACH * h {
+        if (x - start).length() > reach(h, (0.5 * (1.0 + c)).max(0.0).sqrt()) {
             return None;
         }
         if fa.abs().max(fb.abs()) <= 1e-13 * h && (l0.abs() + l1.abs()) <= 1e-12 * h {
@@ -416,8 +495,5 @@ fn crease_point(field: &Field, xu: V3<f64>, xv: V3<f64>) -> Option<(V3<f64>, f64
         }
     }
     let (fa, fb) = (ta.sdf(x), tb.sdf(x));
-    if fa.abs().max(fb.abs()) > ON * h || field.eval(x).0 < -ON * h {
-        return None;
-    }
-    Some((x, (0.5 * (1.0 + c)).max(0.0).sqrt()))
+    (fa.abs().max(fb.abs()) <= ON * h).then_some((x, (0.5 * (1.0 + c)).max(0.0).sqrt()))
 }

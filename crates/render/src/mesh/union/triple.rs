@@ -61,7 +61,7 @@ pub(super) fn fan(field: &Field, raw: &mut Raw) -> usize {
 }
 
 /// The point near `start` where the three tubes' surfaces meet, on the union's surface.
-fn meet(field: &Field, k: [u32; 3], start: V3<f64>) -> Option<V3<f64>> {
+pub(super) fn meet(field: &Field, k: [u32; 3], start: V3<f64>) -> Option<V3<f64>> {
     let t = k.map(|i| &field.tubes[i as usize]);
     let mut x = start;
     for _ in 0..30 {
