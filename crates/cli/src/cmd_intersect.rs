@@ -24,7 +24,7 @@ pub fn intersect(a: &IntersectArgs) -> Result<(), CliError> {
     let scene = setup::load(&a.input, &a.radius, (&a.select, &a.run), plan, "every ray misses", false)?.scene;
     let scene = crate::quantized::model_scene(Surface::from(a.model), scene, &a.quant, a.run.quiet)?;
     if a.device == Device::Gpu {
-        let rows = crate::gpu::table(a.query, &scene, &rays.rays(&name)?)?;
+        let rows = crate::gpu::table(a.query, &scene, m, &rays.rays(&name)?)?;
         let columns = if matches!(a.query, Query::All) { &CROSSING_COLUMNS } else { &HIT_COLUMNS };
         return write_hits(&a.out, &rows, a.csv, columns);
     }

@@ -16,9 +16,9 @@ pub fn render(a: &RenderArgs) -> Result<(), CliError> {
         _ => None,
     };
     let m = setup::model(a.splines);
-    // Faded thin tubes composite every union boundary, which the GPU does not answer yet: on
-    // the GPU tubes keep their radii (as --thin off).
-    let thin = a.thin == Thin::On && a.device == Device::Cpu;
+    // Faded thin tubes composite every union boundary: the GPU answers those too
+    // (`GpuScene::line_intervals`).
+    let thin = a.thin == Thin::On;
     let exact = a.model != Surface::Mesh && a.tolerance.is_none() && a.pixel_error.is_none();
     // The compact tree over links builds from the scene alone: no list of primitives (80 B per
     // link) is held for the bounds or beside the clamped scene.
@@ -89,7 +89,7 @@ pub fn render(a: &RenderArgs) -> Result<(), CliError> {
     };
     let mut img = match &bvh {
         Some(bvh) => setup::with_threads(a.run.threads, || render::render(&scene, bvh.as_ref(), &cam, &opts))??,
-        None => crate::gpu::render(&scene, &cam, &opts)?,
+        None => crate::gpu::render(&scene, m, &cam, &opts)?,
     };
     if a.legend {
         match (&a.color, render::value_range(&scene.values)) {

@@ -6,7 +6,7 @@ use crate::args::{Accel, Device, IntersectArgs, Query, RenderArgs, Surface, Trac
 use crate::error::CliError;
 use tubecast::Ray;
 use tubecast_render::render::{Camera, Image, Options};
-use tubecast_render::scene::Scene;
+use tubecast_render::scene::{Model, Scene};
 
 /// Usage error unless this binary was built with the `gpu` feature.
 fn built() -> Result<(), CliError> {
@@ -24,18 +24,15 @@ fn unsupported(what: &str) -> CliError {
     CliError::usage(format!("--device gpu: {what} is not on the GPU yet; use --device cpu"))
 }
 
-/// `render --device gpu`: exact links (no --splines, --model, --tolerance, --pixel-error),
-/// the 8-wide tree; opaque or transparent.
+/// `render --device gpu`: exact links or `--splines` (no --model, --tolerance, --pixel-error),
+/// the 8-wide tree; opaque or transparent, thin tubes faded or not.
 pub fn check_render(a: &RenderArgs) -> Result<(), CliError> {
     if a.device == Device::Cpu {
         return Ok(());
     }
     built()?;
-    if a.splines {
-        return Err(unsupported("--splines"));
-    }
     if a.model != Surface::Exact || a.tolerance.is_some() || a.pixel_error.is_some() {
-        return Err(unsupported("a surface model other than the exact links (--model, --tolerance, --pixel-error)"));
+        return Err(unsupported("a surface model other than the exact kernels (--model, --tolerance, --pixel-error)"));
     }
     if a.accel != Accel::Bvh {
         return Err(unsupported("--accel other than bvh"));
@@ -43,15 +40,12 @@ pub fn check_render(a: &RenderArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// `intersect --device gpu`: exact links, the 8-wide tree, any `--query`.
+/// `intersect --device gpu`: exact links or `--splines`, the 8-wide tree, any `--query`.
 pub fn check_intersect(a: &IntersectArgs) -> Result<(), CliError> {
     if a.device == Device::Cpu {
         return Ok(());
     }
     built()?;
-    if a.splines {
-        return Err(unsupported("--splines"));
-    }
     if a.model != TraceSurface::Exact {
         return Err(unsupported("--model quantized"));
     }
@@ -66,29 +60,35 @@ mod run {
     use super::*;
     use tubecast_gpu::{Gpu, GpuError, GpuScene};
     use tubecast_render::accel::{WideBvh, HIT_COLUMNS};
-    use tubecast_render::scene::Model;
 
     fn err(e: GpuError) -> CliError {
         CliError::Gpu(e.to_string())
     }
 
-    /// The scene's tree (the CPU's compact links tree), the device, and the upload.
+    /// The scene's tree over the primitives of `model` (the CPU's own tree), the device, and
+    /// the upload.
     fn with_scene<R>(
         scene: &Scene,
+        model: Model,
         f: impl FnOnce(&GpuScene<'_>, &WideBvh) -> Result<R, GpuError>,
     ) -> Result<R, CliError> {
-        let bvh = WideBvh::from_scene(scene, Model::Links)?;
+        let bvh = WideBvh::from_scene(scene, model)?;
         let gpu = Gpu::new().map_err(err)?;
         let gs = GpuScene::upload(&gpu, &bvh).map_err(err)?;
         f(&gs, &bvh).map_err(err)
     }
 
-    pub fn render(scene: &Scene, cam: &Camera, opts: &Options) -> Result<Image, CliError> {
-        with_scene(scene, |gs, bvh| tubecast_gpu::render_gpu(gs, scene, bvh, cam, opts))
+    pub fn render(scene: &Scene, model: Model, cam: &Camera, opts: &Options) -> Result<Image, CliError> {
+        with_scene(scene, model, |gs, bvh| tubecast_gpu::render_gpu(gs, scene, bvh, cam, opts))
     }
 
-    pub fn table(query: Query, scene: &Scene, rays: &[Ray<f64>]) -> Result<Vec<[f64; HIT_COLUMNS]>, CliError> {
-        with_scene(scene, |gs, bvh| match query {
+    pub fn table(
+        query: Query,
+        scene: &Scene,
+        model: Model,
+        rays: &[Ray<f64>],
+    ) -> Result<Vec<[f64; HIT_COLUMNS]>, CliError> {
+        with_scene(scene, model, |gs, bvh| match query {
             Query::Hit => tubecast_gpu::closest_table_gpu(gs, bvh, rays),
             Query::Piece => tubecast_gpu::piece_table_gpu(gs, bvh, rays),
             Query::All => tubecast_gpu::crossings_table_gpu(gs, bvh, rays),
@@ -96,25 +96,26 @@ mod run {
     }
 }
 
-/// `render`'s image with every ray answered on the GPU ([`check_render`] passed).
-pub fn render(scene: &Scene, cam: &Camera, opts: &Options) -> Result<Image, CliError> {
+/// `render`'s image of the primitives of `model` with every ray answered on the GPU
+/// ([`check_render`] passed).
+pub fn render(scene: &Scene, model: Model, cam: &Camera, opts: &Options) -> Result<Image, CliError> {
     #[cfg(feature = "gpu")]
-    return run::render(scene, cam, opts);
+    return run::render(scene, model, cam, opts);
     #[cfg(not(feature = "gpu"))]
     {
-        let _ = (scene, cam, opts);
+        let _ = (scene, model, cam, opts);
         built().map(|_| unreachable!("checked before any work"))
     }
 }
 
-/// `intersect`'s table (any `--query`) with every ray answered on the GPU
-/// ([`check_intersect`] passed).
-pub fn table(query: Query, scene: &Scene, rays: &[Ray<f64>]) -> Result<Vec<[f64; 8]>, CliError> {
+/// `intersect`'s table (any `--query`) of the primitives of `model` with every ray answered
+/// on the GPU ([`check_intersect`] passed).
+pub fn table(query: Query, scene: &Scene, model: Model, rays: &[Ray<f64>]) -> Result<Vec<[f64; 8]>, CliError> {
     #[cfg(feature = "gpu")]
-    return run::table(query, scene, rays);
+    return run::table(query, scene, model, rays);
     #[cfg(not(feature = "gpu"))]
     {
-        let _ = (query, scene, rays);
+        let _ = (query, scene, model, rays);
         built().map(|_| unreachable!("checked before any work"))
     }
 }

@@ -1,4 +1,5 @@
-// One kernel call per thread: link (or sphere) i against local ray i. Appended to link.wgsl.
+// One kernel call per thread: link, sphere or spline i against local ray i. Appended to link.wgsl
+// and spline.wgsl.
 
 struct Params {
     n: u32,
@@ -14,10 +15,13 @@ struct PairIn {
     b: vec3f,
     rb: f32,
     o: vec3f,
-    // 0: the link (a, ra)–(b, rb); 1: the sphere (0, ra).
+    // 0: the link (a, ra)–(b, rb); 1: the sphere (0, ra); 2: the spline with control points
+    // a, c, b and radii ra, rc, rb.
     kind: u32,
     d: vec3f,
     _pad: u32,
+    c: vec3f,
+    rc: f32,
 }
 
 // crate::kernel::IvOut
@@ -46,6 +50,8 @@ fn pairs_main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups
     var iv: Iv;
     if p.kind == 1u {
         iv = sphere_line(p.o, p.d, vec3f(0.0), p.ra, 0.0);
+    } else if p.kind == 2u {
+        iv = spline_line(p.a, p.c, p.b, vec3f(p.ra, p.rc, p.rb), p.o, p.d);
     } else {
         iv = stable_line(Cone(p.a, p.ra, p.b, p.rb), p.o, p.d);
     }

@@ -1,4 +1,5 @@
-// Closest-hit and any-hit queries over the CPU's wide BVH, appended to link.wgsl: a port of
+// Closest-hit and any-hit queries over the CPU's wide BVH, appended to link.wgsl and
+// spline.wgsl: a port of
 // `crates/render/src/accel/tree.rs` (Tree::entries, Tree::walk) and of the leaf work of
 // `WideBvh::closest_hit` / `any_hit` (`crates/render/src/accel/wide.rs`) with `Prim::local_origin`
 // and `Prim::to_world` (`crates/render/src/scene/prim.rs`) done in f32 from the ray's restart
@@ -21,7 +22,9 @@ struct Node {
 }
 
 // crate::scene::GpuPrim: a link (kind 0) or a sphere (kind 1, radius ra) relative to `org`,
-// the primitive's origin relative to the tree centre.
+// the primitive's origin relative to the tree centre; or a spline piece (kind & 3 == 2) with
+// control points a, b₁, b and radii ra, r₁, rb, where b₁, r₁ are the `a`, `ra` of the record
+// prims[kind >> 2] (past the items' records).
 struct Prim {
     a: vec3f,
     ra: f32,
@@ -75,14 +78,55 @@ fn item_iv(r: Ray, it: u32) -> Iv {
     let tc = dot3(p.org - r.o, r.d);
     let lo = r.o + r.d * tc - p.org;
     var iv: Iv;
-    if p.kind == 1u {
+    let kind = p.kind & 3u;
+    if kind == SPHERE {
         iv = sphere_line(lo, r.d, vec3f(0.0), p.ra, 0.0);
+    } else if kind == SPLINE {
+        // Prim::intersect_unit: QuadTube::intersect_with(Solver::Polynomial), the hull.
+        let x = prims[p.kind >> 2u];
+        iv = spline_line(p.a, x.a, p.b, vec3f(p.ra, x.ra, p.rb), lo, r.d);
     } else {
         iv = stable_line(Cone(p.a, p.ra, p.b, p.rb), lo, r.d);
     }
     iv.t_in = tc + iv.t_in;
     iv.t_out = tc + iv.t_out;
     return iv;
+}
+
+const SPHERE: u32 = 1u;
+const SPLINE: u32 = 2u;
+
+fn is_spline(it: u32) -> bool {
+    return (prims[it].kind & 3u) == SPLINE;
+}
+
+// Item `it`'s exact line pieces (Prim::pieces): a spline piece's one interval per real interval
+// of g (QuadTube::intersect_pieces, slots that miss included), as distances from the restart
+// point. Only for spline items.
+fn item_pieces(r: Ray, it: u32) -> Pieces {
+    let p = prims[it];
+    let tc = dot3(p.org - r.o, r.d);
+    let lo = r.o + r.d * tc - p.org;
+    let x = prims[p.kind >> 2u];
+    var ps = spline_pieces(p.a, x.a, p.b, vec3f(p.ra, x.ra, p.rb), lo, r.d);
+    for (var k = 0u; k < 5u; k++) {
+        ps.iv[k].t_in = tc + ps.iv[k].t_in;
+        ps.iv[k].t_out = tc + ps.iv[k].t_out;
+    }
+    return ps;
+}
+
+// An item's line intervals for the interval walks: its one interval, or a spline's pieces.
+fn item_ivs(r: Ray, it: u32) -> Pieces {
+    if is_spline(it) {
+        return item_pieces(r, it);
+    }
+    var ps: Pieces;
+    ps.iv[0] = item_iv(r, it);
+    for (var k = 1u; k < 5u; k++) {
+        ps.iv[k] = iv_miss();
+    }
+    return ps;
 }
 
 fn crossing(it: u32, s: f32, n: vec3f, u: f32, entering: bool) -> HitOut {
@@ -104,6 +148,28 @@ fn test_item(r: Ray, it: u32) -> HitOut {
     if !iv.hit {
         return h;
     }
+    if (iv.t_in >= r.s_min && iv.t_in <= r.s_max) || !is_spline(it) {
+        h = first_crossing(it, iv, r);
+    } else if iv.t_out >= r.s_min && iv.t_in <= r.s_max {
+        // Prim::first_hit_exit_unit: a spline's hull entry outside the range (the ray starts
+        // inside the hull, perhaps in a gap between its pieces): the first crossing of its pieces.
+        let ps = item_pieces(r, it);
+        for (var k = 0u; k < 5u; k++) {
+            if ps.iv[k].hit {
+                let c = first_crossing(it, ps.iv[k], r);
+                if closer(c, h) {
+                    h = c;
+                }
+            }
+        }
+    }
+    return h;
+}
+
+// Interval::first_hit: the entry if in [s_min, s_max], else the exit if there.
+fn first_crossing(it: u32, iv: Iv, r: Ray) -> HitOut {
+    var h: HitOut;
+    h.item = NONE;
     if iv.t_in >= r.s_min && iv.t_in <= r.s_max {
         h = crossing(it, iv.t_in, iv.n_in, iv.u_in, true);
     } else if iv.t_out >= r.s_min && iv.t_out <= r.s_max {
@@ -242,7 +308,9 @@ fn walk(r: Ray, mode: u32, span: vec2f, slots: vec2u) -> Found {
             }
             for (var it = c.x; it < c.x + c.y; it++) {
                 if mode >= SPAN {
-                    let iv = item_iv(r, it);
+                    let ps = item_ivs(r, it);
+                    for (var q = 0u; q < 5u; q++) {
+                    let iv = ps.iv[q];
                     if iv.hit && iv.t_in <= span.y && iv.t_out >= span.x {
                         let e = crossing(it, iv.t_in, iv.n_in, iv.u_in, true);
                         let x = crossing(it, iv.t_out, iv.n_out, iv.u_out, false);
@@ -261,16 +329,24 @@ fn walk(r: Ray, mode: u32, span: vec2f, slots: vec2u) -> Found {
                             f.n++;
                         }
                     }
+                    }
                     continue;
                 }
                 var h: HitOut;
                 var x: HitOut;
                 if mode == SEED {
-                    let iv = item_iv(r, it);
+                    // The piece with the least entry among those whose exit is ≥ s_min.
+                    let ps = item_ivs(r, it);
                     h.item = NONE;
-                    if iv.hit && iv.t_out >= r.s_min {
-                        h = crossing(it, iv.t_in, iv.n_in, iv.u_in, true);
-                        x = crossing(it, iv.t_out, iv.n_out, iv.u_out, false);
+                    for (var q = 0u; q < 5u; q++) {
+                        let iv = ps.iv[q];
+                        if iv.hit && iv.t_out >= r.s_min {
+                            let e = crossing(it, iv.t_in, iv.n_in, iv.u_in, true);
+                            if closer(e, h) {
+                                h = e;
+                                x = crossing(it, iv.t_out, iv.n_out, iv.u_out, false);
+                            }
+                        }
                     }
                 } else {
                     h = test_item(r, it);

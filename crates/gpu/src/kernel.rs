@@ -1,13 +1,22 @@
-//! The link and sphere kernels on their own: one primitive against one local ray per thread,
-//! for comparing the WGSL port with the CPU kernel on identical `f32` input.
+//! The link, sphere and spline kernels on their own: one primitive against one local ray per
+//! thread, for comparing the WGSL ports with the CPU kernels on identical `f32` input.
 
 use crate::compute::Kernel;
 use crate::device::{Gpu, GpuError};
 use bytemuck::{Pod, Zeroable};
-use tubecast::{Crossing, Interval, Ray, RoundCone, V3};
+use tubecast::{Crossing, Interval, QuadTube, Ray, RoundCone, V3};
 
 /// The WGSL source of the link and sphere kernels.
 pub const LINK_WGSL: &str = include_str!("../shaders/link.wgsl");
+/// The WGSL source of the spline kernel (appended to [`LINK_WGSL`], whose helpers it uses):
+/// the kernel, its ray-space set-up and its root finders.
+pub const SPLINE_WGSL: &str = concat!(
+    include_str!("../shaders/spline.wgsl"),
+    "\n",
+    include_str!("../shaders/ray_space.wgsl"),
+    "\n",
+    include_str!("../shaders/roots.wgsl")
+);
 const PAIRS_WGSL: &str = include_str!("../shaders/pairs.wgsl");
 
 /// A primitive of a kernel test: a link, or a sphere at the origin.
@@ -17,6 +26,9 @@ pub enum Local {
     Link(RoundCone<f32>),
     /// The sphere of this radius at the origin.
     Sphere(f32),
+    /// The quadratic spline piece, answered as the CPU's default solver
+    /// ([`tubecast::Solver::Polynomial`]) answers it (`shaders/spline.wgsl`).
+    Spline(QuadTube<f32>),
 }
 
 #[repr(C)]
@@ -30,6 +42,8 @@ struct PairIn {
     kind: u32,
     d: [f32; 3],
     _pad: u32,
+    c: [f32; 3],
+    rc: f32,
 }
 
 #[repr(C)]
@@ -60,7 +74,7 @@ pub struct Pairs {
 impl Pairs {
     /// Compile the kernels for `gpu`.
     pub fn new(gpu: &Gpu) -> Result<Self, GpuError> {
-        let src = format!("{LINK_WGSL}\n{PAIRS_WGSL}");
+        let src = format!("{LINK_WGSL}\n{SPLINE_WGSL}\n{PAIRS_WGSL}");
         Ok(Self { kernel: gpu.kernel(&src, "pairs_main", 1)? })
     }
 
@@ -77,11 +91,12 @@ impl Pairs {
             .iter()
             .zip(rays)
             .map(|(p, r)| {
-                let (a, ra, b, rb, kind) = match *p {
-                    Local::Link(c) => (v(c.a), c.ra, v(c.b), c.rb, 0),
-                    Local::Sphere(r) => ([0.0; 3], r, [0.0; 3], r, 1),
+                let (a, ra, b, rb, kind, c, rc) = match *p {
+                    Local::Link(c) => (v(c.a), c.ra, v(c.b), c.rb, 0, [0.0; 3], 0.0),
+                    Local::Sphere(r) => ([0.0; 3], r, [0.0; 3], r, 1, [0.0; 3], 0.0),
+                    Local::Spline(q) => (v(q.b[0]), q.r[0], v(q.b[2]), q.r[2], 2, v(q.b[1]), q.r[1]),
                 };
-                PairIn { a, ra, b, rb, o: v(r.o), kind, d: v(r.d), _pad: 0 }
+                PairIn { a, ra, b, rb, o: v(r.o), kind, d: v(r.d), _pad: 0, c, rc }
             })
             .collect();
         let buf = gpu.upload("kernel inputs", &input)?;

