@@ -127,17 +127,19 @@ fn spline_tree_walk_matches_the_cpu() {
     let fur = Scene::from_polylines(&lines, 0.05, "furball").unwrap();
     let bvh = WideBvh::from_scene(&fur, Model::Splines).unwrap();
     assert!((0..bvh.prim_count() as u32).any(|i| bvh.prim(i).quad().is_some()), "no spline pieces");
-    let (_, hits, _) = crate::tree::compare_with(&gpu, &fur, &bvh, 400, false, "furball, splines");
-    assert!(hits > 100, "{hits} hits");
+    let (_, hits, _) = crate::tree::compare_with(&gpu, &fur, &bvh, 200, false, "furball, splines");
+    assert!(hits > 80, "{hits} hits");
 }
 
 /// `render --splines --device gpu` against the CPU render of the shipped tractogram, by the
-/// render test's per-pixel tolerance (`tests/gpu/render.rs`) with the spline `E`.
+/// render test's per-pixel tolerance (`tests/gpu/render.rs`) with the spline `E`: opaque, with
+/// a shadow ray and AO, and transparent (the union boundaries of the spline pieces' exact line
+/// pieces, `GpuScene::line_intervals`).
 #[test]
 fn gpu_render_matches_the_cpu_with_splines() {
     use std::path::Path;
     use tubecast_render::scene::{Model, Scene};
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let scene = Scene::load(&root.join("reference/readers/nibabel/standard.trk"), 0.2).unwrap();
-    crate::render::check_model(&scene, Model::Splines, false, "standard.trk, splines");
+    crate::render::check_model(&scene, Model::Splines, true, "standard.trk, splines");
 }
