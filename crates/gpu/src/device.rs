@@ -9,7 +9,7 @@ pub enum GpuError {
     NoAdapter(String),
     /// The adapter refused the device (its limits are below what the scene needs).
     Device(String),
-    /// The scene holds primitives the GPU kernels do not cover yet.
+    /// What the GPU path does not cover (a render setting its renderer refuses, with the reason).
     Unsupported(String),
     /// The scene does not fit the adapter's buffer limits.
     TooLarge {

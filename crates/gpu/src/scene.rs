@@ -19,9 +19,10 @@
 //! the CPU's kernel) moves the foot point by `ε/2·|tc| ≤ ε·R`. Altogether the GPU's local line is
 //! the CPU's moved by `δ ≤ 16·ε·R` (`ε = 2⁻²⁴`, a factor of about two to spare), and its distance
 //! `s = tc + τ` carries `ε·2R` more. A hit point therefore lies within `E + δ` of the exact
-//! surface, where `E` is the kernel's bound ([`crate::kernel`]'s tests use it), and hit/miss can
-//! differ from the CPU's only where the line passes within `2E + δ` of the surface. [`GpuScene::band`]
-//! returns `δ` for a scene.
+//! surface, where `E` is the kernel's bound ([`crate::kernel`]'s tests use it; for a spline
+//! piece twice the band of `tubecast::spline_error_band`, which bounds the error both across the
+//! surface and along the ray), and hit/miss can differ from the CPU's only where the line passes
+//! within `2E + δ` of the surface. [`GpuScene::band`] returns `δ` for a scene.
 
 use crate::compute::Kernel;
 use crate::device::{Gpu, GpuError};
