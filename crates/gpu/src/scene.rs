@@ -122,8 +122,10 @@ pub struct GpuScene<'g> {
     ex: TreeExport<'g>,
     closest: Kernel,
     any: Kernel,
-    brute: Kernel,
-    piece: Kernel,
+    /// The brute-force and first-component kernels, built on first use (a render needs neither,
+    /// and each pipeline costs a shader compile, a long one with the spline kernel).
+    brute: OnceLock<Kernel>,
+    piece: OnceLock<Kernel>,
     /// The line-interval kernels (count, list), built on first use from `tree` (tree.wgsl
     /// with its stack size).
     lines: OnceLock<(Kernel, Kernel)>,
@@ -205,8 +207,8 @@ impl<'g> GpuScene<'g> {
             ex,
             closest: gpu.kernel(&src, "closest_tree", 3)?,
             any: gpu.kernel(&src, "any_tree", 3)?,
-            brute: gpu.kernel(&src, "closest_brute", 3)?,
-            piece: gpu.kernel(&src, "first_piece", 3)?,
+            brute: OnceLock::new(),
+            piece: OnceLock::new(),
             lines: OnceLock::new(),
             tree,
             splines,
@@ -295,7 +297,8 @@ impl<'g> GpuScene<'g> {
     /// The closest surface crossing of each ray in its `[t_min, t_max]` (entry, or exit for a
     /// ray starting inside), its `id` the primitive's ([`Tracer::prim`]). Rays must be valid.
     pub fn closest_hits(&self, rays: &[Ray<f64>], walk: Walk) -> Result<Vec<Option<Hit<f64>>>, GpuError> {
-        self.query(if walk == Walk::Tree { &self.closest } else { &self.brute }, rays, 1)
+        let k = if walk == Walk::Tree { &self.closest } else { self.lazy(&self.brute, "closest_brute")? };
+        self.query(k, rays, 1)
     }
 
     /// Whether each ray meets a primitive's surface in its `[t_min, t_max]` (shadow and AO rays).
@@ -307,7 +310,7 @@ impl<'g> GpuScene<'g> {
     /// interval that reaches each ray's `[t_min, t_max]`
     /// ([`tubecast_render::accel::first_component`], the `intersect --query piece` answer).
     pub fn first_pieces(&self, rays: &[Ray<f64>]) -> Result<Vec<Option<Piece>>, GpuError> {
-        let out = self.query(&self.piece, rays, 2)?;
+        let out = self.query(self.lazy(&self.piece, "first_piece")?, rays, 2)?;
         Ok(out.chunks_exact(2).map(|p| p[0].zip(p[1])).collect())
     }
 
@@ -368,6 +371,15 @@ impl<'g> GpuScene<'g> {
             start = end;
         }
         Ok(all)
+    }
+
+    /// The kernel of entry point `entry` of the queries' module, built into `cell` on first use.
+    fn lazy<'a>(&self, cell: &'a OnceLock<Kernel>, entry: &str) -> Result<&'a Kernel, GpuError> {
+        if let Some(k) = cell.get() {
+            return Ok(k);
+        }
+        let k = self.gpu.kernel(&Self::module(&self.tree, false, self.splines), entry, 3)?;
+        Ok(cell.get_or_init(|| k))
     }
 
     /// The count and list kernels of [`Self::line_intervals`], built on first use (most
