@@ -2,8 +2,8 @@
 // place of spline.wgsl, ray_space.wgsl and roots.wgsl): tree.wgsl calls them only for spline
 // items, so they are never reached, and the module stays the links' own. Lavapipe inlines the
 // whole spline kernel into every walk and brute-force loop that can reach it: with it, the
-// links' tree walk ran about twenty times slower there, and its brute-force loop returned no
-// hits at all (a compiler fault not understood yet; `tests/gpu/tree.rs` would catch it).
+// links' tree walk ran far slower there, and its brute-force loop returned no hits at all (a
+// compiler fault not understood yet, which `tests/gpu/tree.rs` catches).
 
 // spline.wgsl's Pieces.
 struct Pieces {
