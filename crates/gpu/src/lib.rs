@@ -6,6 +6,8 @@
 //! builds wgpu. Without a Vulkan driver, [`Gpu::new`] returns [`GpuError::NoAdapter`], naming
 //! what to install.
 
+#![deny(missing_docs)]
+
 mod compute;
 mod device;
 pub mod kernel;

@@ -55,9 +55,9 @@ fn bad_invocations_fail_before_any_work_and_touch_no_output() {
     let cases: &[(&[&str], i32, &[&str])] = &[
         // Outputs: format, directory, --force.
         (&["render", "IN", "-o", "NEW.jpg"], 2, &["-o", "extension .jpg", ".png"]),
-        // Without the gpu feature: a build without the GPU; with it: splines not on the GPU.
-        (&["render", "IN", "-o", "NEW.png", "--device", "gpu", "--splines"], 2, &["--device gpu"]),
-        (&["intersect", "IN", "--rays", "RAYS", "-o", "NEW.npy", "--device", "gpu", "--splines"], 2, &["--device gpu"]),
+        // Without the gpu feature: a build without the GPU; with it: no voxel grid on the GPU.
+        (&["render", "IN", "-o", "NEW.png", "--device", "gpu", "--accel", "grid"], 2, &["--device gpu"]),
+        (&["intersect", "IN", "--rays", "RAYS", "-o", "NEW.npy", "--device", "gpu", "--accel", "grid"], 2, &["--device gpu"]),
         (&["render", "IN", "-o", "NEW"], 2, &["no extension", ".png"]),
         (&["render", "IN", "-o", "NODIR/x.png"], 1, &["missing-dir", "does not exist"]),
         (&["render", "IN", "-o", "OLD.png"], 1, &["exists", "--force"]),
