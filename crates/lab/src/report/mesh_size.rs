@@ -80,11 +80,6 @@ pub fn mean_radius(scene: &Scene) -> f64 {
     (0..scene.nodes.len()).map(|i| scene.radius(i)).sum::<f64>() / n as f64
 }
 
-/// The least node radius over the links' ends (what sets the union's grid step).
-fn min_link_radius(scene: &Scene) -> f64 {
-    scene.links.iter().flatten().map(|i| scene.radius(i as usize)).fold(f64::INFINITY, f64::min)
-}
-
 /// Lateral area of the links' frusta (overlaps counted twice: an upper estimate of the union's
 /// area along chains).
 fn lateral_area(scene: &Scene) -> f64 {
@@ -99,17 +94,10 @@ fn lateral_area(scene: &Scene) -> f64 {
         .sum()
 }
 
-/// The union's first grid step at tolerance `eps` for least radius `r_min` (the mesher's
-/// starting rule: `min(√(1.6·ε·r_min), r_min/2)`).
-fn first_step(eps: f64, r_min: f64) -> f64 {
-    (1.6 * eps * r_min).sqrt().min(0.5 * r_min)
-}
-
 /// The union mesh's size estimated from a contiguous run of `n` links from the middle of the
-/// scene, meshed for real at `eps`: its triangles per unit of lateral area, at its last grid
-/// step `h_s`, scaled to the scene's lateral area and to the scene's step. The scene's step is
-/// the sample's times the ratio of the two first steps (the refinement acts alike on both);
-/// triangles per area go as `1/h²` (about six per cut grid cube, cubes of side h).
+/// scene, meshed for real at `eps`: its triangles per unit of lateral area, scaled to the
+/// scene's lateral area (the union's spheres are resolved per node radius at the same ε, so
+/// the density carries over between runs of similar radii).
 pub fn union_estimate(scene: &Scene, eps: f64, n: usize) -> Result<f64, ReportError> {
     let n = n.min(scene.links.len());
     if n == 0 {
@@ -122,10 +110,9 @@ pub fn union_estimate(scene: &Scene, eps: f64, n: usize) -> Result<f64, ReportEr
         coverage: Vec::new(),
         ..scene.clone()
     };
-    let (m, rep) = tessellate_union(&part, eps).map_err(err)?;
+    let (m, _) = tessellate_union(&part, eps).map_err(err)?;
     let density = m.mesh.triangles.len() as f64 / lateral_area(&part);
-    let h_scene = rep.step * first_step(eps, min_link_radius(scene)) / first_step(eps, min_link_radius(&part));
-    Ok(density * (rep.step / h_scene).powi(2) * lateral_area(scene))
+    Ok(density * lateral_area(scene))
 }
 
 fn mesh_row(scene: &str, kind: &'static str, k: f64, r_mean: f64, m: &SceneMesh) -> SizeRow {

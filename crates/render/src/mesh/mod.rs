@@ -14,7 +14,7 @@ mod tracer;
 mod union;
 
 pub use tracer::MeshTracer;
-pub use union::{tessellate_union, UnionReport};
+pub use union::{tessellate_union, tessellate_union_with, UnionOptions, UnionReport, UNION_BYTES_PER_HULL_TRIANGLE};
 
 use crate::scene::{Model, Scene, SPLINE_MAX_DEPTH, SPLINE_TOLERANCE};
 use std::fmt;
@@ -57,6 +57,24 @@ pub enum MeshError {
         /// What the kernel said.
         cause: GeometryError,
     },
+    /// The union mesh would need more memory than allowed: refused before it is built.
+    Memory {
+        /// The tolerance asked for.
+        eps: f64,
+        /// The estimated peak (bytes).
+        estimate: u64,
+        /// The limit (bytes).
+        limit: u64,
+        /// The triangles of the links' hulls the estimate counts.
+        hull_triangles: usize,
+    },
+    /// manifold failed on the union's input (it reports a status, never a partial mesh).
+    Union {
+        /// The tolerance asked for.
+        eps: f64,
+        /// What failed.
+        what: String,
+    },
 }
 
 impl fmt::Display for MeshError {
@@ -64,6 +82,13 @@ impl fmt::Display for MeshError {
         match self {
             Self::Tolerance { eps, cause } => write!(f, "mesh tolerance {eps}: {cause}"),
             Self::Chain { link, cause } => write!(f, "cannot tessellate the chain of link {link}: {cause}"),
+            Self::Memory { eps, estimate, limit, hull_triangles } => write!(
+                f,
+                "the union mesh at tolerance {eps} needs about {:.2} GB ({hull_triangles} hull triangles), above the limit of {:.2} GB: raise the tolerance (memory goes about as 1/tolerance), mesh a subset, or write --shells",
+                *estimate as f64 / 1e9,
+                *limit as f64 / 1e9
+            ),
+            Self::Union { eps, what } => write!(f, "the union mesh at tolerance {eps} failed: {what}"),
         }
     }
 }

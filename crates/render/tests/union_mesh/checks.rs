@@ -306,3 +306,81 @@ pub fn volume_area(m: &SceneMesh) -> (f64, f64) {
     }
     (v, a)
 }
+
+/// The numerical unit gradient of one tube's SDF (central differences: independent of the
+/// mesher's closed form).
+fn num_grad(t: &RoundCone<f64>, x: P) -> P {
+    let e = 1e-7 * (1.0 + t.ra.max(t.rb));
+    let g = V3::new(
+        t.sdf(x + V3::new(e, 0.0, 0.0)) - t.sdf(x - V3::new(e, 0.0, 0.0)),
+        t.sdf(x + V3::new(0.0, e, 0.0)) - t.sdf(x - V3::new(0.0, e, 0.0)),
+        t.sdf(x + V3::new(0.0, 0.0, e)) - t.sdf(x - V3::new(0.0, 0.0, e)),
+    );
+    let l = g.length();
+    if l > 0.0 {
+        g * (1.0 / l)
+    } else {
+        V3::new(1.0, 0.0, 0.0)
+    }
+}
+
+/// An upper bound on the distance from `p` to the union's surface, found by witnesses: points
+/// `q` outside the union (`sdf(q) ≥ 0`, checked with the brute-force union SDF), so that the
+/// distance is at most `|p − q|`. Outside the union that distance is `sdf(p)` itself (the
+/// distance to a union is the least distance to its parts). Inside, where `−sdf(p)` (the least
+/// depth in one tube) only bounds the true depth from **below** near a crease, the witnesses
+/// are: `p` moved out of each tube along its gradient (the nearest point of that tube's
+/// surface), the nearest crease point of each pair of tubes near `p` (Newton on both SDFs,
+/// then a push of `push` along the bisector of the two normals), and 4,000 directions at
+/// distance `d` (the bound to check). Returns the least witness distance, or infinity when
+/// none within `d` is found.
+pub fn depth_witness(tubes: &[RoundCone<f64>], p: P, d: f64) -> f64 {
+    let f = sdf(tubes, p);
+    if f >= 0.0 {
+        return f;
+    }
+    let push = 1e-10 * (1.0 + d);
+    let best = std::cell::Cell::new(f64::INFINITY);
+    let take = |q: P| {
+        if sdf(tubes, q) >= 0.0 {
+            best.set(best.get().min((q - p).length()));
+        }
+    };
+    let near: Vec<&RoundCone<f64>> = tubes.iter().filter(|t| t.sdf(p) < 2.0 * d + push).collect();
+    for t in &near {
+        let mut q = p;
+        for _ in 0..4 {
+            q = q - num_grad(t, q) * (t.sdf(q) - push);
+        }
+        take(q);
+    }
+    for (i, a) in near.iter().enumerate() {
+        for b in &near[i + 1..] {
+            let mut x = p;
+            for _ in 0..30 {
+                let (fa, fb, ga, gb) = (a.sdf(x), b.sdf(x), num_grad(a, x), num_grad(b, x));
+                let c = ga.dot(gb);
+                let det = 1.0 - c * c;
+                if det < 1e-12 {
+                    break;
+                }
+                x = x - ga * ((fa - c * fb) / det) - gb * ((fb - c * fa) / det);
+            }
+            let (ga, gb) = (num_grad(a, x), num_grad(b, x));
+            let n = ga + gb;
+            if n.length() > 0.0 {
+                take(x + n * (push / n.length()));
+            }
+        }
+    }
+    if best.get() > d {
+        let k = 4000;
+        for i in 0..k {
+            let z = 1.0 - 2.0 * (i as f64 + 0.5) / k as f64;
+            let phi = i as f64 * std::f64::consts::PI * (3.0 - 5f64.sqrt());
+            let s = (1.0 - z * z).sqrt();
+            take(p + V3::new(s * phi.cos(), s * phi.sin(), z) * d);
+        }
+    }
+    best.get()
+}

@@ -1,71 +1,265 @@
-//! The a-posteriori bound on how far each triangle strays from the union's surface, from the
-//! convexity of every tube's exact SDF `fᵢ` (a round cone is convex, and so is its signed
-//! distance, inside and out), with `f = minᵢ fᵢ`:
+//! How far the union mesh lies from the union's exact surface, measured triangle by triangle
+//! (the derivation is in `docs/design/union-mesh.md`, "The bound").
 //!
-//! - **out** (`f > 0`): `f(p) ≤ fᵢ(p) ≤ maxⱼ fᵢ(vⱼ)` for any tube `i` and any point `p` of the
-//!   triangle `v₀v₁v₂`, so `f ≤ bₜ = minᵢ maxⱼ fᵢ(vⱼ)` on it (≤ 0 when one tube holds all
-//!   three corners: the triangle is then inside the union).
-//! - **in** (`f < 0`): a convex function lies above its tangent planes, so with `gᵢ` the
-//!   (sub)gradient of `fᵢ` at the centroid `c`, `fᵢ(p) ≥ fᵢ(c) + gᵢ·(p − c) ≥ fᵢ(c) +
-//!   minⱼ gᵢ·(vⱼ − c)` (linear on the triangle: least at a corner). Tubes with
-//!   `fᵢ(c) > R = maxⱼ |vⱼ − c|` are positive on the whole triangle and can only raise `f`.
-//!   So `f ≥ −aₜ` with `aₜ = max(0, −minᵢ(...))`; second order in the triangle's size where
-//!   its corners are on one tube (the tangent plane at `c` is then close to the triangle's).
+//! Write `fᵢ` for tube i's exact signed distance (convex: a round cone is convex) and
+//! `Ω = ∪ Cᵢ` for the union. The depth of a point `p ∈ Ω` is `D(p) = dist(p, ℝ³ ∖ Ω)`, which
+//! near a crease is **larger** than `−minᵢ fᵢ(p)`: a point `s` deep in each of two tubes, on
+//! the crease of their polyhedra, is up to `s / sin(β/2)` from the union's surface (β the
+//! exterior opening of the exact crease). So the depth is bounded through witnesses outside
+//! the union, not through `min fᵢ`:
+//!
+//! - For a tube m and any unit `n`, the half-space `Hₘ = {y : n·y ≥ hₘ(n)}` (`hₘ` the support
+//!   function, [`support`]) holds no interior point of the tube.
+//! - For a (piece of a) triangle T, let `Lₘ ≤ min_T fₘ` (tangent plane of the convex `fₘ` at
+//!   the centroid, or `fₘ(c) − R`), `A = {m : Lₘ < d}` and `W = ∩_{m∈A} Hₘ` (convex), with
+//!   `d = maxⱼ dist(vⱼ, W)` over T's corners. `dist(·, W)` is convex, so every `p ∈ T` is within
+//!   `d` of its projection `q ∈ W`; `q` is outside every tube of A (in its half-space) and
+//!   outside every other tube (`fₘ(q) ≥ fₘ(p) − d ≥ Lₘ − d ≥ 0`). So `D(p) ≤ d` on T.
+//! - Tubes not listed near T are farther than the query's margin; `d` is accepted only below
+//!   it.
+//!
+//! A triangle's `d` is about the sagitta on a tube's side (one half-space, the face's own
+//! plane's distance to the parallel support plane), about `s / sin(β/2)` at a crease of
+//! opening β (two half-spaces), and unbounded as β → 0 (tangent tubes). A long triangle on a
+//! curved or creased region is split into four (its midpoints) and measured piece by piece
+//! while that lowers its bound, since one half-space per tube fits only a small region.
+//!
+//! And outward: `f ≤ bₜ = minₘ maxⱼ fₘ(vⱼ)` on T (convexity of each `fₘ`); manifold's triangles
+//! lie on the faces of hulls inside their tubes, so `bₜ` is rounding.
 
-use super::field::{gradient, Field};
-use super::grid::Raw;
-use tubecast::{Primitive, V3};
+use super::tube::{gradient, sdf, support, unit, Index, P};
+use rayon::prelude::*;
+use tubecast::{Primitive, RoundCone};
 
-/// The largest excursions over the mesh: `depth = maxₜ aₜ`, `out = maxₜ max(bₜ, 0)`, and the
-/// number of triangles with `bₜ > 0` beyond rounding.
-#[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Excursion {
+/// Splits of a triangle into four at most.
+const MAX_DEPTH: u32 = 6;
+
+/// A measured mesh.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Measure {
+    /// The largest depth bound `d` over the mesh (mesh → surface, inside).
     pub depth: f64,
+    /// The largest `max(bₜ, 0)` (mesh → surface, outside: rounding).
     pub out: f64,
-    pub outside: usize,
+    /// The least `sin(β/2) = √((1 + nᵢ·nⱼ)/2)` over the pairs of half-spaces that bound a
+    /// piece (1 when none).
+    pub min_sin_half: f64,
+    /// Triangles whose bound exceeds the goal: the bound and the tubes that set it.
+    pub over: Vec<(f64, Vec<u32>)>,
 }
 
-/// Measures every triangle of `raw`.
-pub(super) fn excursion(field: &Field, raw: &Raw) -> Excursion {
-    let mut e = Excursion::default();
-    let all: Vec<u32> = (0..field.tubes.len() as u32).collect();
-    for t in &raw.triangles {
-        let p = t.map(|i| raw.positions[i as usize]);
-        let c = (p[0] + p[1] + p[2]) * (1.0 / 3.0);
-        let r = p.iter().map(|&v| (v - c).length()).fold(0.0, f64::max);
-        // `near` holds every tube with fᵢ < reach somewhere in c's cell; a triangle wider
-        // than the reach (never expected) is measured against every tube.
-        let tubes = match field.near(c) {
-            Some(ts) if r < field.reach => ts,
-            _ => &all[..],
-        };
-        let (a, b) = triangle(field, tubes, p, c, r);
-        e.depth = e.depth.max(a);
-        e.out = e.out.max(b);
-        if b > super::crease::ON * field.h {
-            e.outside += 1;
-        }
-    }
-    e
+struct Ctx<'a> {
+    tubes: &'a [RoundCone<f64>],
+    index: &'a Index,
+    goal: f64,
+    /// Relative rounding allowed in a witness's feasibility (its excess is added to `d`).
+    tol: f64,
 }
 
-/// `(aₜ, max(bₜ, 0))` of one triangle against `tubes`.
-fn triangle(field: &Field, tubes: &[u32], p: [V3<f64>; 3], c: V3<f64>, r: f64) -> (f64, f64) {
-    let mut b = f64::INFINITY;
-    let mut lower = 0.0f64;
-    for &k in tubes {
-        let t = &field.tubes[k as usize];
-        let fv = p.map(|v| t.sdf(v));
-        b = b.min(fv[0].max(fv[1]).max(fv[2]));
-        let fc = t.sdf(c);
-        if fc - r > 0.0 {
-            continue;
-        }
-        let g = gradient(t, c);
-        let lin = p.iter().map(|&v| g.dot(v - c)).fold(f64::INFINITY, f64::min);
-        lower = lower.min(fc + lin);
+/// Measures every triangle; `goal` is the tolerance (pieces are split while above it).
+pub(super) fn measure(
+    tubes: &[RoundCone<f64>],
+    positions: &[P],
+    triangles: &[[u32; 3]],
+    margin: f64,
+    goal: f64,
+) -> Measure {
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    let mut r_max = 0.0f64;
+    for t in tubes {
+        let b = t.aabb();
+        lo = lo.min(b.min.x.min(b.min.y).min(b.min.z));
+        hi = hi.max(b.max.x.max(b.max.y).max(b.max.z));
+        r_max = r_max.max(t.ra).max(t.rb);
     }
-    // No tube near: every fᵢ ≥ reach at the corners (cannot happen for a contoured triangle).
-    let b = if b.is_finite() { b } else { field.reach };
-    (-lower, b.max(0.0))
+    let scale = lo.abs().max(hi.abs());
+    let index = Index::new(tubes, (4.0 * r_max).max(margin));
+    let ctx = Ctx { tubes, index: &index, goal, tol: 1e-13 * scale };
+    triangles
+        .par_iter()
+        .map_init(Vec::new, |near, t| {
+            let v = t.map(|i| positions[i as usize]);
+            triangle(&ctx, v, margin, near)
+        })
+        .reduce(
+            || Measure { min_sin_half: 1.0, ..Default::default() },
+            |mut a, b| {
+                a.depth = a.depth.max(b.depth);
+                a.out = a.out.max(b.out);
+                a.min_sin_half = a.min_sin_half.min(b.min_sin_half);
+                a.over.extend(b.over);
+                a
+            },
+        )
+}
+
+fn triangle(ctx: &Ctx, v: [P; 3], margin: f64, near: &mut Vec<u32>) -> Measure {
+    let lo = P::new(v[0].x.min(v[1].x).min(v[2].x), v[0].y.min(v[1].y).min(v[2].y), v[0].z.min(v[1].z).min(v[2].z));
+    let hi = P::new(v[0].x.max(v[1].x).max(v[2].x), v[0].y.max(v[1].y).max(v[2].y), v[0].z.max(v[1].z).max(v[2].z));
+    let nt = unit((v[1] - v[0]).cross(v[2] - v[0]));
+    let mut margin = margin;
+    let mut m = Measure { min_sin_half: 1.0, ..Default::default() };
+    for _ in 0..3 {
+        ctx.index.near(lo, hi, margin, near);
+        // Outside: bₜ against the tubes near (a tube holding the three corners is among them).
+        let b = near
+            .iter()
+            .map(|&k| v.iter().map(|&x| sdf(&ctx.tubes[k as usize], x)).fold(f64::NEG_INFINITY, f64::max))
+            .fold(f64::INFINITY, f64::min);
+        m.out = b.max(0.0);
+        let mut set = Vec::new();
+        let (d, sh) = piece(ctx, near, v, nt, 0, &mut set);
+        m.min_sin_half = sh;
+        if d <= margin {
+            m.depth = d;
+            if d > ctx.goal {
+                set.sort_unstable();
+                set.dedup();
+                m.over.push((d, set));
+            }
+            return m;
+        }
+        margin = 2.0 * d.min(1e6 * margin);
+    }
+    m.depth = f64::INFINITY;
+    m.over.push((f64::INFINITY, near.clone()));
+    m
+}
+
+/// The depth bound of the piece `v` of a triangle with outward unit normal `nt`, split while
+/// that lowers it; the tubes whose half-spaces bound it are added to `set` where it exceeds
+/// the goal. Returns `(d, least sin(β/2))`.
+fn piece(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, depth: u32, set: &mut Vec<u32>) -> (f64, f64) {
+    let (d, sh, a) = leaf(ctx, near, v, nt);
+    let c = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
+    let r = v.iter().map(|&x| (x - c).length()).fold(0.0, f64::max);
+    // Splitting helps where one tangent plane per tube cannot fit the piece: the piece is
+    // large against its own bound.
+    if d <= ctx.goal || depth == MAX_DEPTH || r < 0.25 * d {
+        if d > ctx.goal {
+            set.extend(a);
+        }
+        return (d, sh);
+    }
+    let m = [(v[0] + v[1]) * 0.5, (v[1] + v[2]) * 0.5, (v[2] + v[0]) * 0.5];
+    let mut out = (0.0f64, 1.0f64);
+    for p in [[v[0], m[0], m[2]], [m[0], v[1], m[1]], [m[2], m[1], v[2]], [m[0], m[1], m[2]]] {
+        let (d, sh) = piece(ctx, near, p, nt, depth + 1, set);
+        out = (out.0.max(d), out.1.min(sh));
+    }
+    out
+}
+
+/// One piece, unsplit: `(d, least sin(β/2) among its half-spaces, the tubes of A)`.
+fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P) -> (f64, f64, Vec<u32>) {
+    let c = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
+    let r = v.iter().map(|&x| (x - c).length()).fold(0.0, f64::max);
+    // Lower bounds of each tube's distance on the piece, and its gradient at the centroid.
+    let lower: Vec<(u32, f64, P)> = near
+        .iter()
+        .map(|&k| {
+            let t = &ctx.tubes[k as usize];
+            let fc = sdf(t, c);
+            let g = gradient(t, c);
+            let lin = v.iter().map(|&x| g.dot(x - c)).fold(f64::INFINITY, f64::min);
+            (k, (fc + lin).max(fc - r), g)
+        })
+        .collect();
+    let mut d_req = 0.0f64;
+    loop {
+        let active: Vec<&(u32, f64, P)> = lower.iter().filter(|l| l.1 < d_req || l.1 < 0.0).collect();
+        // One half-space per tube: the triangle's own normal (exact on the face of a hull) or
+        // the tube's gradient at the centroid, whichever puts the corners nearer.
+        let planes: Vec<(P, f64)> = active
+            .iter()
+            .map(|&&(k, _, g)| {
+                let t = &ctx.tubes[k as usize];
+                let gap = |n: P| {
+                    let h = support(t, n);
+                    (h, v.iter().map(|&x| h - n.dot(x)).fold(0.0, f64::max))
+                };
+                let (ht, dt) = gap(nt);
+                let (hg, dg) = gap(g);
+                if dt <= dg {
+                    (nt, ht)
+                } else {
+                    (g, hg)
+                }
+            })
+            .collect();
+        let d = v.iter().map(|&x| distance(&planes, x, ctx.tol)).fold(0.0, f64::max);
+        let mut sh = 1.0f64;
+        for i in 0..planes.len() {
+            for j in i + 1..planes.len() {
+                sh = sh.min(((1.0 + planes[i].0.dot(planes[j].0)) * 0.5).max(0.0).sqrt());
+            }
+        }
+        let more = lower.iter().any(|l| l.1 < d && l.1 >= d_req && l.1 >= 0.0);
+        if !d.is_finite() || !more {
+            return (d, sh, active.iter().map(|l| l.0).collect());
+        }
+        d_req = d;
+    }
+}
+
+/// An upper bound on the distance from `x` to `W = {y : n·y ≥ h for every (n, h)}`: the
+/// distance to the nearest point of `W` among the projections of `x` onto the planes of one,
+/// two or three constraints (the projection onto W is one of them when W is not empty);
+/// infinite when none is in `W`. A candidate may violate a constraint by rounding (`tol`):
+/// that excess is added.
+fn distance(planes: &[(P, f64)], x: P, tol: f64) -> f64 {
+    let excess = |y: P| planes.iter().map(|&(n, h)| h - n.dot(y)).fold(0.0, f64::max);
+    let ok = |y: P| {
+        let e = excess(y);
+        (e <= tol).then(|| (y - x).length() + e)
+    };
+    if let Some(d) = ok(x) {
+        return d;
+    }
+    let mut best = f64::INFINITY;
+    let n = planes.len();
+    for &(ni, hi) in planes {
+        let y = x + ni * (hi - ni.dot(x));
+        if let Some(d) = ok(y) {
+            best = best.min(d);
+        }
+    }
+    for i in 0..n {
+        for j in i + 1..n {
+            let ((a, ha), (b, hb)) = (planes[i], planes[j]);
+            let cab = a.dot(b);
+            let det = 1.0 - cab * cab;
+            if det < 1e-12 {
+                continue;
+            }
+            let (ra, rb) = (ha - a.dot(x), hb - b.dot(x));
+            let la = (ra - cab * rb) / det;
+            let lb = (rb - cab * ra) / det;
+            if let Some(d) = ok(x + a * la + b * lb) {
+                best = best.min(d);
+            }
+        }
+    }
+    // Vertices of three constraints (the projection can be one where W is a narrow cone);
+    // many tubes at one piece (a hub of branches) keep to the cheaper candidates.
+    if n <= 12 {
+        for i in 0..n {
+            for j in i + 1..n {
+                for k in j + 1..n {
+                    let ((a, ha), (b, hb), (c, hc)) = (planes[i], planes[j], planes[k]);
+                    let bc = b.cross(c);
+                    let det = a.dot(bc);
+                    if det.abs() < 1e-9 {
+                        continue;
+                    }
+                    let y = (bc * ha + c.cross(a) * hb + a.cross(b) * hc) * (1.0 / det);
+                    if let Some(d) = ok(y) {
+                        best = best.min(d);
+                    }
+                }
+            }
+        }
+    }
+    best
 }

@@ -1,71 +1,88 @@
-//! The surface of the union of a scene's links: one closed, oriented, embedded 2-manifold
-//! per boundary component, with a certified two-sided Hausdorff bound to the surface of the
-//! union of the exact round cones (derivation in `docs/design/union-mesh.md`).
+//! The surface of the union of a scene's links, built with manifold (the pure-Rust port
+//! `manifold-rust`): every node sphere an inscribed polyhedron, every link the convex hull of
+//! its two end polyhedra, all links united by manifold's batch boolean (`hull.rs`); the result
+//! is one closed, oriented 2-manifold per component (manifold's guarantee, checked by the
+//! tests), measured triangle by triangle against the exact round cones (`certify.rs`), with
+//! a certified two-sided Hausdorff bound to the union's exact surface (derivation in
+//! `docs/design/union-mesh.md`).
 //!
-//! Built on the exact union SDF `f = minᵢ fᵢ` ([`tubecast::Primitive::sdf`] of each link):
-//! marching tetrahedra on a sparse uniform grid (`grid.rs`, closed and embedded by
-//! construction), vertices at the exact roots of `f` on the grid edges, crease edges split at
-//! the exact crease (`crease.rs`), then every triangle measured against the tubes
-//! (`certify.rs`). The step starts from the curvature bound and is refined until the measured
-//! bound meets the tolerance, or a try limit is reached (the bound reached is then reported).
+//! The polyhedra's resolution is set per node by its sagitta (a thin branch needs fewer
+//! segments than the soma); where the measured bound exceeds the tolerance (sharp notches,
+//! where the bound is the sagitta over `sin(β/2)`), the spheres of the tubes that set it are
+//! refined by the measured factor and the union rebuilt, twice at most.
 
 mod certify;
-mod crease;
-mod embed;
-mod field;
-mod grid;
-mod triple;
+mod hull;
+mod tube;
 
 use super::{MeshError, SceneMesh};
 use crate::scene::Scene;
-use field::{Field, INDEX_LIMIT};
+use tube::P;
 use tubecast::{GeometryError, Mesh, Part, RoundCone, V3};
 
 /// How a union mesh was made, and the parts of its certificate.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct UnionReport {
-    /// The grid step of the last try (scene units).
-    pub step: f64,
-    /// Tries made (each with a finer step than the last).
+    /// Builds made (each after refining the spheres where the bound exceeded the tolerance).
     pub tries: usize,
-    /// The deepest any triangle goes inside the union (`max aₜ`).
+    /// The largest sagitta of a node's polyhedron (radius minus the least distance from its
+    /// centre to a face's plane): every point of the union's surface is within it of the mesh.
+    pub sagitta: f64,
+    /// The largest depth bound over the mesh: every mesh point inside the union is within it
+    /// of the union's surface (the sagitta on a tube's side, up to `sagitta / sin(β/2)` at a
+    /// crease of exterior opening β).
     pub depth: f64,
-    /// The farthest any triangle goes outside the union (`max bₜ`, 0 when none does).
+    /// The farthest any triangle goes outside the union (rounding: the hulls lie inside their
+    /// tubes).
     pub out: f64,
-    /// Triangles that go outside the union beyond rounding (a crease that could not be split,
-    /// a gap narrower than the grid bridged).
+    /// Triangles whose depth bound exceeds the tolerance in the mesh returned (tangent or
+    /// nearly tangent tubes after the refinement budget).
     pub outside: usize,
-    /// Crease edges split.
-    pub crease_splits: usize,
-    /// The least `sin(β/2)` over the split crease points (`β` the crease's exterior opening),
-    /// 1 when none.
+    /// The least `sin(β/2)` over the creases the certificate met (1 when none).
     pub min_sin_half: f64,
+    /// The least and largest subdivisions per octant edge of a node's polyhedron (a sphere of
+    /// `8·k²` triangles).
+    pub subdiv: (u32, u32),
+    /// The triangles of all the links' hulls (manifold's input).
+    pub hull_triangles: usize,
 }
 
 impl UnionReport {
-    /// The certified two-sided Hausdorff bound: `max(depth, out / sin(β_min/2))`.
+    /// The certified two-sided Hausdorff bound: `max(sagitta, depth) + out`.
     pub fn certified(&self) -> f64 {
-        self.depth.max(self.out / self.min_sin_half)
+        self.sagitta.max(self.depth) + self.out
     }
 }
 
-/// Tries before the bound reached is accepted as it is.
+/// Options of [`tessellate_union_with`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UnionOptions {
+    /// Refuse, before building, a union whose estimated peak memory exceeds this many bytes
+    /// (`None`: no limit).
+    pub memory_limit: Option<u64>,
+}
+
+/// Builds made at most (the first, then refinements where the bound exceeds ε).
 const TRIES: usize = 3;
 
-/// A refinement may multiply the first try's triangle count by at most this.
-const REFINE_COUNT: f64 = 6.0;
+/// The first sagitta target, as a fraction of ε: a crease of exterior opening β multiplies
+/// the sagitta by `1/sin(β/2)`, and most of a tree's creases (bends, branches) are wider than
+/// a right angle (`1/sin(45°) ≈ 1.41`).
+const FIRST_SAGITTA: f64 = 0.7;
 
-/// Grid steps per cell of the tube hash.
-const CELL_STEPS: i64 = 8;
+/// Peak bytes per hull triangle (manifold's input): the hulls, the boolean's working set and
+/// the result; calibrated on the generator's neuron and tractogram (`docs/design/union-mesh.md`).
+pub const UNION_BYTES_PER_HULL_TRIANGLE: f64 = 1500.0;
 
 /// Meshes the surface of the union of the scene's links within `eps` (absolute, scene units),
 /// both ways. The mesh's [`Mesh::certified`] is [`UnionReport::certified`]; it is at most `eps`
-/// unless the report says otherwise (see [`UnionReport::outside`]).
+/// unless the report says otherwise (tubes tangent or nearly tangent: see
+/// [`UnionReport::outside`]).
 ///
 /// Errors: a tolerance that is not a positive number, a node that is not finite or has radius
 /// 0 (the union's certificate needs a ball inside every point of the surface: raise such radii
-/// first, e.g. with the CLI's `--min-radius`), or a scene too large for the grid at this
-/// tolerance. A tube inside another needs nothing: it adds no surface.
+/// first, e.g. with the CLI's `--min-radius`), or manifold failing on the input. A tube inside
+/// another, coincident tubes and zero-length links need nothing: they add no surface.
 ///
 /// ```
 /// use tubecast_render::io::Polyline;
@@ -78,87 +95,124 @@ const CELL_STEPS: i64 = 8;
 /// assert_eq!(report.certified(), m.mesh.certified);
 /// ```
 pub fn tessellate_union(scene: &Scene, eps: f64) -> Result<(SceneMesh, UnionReport), MeshError> {
+    tessellate_union_with(scene, eps, &UnionOptions::default())
+}
+
+/// [`tessellate_union`] with a memory limit: a union whose estimated peak exceeds
+/// `options.memory_limit` is refused before it is built ([`MeshError::Memory`]).
+///
+/// ```
+/// use tubecast_render::io::Polyline;
+/// use tubecast_render::mesh::{tessellate_union_with, MeshError, UnionOptions};
+/// use tubecast_render::scene::Scene;
+/// let line = Polyline { points: vec![[0.0; 3], [4.0, 0.0, 0.0]], radii: vec![] };
+/// let scene = Scene::from_polylines(&[line], 0.5, "tube").unwrap();
+/// let small = UnionOptions { memory_limit: Some(1000) };
+/// assert!(matches!(tessellate_union_with(&scene, 1e-3, &small), Err(MeshError::Memory { .. })));
+/// ```
+pub fn tessellate_union_with(
+    scene: &Scene,
+    eps: f64,
+    options: &UnionOptions,
+) -> Result<(SceneMesh, UnionReport), MeshError> {
     if !(eps.is_finite() && eps > 0.0) {
         let cause = GeometryError::TooSmall { what: "mesh tolerance (must be a positive number)" };
         return Err(MeshError::Tolerance { eps, cause });
     }
-    let (tubes, links) = tubes(scene)?;
+    let (tubes, links, pairs) = tubes(scene)?;
     if tubes.is_empty() {
         return Ok((SceneMesh::default(), UnionReport { min_sin_half: 1.0, ..Default::default() }));
     }
-    let r_min = tubes.iter().map(|t| t.ra.min(t.rb)).fold(f64::INFINITY, f64::min);
-    let (mut lo, mut hi) =
-        (V3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY), -V3::new(1.0, 1.0, 1.0) * f64::INFINITY);
-    for t in &tubes {
-        let b = tubecast::Primitive::aabb(t);
-        lo = V3::new(lo.x.min(b.min.x), lo.y.min(b.min.y), lo.z.min(b.min.z));
-        hi = V3::new(hi.x.max(b.max.x), hi.y.max(b.max.y), hi.z.max(b.max.z));
-    }
-    // A triangle with corners on a sphere of radius ρ, within a grid cube's diagonal √3·h of
-    // each other, is at most h²/(2ρ)·(1 + O(h²/ρ²)) deep; the step is capped at ρ/2 so that
-    // every tube, shrunk by the bound, still holds a grid vertex (the certificate's condition).
-    let mut h = (1.6 * eps * r_min).sqrt().min(0.5 * r_min);
-    let mut best: Option<(grid::Raw, UnionReport)> = None;
-    let mut first_count: Option<usize> = None;
+    let n = scene.nodes.len();
+    let centres: Vec<P> = scene.nodes.iter().map(|x| V3::from(x.pos)).collect();
+    let radii: Vec<f64> = (0..n).map(|i| scene.radius(i)).collect();
+    let mut spheres = hull::Spheres::default();
+    // Sagitta targets per node (only the links' nodes matter).
+    let mut target = vec![FIRST_SAGITTA * eps; n];
+    let mut best: Option<(hull::Built, UnionReport)> = None;
     for tries in 1..=TRIES {
-        let extent = (hi - lo).length() + 8.0 * CELL_STEPS as f64 * h;
-        if extent / h >= (INDEX_LIMIT / 2) as f64 || !extent.is_finite() {
-            if best.is_some() {
-                break;
+        let subdiv: Vec<u32> = (0..n).map(|i| spheres.subdivisions_for(radii[i], target[i])).collect();
+        // Every hull has at most 2·(its points) − 4 triangles.
+        let points = |k: u32| 4 * (k as usize) * (k as usize) + 2;
+        let hull_tris: usize = pairs.iter().map(|&[a, b]| 2 * (points(subdiv[a]) + points(subdiv[b]))).sum();
+        if let Some(limit) = options.memory_limit {
+            let estimate = (hull_tris as f64 * UNION_BYTES_PER_HULL_TRIANGLE) as u64;
+            if estimate > limit {
+                if let Some(b) = best.take() {
+                    // A refinement that would not fit: keep the mesh already made.
+                    best = Some(b);
+                    break;
+                }
+                return Err(MeshError::Memory { eps, estimate, limit, hull_triangles: hull_tris });
             }
-            let cause = GeometryError::TooSmall {
-                what: "mesh tolerance (the union grid would exceed 2^19 steps across the scene)",
-            };
-            return Err(MeshError::Tolerance { eps, cause });
         }
-        // Offset by irrational fractions of a step, so that the grid's corners do not fall on
-        // the surfaces of axis-aligned tubes with round coordinates (a corner exactly on the
-        // surface puts a vertex at the end gap, off the surface by that gap).
-        let shift = V3::new(std::f64::consts::FRAC_1_PI, 0.1 * std::f64::consts::E, 0.1 * std::f64::consts::SQRT_2) * h;
-        let origin = lo - V3::new(1.0, 1.0, 1.0) * (2.0 * CELL_STEPS as f64 * h) - shift;
-        let field = Field::new(tubes.clone(), origin, h, CELL_STEPS, 3.0 * h);
-        let mut raw = grid::contour(&field);
-        let creases = crease::split(&field, &mut raw);
-        triple::fan(&field, &mut raw);
-        let ex = certify::excursion(&field, &raw);
+        let built = hull::union(&centres, &radii, &subdiv, &pairs, &mut spheres)
+            .map_err(|e| MeshError::Union { eps, what: e.0 })?;
+        // Every point of a tube's polyhedra-hull boundary is within the larger sagitta of its
+        // two spheres; positions carry rounding of a few ulps of the coordinates.
+        let sag: Vec<f64> = (0..n)
+            .map(|i| {
+                let c = centres[i];
+                let ulps = 8.0 * f64::EPSILON * (c.x.abs().max(c.y.abs()).max(c.z.abs()) + radii[i]);
+                radii[i] * spheres.get(subdiv[i]).sagitta + ulps
+            })
+            .collect();
+        let sagitta = pairs.iter().map(|&[a, b]| sag[a].max(sag[b])).fold(0.0, f64::max);
+        let margin = 4.0 * eps.max(sagitta);
+        let m = certify::measure(&tubes, &built.positions, &built.triangles, margin, eps);
         let mut report = UnionReport {
-            step: h,
             tries,
-            depth: ex.depth,
-            out: ex.out,
-            outside: ex.outside,
-            crease_splits: creases.split,
-            min_sin_half: creases.min_sin_half,
+            sagitta,
+            depth: m.depth,
+            out: m.out,
+            outside: m.over.len(),
+            min_sin_half: m.min_sin_half,
+            subdiv: (
+                pairs.iter().flat_map(|p| p.map(|i| subdiv[i])).min().unwrap_or(0),
+                pairs.iter().flat_map(|p| p.map(|i| subdiv[i])).max().unwrap_or(0),
+            ),
+            hull_triangles: hull_tris,
         };
-        // The certificate needs each tube, shrunk by the depth, to hold a ball of radius √3·h/2.
-        if r_min - report.depth < 0.5 * 3f64.sqrt() * h {
+        if !report.certified().is_finite() {
             report.depth = f64::INFINITY;
         }
         let done = report.certified() <= eps;
-        let count = raw.triangles.len();
-        best = Some((raw, report));
-        if done {
+        if best.as_ref().map_or(true, |(_, r)| report.certified() <= r.certified()) {
+            best = Some((built, report));
+        }
+        if done || tries == TRIES {
             break;
         }
-        // The depth falls with h², a crease's excursion with h: take the step that would meet
-        // eps under the first, within [1/2, 0.9] of the last, while the triangle count (∝ 1/h²)
-        // stays within REFINE_COUNT of the first try's.
-        let next = h * (0.9 * (eps / report.certified()).sqrt()).clamp(0.5, 0.9);
-        first_count.get_or_insert(count);
-        if first_count.map_or(true, |c| (count as f64) * (h / next).powi(2) > REFINE_COUNT * c as f64) {
+        // The depth bound is about the sagitta over sin(β/2): refine the spheres of the tubes
+        // that set each excess by the factor that would meet ε (at most 1/16 per build).
+        let mut changed = false;
+        for (d, set) in &m.over {
+            let f = if d.is_finite() { (0.9 * eps / d).clamp(1.0 / 16.0, 0.9) } else { 1.0 / 16.0 };
+            for &t in set {
+                for node in pairs[t as usize] {
+                    let s = (sag[node] * f).min(target[node]);
+                    if s < target[node] && subdiv[node] < hull::MAX_SUBDIV {
+                        target[node] = s;
+                        changed = true;
+                    }
+                }
+            }
+        }
+        if !changed {
             break;
         }
-        h = next;
     }
-    let (raw, report) = best.expect("at least one try ran");
-    Ok((assemble(scene, raw, &links, report.certified()), report))
+    let (built, report) = best.expect("at least one build");
+    Ok((assemble(scene, built, &links, report.certified()), report))
 }
 
 /// The scene's links as round cones (radius 0 and non-finite data refused), with their
-/// scene link indices.
-fn tubes(scene: &Scene) -> Result<(Vec<RoundCone<f64>>, Vec<u32>), MeshError> {
+/// scene link indices and node pairs.
+#[allow(clippy::type_complexity)]
+fn tubes(scene: &Scene) -> Result<(Vec<RoundCone<f64>>, Vec<u32>, Vec<[usize; 2]>), MeshError> {
     let mut tubes = Vec::with_capacity(scene.links.len());
     let mut links = Vec::with_capacity(scene.links.len());
+    let mut pairs = Vec::with_capacity(scene.links.len());
     for (k, [a, b]) in scene.links.iter().enumerate() {
         let err = |cause| MeshError::Chain { link: k as u32, cause };
         let (a, b) = (a as usize, b as usize);
@@ -171,13 +225,14 @@ fn tubes(scene: &Scene) -> Result<(Vec<RoundCone<f64>>, Vec<u32>), MeshError> {
         let (pa, pb) = (V3::from(scene.nodes[a].pos), V3::from(scene.nodes[b].pos));
         tubes.push(RoundCone::new(pa, ra, pb, rb).map_err(err)?);
         links.push(k as u32);
+        pairs.push([a, b]);
     }
-    Ok((tubes, links))
+    Ok((tubes, links, pairs))
 }
 
 /// The scene mesh: triangles grouped by connected component (one [`Part`] each), tagged with
-/// the scene link of their first corner's tube.
-fn assemble(scene: &Scene, raw: grid::Raw, links: &[u32], certified: f64) -> SceneMesh {
+/// the scene link whose hull they lie on.
+fn assemble(scene: &Scene, raw: hull::Built, links: &[u32], certified: f64) -> SceneMesh {
     let n = raw.positions.len();
     let mut parent: Vec<u32> = (0..n as u32).collect();
     fn find(p: &mut [u32], mut i: u32) -> u32 {
@@ -199,12 +254,12 @@ fn assemble(scene: &Scene, raw: grid::Raw, links: &[u32], certified: f64) -> Sce
     let mut order: Vec<usize> = (0..raw.triangles.len()).collect();
     order.sort_by_key(|&k| (roots[k], k));
     let mut out = SceneMesh { mesh: Mesh { positions: raw.positions, certified, ..Default::default() }, part: vec![] };
-    let link_of = |t: &[u32; 3]| links.get(raw.owner[t[0] as usize] as usize).copied().unwrap_or(0);
+    let link_of = |k: usize| links.get(raw.link[k] as usize).copied().unwrap_or(0);
     let mut start = 0;
     for (i, &k) in order.iter().enumerate() {
         let t = raw.triangles[k];
         out.mesh.triangles.push(t);
-        out.mesh.tags.push(link_of(&t));
+        out.mesh.tags.push(link_of(k));
         let last = i + 1 == order.len() || roots[order[i + 1]] != roots[k];
         if last {
             let (mut n0, mut n1) = (u32::MAX, 0);

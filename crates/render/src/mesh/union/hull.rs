@@ -1,0 +1,145 @@
+//! The union built with manifold (the pure-Rust port `manifold-rust`): every node sphere an
+//! inscribed polyhedron (manifold's subdivided octahedron, vertices on the sphere), every link
+//! the convex hull of its two end polyhedra, all links united by manifold's batch boolean
+//! (its CSG tree, which unites disjoint pieces by composition and the rest pairwise in order
+//! of size).
+
+use super::tube::P;
+use manifold_rust::csg_tree::CsgNode;
+use manifold_rust::linalg::Vec3;
+use manifold_rust::manifold::Manifold;
+use manifold_rust::types::{Error, OpType};
+use std::collections::HashMap;
+use tubecast::V3;
+
+/// Subdivisions per octant edge at most (a sphere of `8·K²` triangles: 2·10⁶ at the cap).
+pub(super) const MAX_SUBDIV: u32 = 512;
+
+/// The unit sphere polyhedron with `k` subdivisions per octant edge (`4k` circular segments):
+/// its vertices and its sagitta `σ(k)`, the most any point of the unit ball's boundary lies
+/// outside the polyhedron (one minus the least distance from the centre to a face's plane,
+/// plus any vertex's excess over radius 1), measured on manifold's own triangles.
+pub(super) struct UnitSphere {
+    pub verts: Vec<P>,
+    pub sagitta: f64,
+}
+
+/// Unit spheres by subdivision count, measured once each.
+#[derive(Default)]
+pub(super) struct Spheres {
+    by_k: HashMap<u32, UnitSphere>,
+}
+
+impl Spheres {
+    pub(super) fn get(&mut self, k: u32) -> &UnitSphere {
+        self.by_k.entry(k).or_insert_with(|| measure(k))
+    }
+
+    /// The least subdivision count whose sphere of radius `r` has sagitta `r·σ(k) ≤ s`
+    /// (`MAX_SUBDIV` if none up to it).
+    pub(super) fn subdivisions_for(&mut self, r: f64, s: f64) -> u32 {
+        // σ(k) ≈ C/k² (a chord's sagitta, chords ∝ 1/k): start from that estimate, then step
+        // by the measured value.
+        let c = self.get(8).sagitta * 64.0;
+        let mut k = ((c * r / s).sqrt().floor() as u32).clamp(1, MAX_SUBDIV);
+        while k > 1 && r * self.get(k - 1).sagitta <= s {
+            k -= 1;
+        }
+        while k < MAX_SUBDIV && r * self.get(k).sagitta > s {
+            k += 1;
+        }
+        k
+    }
+}
+
+fn measure(k: u32) -> UnitSphere {
+    let m = Manifold::sphere(1.0, 4 * k as i32).get_mesh_gl64(-1);
+    let np = m.num_prop as usize;
+    let verts: Vec<P> = m.vert_properties.chunks(np).map(|c| V3::new(c[0], c[1], c[2])).collect();
+    let mut face = f64::INFINITY;
+    for t in m.tri_verts.chunks(3) {
+        let [a, b, c] = [t[0], t[1], t[2]].map(|i| verts[i as usize]);
+        let n = (b - a).cross(c - a);
+        let len = n.length();
+        if len > 0.0 {
+            face = face.min((n.dot(a) / len).abs());
+        }
+    }
+    let over = verts.iter().map(|v| v.length() - 1.0).fold(0.0, f64::max);
+    UnitSphere { verts, sagitta: (1.0 - face) + over }
+}
+
+/// The union's triangles, vertices and, per triangle, the link whose hull it lies on.
+pub(super) struct Built {
+    pub positions: Vec<P>,
+    pub triangles: Vec<[u32; 3]>,
+    pub link: Vec<u32>,
+}
+
+/// Why manifold could not build the union.
+#[derive(Debug)]
+pub(super) struct BuildError(pub String);
+
+/// The union of the hulls of `links`, each a pair of node indices into `centres`/`radii` with
+/// the nodes' subdivision counts `subdiv`.
+pub(super) fn union(
+    centres: &[P],
+    radii: &[f64],
+    subdiv: &[u32],
+    links: &[[usize; 2]],
+    spheres: &mut Spheres,
+) -> Result<Built, BuildError> {
+    for k in subdiv {
+        spheres.get(*k);
+    }
+    let spheres = &*spheres;
+    let points = |n: usize, out: &mut Vec<Vec3>| {
+        let (c, r) = (centres[n], radii[n]);
+        for u in &spheres.by_k[&subdiv[n]].verts {
+            out.push(Vec3::new(c.x + r * u.x, c.y + r * u.y, c.z + r * u.z));
+        }
+    };
+    use rayon::prelude::*;
+    let hulls: Vec<Result<(i32, Manifold), BuildError>> = links
+        .par_iter()
+        .enumerate()
+        .map(|(k, &[a, b])| {
+            let mut pts = Vec::new();
+            points(a, &mut pts);
+            points(b, &mut pts);
+            let h = Manifold::hull(&pts);
+            if h.status() != Error::NoError || h.is_empty() {
+                return Err(BuildError(format!("the hull of link {k} failed: {:?}", h.status())));
+            }
+            Ok((h.original_id(), h))
+        })
+        .collect();
+    let mut ids = HashMap::with_capacity(links.len());
+    let mut leaves = Vec::with_capacity(links.len());
+    for (k, h) in hulls.into_iter().enumerate() {
+        let (id, m) = h?;
+        ids.insert(id as u32, k as u32);
+        leaves.push(CsgNode::leaf(m.into_impl()));
+    }
+    let solid = Manifold::from_impl(CsgNode::op_n(OpType::Add, leaves).evaluate());
+    if solid.status() != Error::NoError {
+        return Err(BuildError(format!("manifold's union failed: {:?}", solid.status())));
+    }
+    let gl = solid.get_mesh_gl64(-1);
+    let np = gl.num_prop as usize;
+    // Vertices split for properties are merged back (none are expected: no properties).
+    let mut to: Vec<u32> = (0..gl.vert_properties.len() / np.max(1)).map(|i| i as u32).collect();
+    for (f, t) in gl.merge_from_vert.iter().zip(&gl.merge_to_vert) {
+        to[*f as usize] = *t as u32;
+    }
+    let positions: Vec<P> = gl.vert_properties.chunks(np).map(|c| V3::new(c[0], c[1], c[2])).collect();
+    let triangles: Vec<[u32; 3]> =
+        gl.tri_verts.chunks(3).map(|t| [to[t[0] as usize], to[t[1] as usize], to[t[2] as usize]]).collect();
+    let mut link = vec![0u32; triangles.len()];
+    for r in 0..gl.run_original_id.len() {
+        let (s, e) = (gl.run_index[r] as usize / 3, gl.run_index[r + 1] as usize / 3);
+        let l = ids.get(&gl.run_original_id[r]).copied().unwrap_or(0);
+        link[s..e].iter_mut().for_each(|x| *x = l);
+    }
+    Ok(Built { positions, triangles, link })
+}
