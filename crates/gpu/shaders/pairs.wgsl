@@ -16,10 +16,10 @@ struct PairIn {
     rb: f32,
     o: vec3f,
     // 0: the link (a, ra)–(b, rb); 1: the sphere (0, ra); 2: the spline with control points
-    // a, c, b and radii ra, rc, rb.
+    // a, c, b and radii ra, rc, rb (its hull); 3: that spline's exact piece number `slot`.
     kind: u32,
     d: vec3f,
-    _pad: u32,
+    slot: u32,
     c: vec3f,
     rc: f32,
 }
@@ -52,6 +52,9 @@ fn pairs_main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups
         iv = sphere_line(p.o, p.d, vec3f(0.0), p.ra, 0.0);
     } else if p.kind == 2u {
         iv = spline_line(p.a, p.c, p.b, vec3f(p.ra, p.rc, p.rb), p.o, p.d);
+    } else if p.kind == 3u {
+        let ps = spline_pieces(p.a, p.c, p.b, vec3f(p.ra, p.rc, p.rb), p.o, p.d);
+        iv = ps.iv[min(p.slot, 4u)];
     } else {
         iv = stable_line(Cone(p.a, p.ra, p.b, p.rb), p.o, p.d);
     }

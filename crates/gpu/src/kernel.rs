@@ -41,7 +41,7 @@ struct PairIn {
     o: [f32; 3],
     kind: u32,
     d: [f32; 3],
-    _pad: u32,
+    slot: u32,
     c: [f32; 3],
     rc: f32,
 }
@@ -96,10 +96,47 @@ impl Pairs {
                     Local::Sphere(r) => ([0.0; 3], r, [0.0; 3], r, 1, [0.0; 3], 0.0),
                     Local::Spline(q) => (v(q.b[0]), q.r[0], v(q.b[2]), q.r[2], 2, v(q.b[1]), q.r[1]),
                 };
-                PairIn { a, ra, b, rb, o: v(r.o), kind, d: v(r.d), _pad: 0, c, rc }
+                PairIn { a, ra, b, rb, o: v(r.o), kind, d: v(r.d), slot: 0, c, rc }
             })
             .collect();
-        let buf = gpu.upload("kernel inputs", &input)?;
+        self.run(gpu, &input)
+    }
+
+    /// The exact line pieces of each spline piece `tubes[i]` with the ray `rays[i]` (the
+    /// range is ignored), slot by slot as the CPU's `QuadTube::intersect_pieces` with
+    /// `Solver::Polynomial` gives them for `f32` on the whole line (`shaders/spline.wgsl`'s
+    /// `spline_pieces`).
+    pub fn spline_pieces(
+        &self,
+        gpu: &Gpu,
+        tubes: &[QuadTube<f32>],
+        rays: &[Ray<f32>],
+    ) -> Result<Vec<[Interval<f32>; 5]>, GpuError> {
+        let v = |x: V3<f32>| x.to_array();
+        let input: Vec<PairIn> = tubes
+            .iter()
+            .zip(rays)
+            .flat_map(|(q, r)| {
+                (0..5).map(move |slot| PairIn {
+                    a: v(q.b[0]),
+                    ra: q.r[0],
+                    b: v(q.b[2]),
+                    rb: q.r[2],
+                    o: v(r.o),
+                    kind: 3,
+                    d: v(r.d),
+                    slot,
+                    c: v(q.b[1]),
+                    rc: q.r[1],
+                })
+            })
+            .collect();
+        let out = self.run(gpu, &input)?;
+        Ok(out.chunks_exact(5).map(|c| [c[0], c[1], c[2], c[3], c[4]]).collect())
+    }
+
+    fn run(&self, gpu: &Gpu, input: &[PairIn]) -> Result<Vec<Interval<f32>>, GpuError> {
+        let buf = gpu.upload("kernel inputs", input)?;
         let out: Vec<IvOut> =
             gpu.run(&self.kernel, &Count { n: input.len() as u32, _pad: [0; 3] }, &[&buf], input.len())?;
         Ok(out

@@ -1,12 +1,13 @@
 //! `tubecast-lab`: writes the reports (SVG charts, markdown, CSV) into a folder.
 //!
 //! ```text
-//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|thin|mesh|mesh-real|mesh-size|peers|voxel|voxel-ao|voxel-quantized|voxel-timing|spline-lanes|all|tables [--out DIR]
+//! cargo run --release -p tubecast-lab -- accuracy|stability|speed|thin|mesh|mesh-real|mesh-size|peers|gpu|voxel|voxel-ao|voxel-quantized|voxel-timing|spline-lanes|all|tables [--out DIR]
 //!     [--seed N] [--quick] [--big] [--threads N] [--quiet]
 //! ```
 //!
 //! `--big` extends the speed report to 10⁶ segments; `--quick` is the tiny test setting;
-//! `peers` needs `--features embree` (and `libembree-dev`). Defaults: the settings of
+//! `peers` needs `--features embree` (and `libembree-dev`); `gpu` needs `--features embree,gpu`
+//! (and a Vulkan adapter: Mesa's lavapipe is a software one). Defaults: the settings of
 //! `docs/report/`.
 
 use clap::{Parser, ValueEnum};
@@ -53,6 +54,8 @@ enum Which {
     Mesh,
     /// Embree 3's round linear curves on the same rays (feature `embree`).
     Peers,
+    /// The GPU walk against the CPU path and Embree (features `embree` and `gpu`).
+    Gpu,
     /// Spline kernel: error and false answers against length/radius, per solver.
     Thin,
     /// Dynamic line sets: rebuild + render per frame, voxel grid vs BVH.
@@ -123,6 +126,15 @@ fn jobs(which: Which) -> Result<Vec<(&'static str, Job)>, String> {
     #[cfg(not(feature = "embree"))]
     if which == Which::Peers {
         return Err("the peers report needs `--features embree` (and libembree-dev)".into());
+    }
+    // Not in `all`: it needs an adapter, and on a software one it measures the CPU twice.
+    #[cfg(all(feature = "gpu", feature = "embree"))]
+    if which == Which::Gpu {
+        jobs.push(("gpu", report::run_gpu));
+    }
+    #[cfg(not(all(feature = "gpu", feature = "embree")))]
+    if which == Which::Gpu {
+        return Err("the gpu report needs `--features embree,gpu` (libembree-dev and a Vulkan adapter)".into());
     }
     Ok(jobs)
 }

@@ -22,12 +22,16 @@
 //!   exact links, the simplified link model, the per-chain shells and the union mesh;
 //! * [`run_spline_lanes`] — what a spline costs: the spline kernel against the link per call, in
 //!   scalar and lanes, on the spline bench's rays, and the floor of any per-call lane kernel;
-//! * `run_peers` (feature `embree`) — Embree 3's round linear curves on the same `f32` rays.
+//! * `run_peers` (feature `embree`) — Embree 3's round linear curves on the same `f32` rays;
+//! * `run_gpu` (features `gpu` and `embree`) — the GPU walk against the CPU path and Embree on
+//!   the same rays, with the upload's bytes and time per link.
 //!
 //! The accuracy numbers (not the timings) are a pure function of [`ReportOptions`].
 
 pub mod chart;
 pub mod eval;
+#[cfg(all(feature = "gpu", feature = "embree"))]
+mod gpu;
 mod mesh;
 mod mesh_real;
 mod mesh_size;
@@ -49,6 +53,8 @@ mod voxel_levels;
 mod voxel_quantized;
 mod voxel_timing;
 
+#[cfg(all(feature = "gpu", feature = "embree"))]
+pub use gpu::run_gpu;
 pub use mesh::run_mesh;
 pub use mesh_real::run_mesh_real;
 pub use mesh_size::{measure_sizes, ply_bytes, run_mesh_size, size_table, union_estimate, SizeRow, KINDS, SIZE_EPS};
