@@ -1,9 +1,10 @@
 // The spline kernel's entry points for a scene without spline pieces (appended to link.wgsl in
 // place of spline.wgsl, ray_space.wgsl and roots.wgsl): tree.wgsl calls them only for spline
 // items, so they are never reached, and the module stays the links' own. Lavapipe inlines the
-// whole spline kernel into every walk and brute-force loop that can reach it: with it, the
-// links' tree walk ran far slower there, and its brute-force loop returned no hits at all (a
-// compiler fault not understood yet, which `tests/gpu/tree.rs` catches).
+// whole spline kernel into every walk and brute-force loop that can reach it and runs it, masked,
+// wherever its lanes disagree on the branch: with it, the links' tree walk ran far slower there,
+// and each of its loops spent a pass of the driver's loop budget per link (tree.wgsl's
+// `loops_cut`).
 
 // spline.wgsl's Pieces.
 struct Pieces {

@@ -29,14 +29,19 @@ fn horner3(c: vec3f, x: f32) -> f32 {
 fn horner2(c: vec2f, x: f32) -> f32 {
     return c.y * x + c.x;
 }
-// horner_slice over ders[k][0..=deg].
+// horner_slice over ders[k][0..=deg]: the same operations in the same order, written out over
+// the seven slots without a loop (a loop here would be the kernel's busiest: several passes per
+// solver step, from lavapipe's loop budget, tree.wgsl's `loops_cut`). Slots above `deg` are
+// passed over: `acc` restarts as ders[k][deg] at slot `deg`, as the loop starts.
 fn horner_der(k: u32, deg: u32, x: f32) -> f32 {
-    var i = deg;
-    var acc = ders[k][i];
-    while i > 0u {
-        i--;
-        acc = acc * x + ders[k][i];
-    }
+    let c = ders[k];
+    var acc = c[6];
+    acc = select(acc * x + c[5], c[5], deg == 5u);
+    acc = select(acc * x + c[4], c[4], deg == 4u);
+    acc = select(acc * x + c[3], c[3], deg == 3u);
+    acc = select(acc * x + c[2], c[2], deg == 2u);
+    acc = select(acc * x + c[1], c[1], deg == 1u);
+    acc = select(acc * x + c[0], c[0], deg == 0u);
     return acc;
 }
 

@@ -11,6 +11,11 @@ struct Params {
     // 8·pad in world units (the CPU's `margin`) and the tree frame's scale.
     margin: f32,
     scale: f32,
+    // The items closest_brute tries: [item_lo, item_hi).
+    item_lo: u32,
+    item_hi: u32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 // tree.rs: Node (256 bytes): lo[axis][child] as 6 vec4, hi likewise, child, count.
@@ -57,7 +62,8 @@ struct HitOut {
     u: f32,
     item: u32,
     entering: u32,
-    _pad: u32,
+    // 1 where the loop budget ran out (`loops_cut`): the answer may be wrong.
+    cut: u32,
 }
 
 @group(0) @binding(0) var<uniform> params: Params;
@@ -69,6 +75,28 @@ struct HitOut {
 
 const NONE: u32 = 0xffffffffu;
 const STACK: u32 = STACK_SIZEu;
+
+// Whether this invocation's loops may have been cut short. Mesa's llvmpipe (lavapipe) counts the
+// passes of every loop of a shader in one counter per SIMD vector of invocations, set to
+// LP_MAX_TGSI_LOOP_ITERATIONS = 65535 when the shader starts and never reset (gallivm's
+// `lp_exec_endloop`); once it is spent, every loop ends after its first pass, silently: a walk
+// visits no node, a root finder stops at its start. The spline kernel's solves take tens to
+// hundreds of passes per piece, so a tree walk through many spline pieces, or a brute-force loop
+// over them, can spend it (lanes that run together share it). Called last, a loop that must pass
+// twice passes once only where the counter ran out. Its bound comes from the uniform (never
+// above 2 in practice: n_rays < 2³¹), so that no compiler unrolls it. Other drivers have no such
+// counter; there it always passes twice.
+fn loops_cut() -> u32 {
+    let stop = 2u + (params.n_rays >> 31u);
+    var c = 0u;
+    loop {
+        c++;
+        if c >= stop {
+            break;
+        }
+    }
+    return select(0u, 1u, c < 2u);
+}
 
 // Item `it`'s line interval in distance from the restart point (Prim::intersect_unit's local
 // ray, then Prim::to_world's `tc + t`, unclipped).
@@ -136,6 +164,7 @@ fn crossing(it: u32, s: f32, n: vec3f, u: f32, entering: bool) -> HitOut {
     h.n = n;
     h.u = u;
     h.entering = select(0u, 1u, entering);
+    h.cut = 0u;
     return h;
 }
 
@@ -380,7 +409,9 @@ fn ray_index(gid: vec3u, nwg: vec3u) -> u32 {
 fn closest_tree(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
     let i = ray_index(gid, nwg);
     if i < params.n_rays {
-        out[i] = walk(rays[i], CLOSEST, vec2f(0.0), vec2u(0u)).first;
+        var h = walk(rays[i], CLOSEST, vec2f(0.0), vec2u(0u)).first;
+        h.cut = loops_cut();
+        out[i] = h;
     }
 }
 
@@ -388,11 +419,14 @@ fn closest_tree(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgrou
 fn any_tree(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
     let i = ray_index(gid, nwg);
     if i < params.n_rays {
-        out[i] = walk(rays[i], ANY, vec2f(0.0), vec2u(0u)).first;
+        var h = walk(rays[i], ANY, vec2f(0.0), vec2u(0u)).first;
+        h.cut = loops_cut();
+        out[i] = h;
     }
 }
 
-// Every item against the ray, no tree: the reference the tree walk must equal.
+// Every item of [item_lo, item_hi) against the ray, no tree: the reference the tree walk must
+// equal (the host merges the item ranges' answers by `closer`).
 @compute @workgroup_size(64)
 fn closest_brute(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
     let i = ray_index(gid, nwg);
@@ -403,44 +437,50 @@ fn closest_brute(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgro
     var best: HitOut;
     best.item = NONE;
     if r.valid != 0u {
-        for (var it = 0u; it < params.n_items; it++) {
+        for (var it = params.item_lo; it < params.item_hi; it++) {
             let h = test_item(r, it);
             if closer(h, best) {
                 best = h;
             }
         }
     }
+    best.cut = loops_cut();
     out[i] = best;
 }
 
 // The first component of the union of the line intervals that reaches [s_min, s_max]
-// (`tubecast_render::accel::first_component`): the seed interval, then walks over the span
-// [a, b] taking the least entry and the greatest exit of every interval meeting it, until the
-// span stops growing (each walk adds every interval chained to it; at most one per item).
-// Thread 2i writes ray i's entry to out[2i] and its exit to out[2i + 1].
+// (`tubecast_render::accel::first_component`), in steps the host drives (`GpuScene::first_pieces`):
+// seed_piece finds the seed interval, then span_piece, once per dispatch, the least entry and
+// the greatest exit of every interval meeting the span [a, b] so far, until the span stops
+// growing (each step adds every interval chained to it; at most one per item). One walk per
+// dispatch: lavapipe's loop budget (`loops_cut`) is spent per dispatch, and a component
+// chained through many spline pieces took more than it in one. Thread i writes ray i's entry to
+// out[2i] and its exit to out[2i + 1].
 @compute @workgroup_size(64)
-fn first_piece(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
-    let t = ray_index(gid, nwg);
-    if t >= 2u * params.n_rays || t % 2u == 1u {
-        return;
+fn seed_piece(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
+    let i = ray_index(gid, nwg);
+    if i < params.n_rays {
+        piece_out(i, walk(rays[i], SEED, vec2f(0.0), vec2u(0u)));
     }
-    let r = rays[t / 2u];
-    var f = walk(r, SEED, vec2f(0.0), vec2u(0u));
-    if f.first.item != NONE {
-        for (var k = 0u; k <= params.n_items; k++) {
-            let g = walk(r, SPAN, vec2f(f.first.s, f.last.s), vec2u(0u));
-            let grew = g.first.s < f.first.s || g.last.s > f.last.s;
-            f = g;
-            if !grew {
-                break;
-            }
-        }
-        if f.first.s > r.s_max {
-            f.first.item = NONE;
-        }
+}
+
+// One step of the span's growth: the host puts the span [a, b] in the ray's s_min, s_max.
+@compute @workgroup_size(64)
+fn span_piece(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
+    let i = ray_index(gid, nwg);
+    if i < params.n_rays {
+        let r = rays[i];
+        piece_out(i, walk(r, SPAN, vec2f(r.s_min, r.s_max), vec2u(0u)));
     }
-    out[t] = f.first;
-    out[t + 1u] = f.last;
+}
+
+fn piece_out(i: u32, found: Found) {
+    var f = found;
+    let cut = loops_cut();
+    f.first.cut = cut;
+    f.last.cut = cut;
+    out[2u * i] = f.first;
+    out[2u * i + 1u] = f.last;
 }
 
 // The number of line intervals meeting ray i's [s_min, s_max] (`intersect --query all`: the
@@ -453,6 +493,7 @@ fn count_lines(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroup
         let r = rays[i];
         var h: HitOut;
         h.item = walk(r, COUNT, vec2f(r.s_min, r.s_max), vec2u(0u)).n;
+        h.cut = loops_cut();
         out[i] = h;
     }
 }

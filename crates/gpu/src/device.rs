@@ -22,6 +22,10 @@ pub enum GpuError {
     },
     /// A dispatch or a read-back failed (the device was lost or ran out of memory).
     Dispatch(String),
+    /// The driver cut a query's loops short even with its ray alone (Mesa's lavapipe ends every
+    /// loop of a shader invocation after 65 535 loop passes in all; see `shaders/tree.wgsl`'s
+    /// `loops_cut`), so its answer cannot be trusted: what was asked.
+    LoopLimit(String),
 }
 
 impl fmt::Display for GpuError {
@@ -41,6 +45,11 @@ impl fmt::Display for GpuError {
                  use --device cpu or a smaller scene"
             ),
             Self::Dispatch(why) => write!(f, "GPU dispatch failed: {why}"),
+            Self::LoopLimit(what) => write!(
+                f,
+                "the Vulkan driver cut the loops of {what} short (Mesa's lavapipe stops every loop after \
+                 65535 passes per shader invocation), so its answer would be wrong; use --device cpu"
+            ),
         }
     }
 }

@@ -56,7 +56,8 @@ struct IvOut {
     u_in: f32,
     u_out: f32,
     hit: u32,
-    _pad: u32,
+    /// Lavapipe's loop budget ran out (`shaders/tree.wgsl`'s `loops_cut`).
+    cut: u32,
 }
 
 #[repr(C)]
@@ -139,6 +140,9 @@ impl Pairs {
         let buf = gpu.upload("kernel inputs", input)?;
         let out: Vec<IvOut> =
             gpu.run(&self.kernel, &Count { n: input.len() as u32, _pad: [0; 3] }, &[&buf], input.len())?;
+        if out.iter().any(|o| o.cut != 0) {
+            return Err(GpuError::LoopLimit("a kernel test's inputs".into()));
+        }
         Ok(out
             .iter()
             .map(|o| {

@@ -88,8 +88,28 @@ struct GpuHit {
     u: f32,
     item: u32,
     entering: u32,
-    _pad: u32,
+    /// The driver cut the walk's loops short (`shaders/tree.wgsl`'s `loops_cut`).
+    cut: u32,
 }
+
+impl GpuHit {
+    /// tree.wgsl's `closer`: `self` is a crossing nearer than `b` (equal: the lower item).
+    fn closer(&self, b: &GpuHit) -> bool {
+        self.item != NONE && (b.item == NONE || self.s < b.s || (self.s == b.s && self.item < b.item))
+    }
+}
+
+/// tree.wgsl's `NONE`: no item.
+const NONE: u32 = u32::MAX;
+
+/// Threads of a workgroup (`@workgroup_size(64)`): a ray rerun alone takes a whole workgroup,
+/// wider than any SIMD vector lavapipe runs, so that no other ray shares its loop budget.
+const GROUP_THREADS: usize = 64;
+
+/// The items a brute-force dispatch tries at first with spline pieces in the scene (then
+/// halved where lavapipe's loop budget runs out): a spline piece's solves take tens to hundreds
+/// of loop passes, and the budget is 65 535 (`shaders/tree.wgsl`'s `loops_cut`).
+const BRUTE_SPLINE_ITEMS: u32 = 256;
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -98,6 +118,9 @@ struct Params {
     n_items: u32,
     margin: f32,
     scale: f32,
+    item_lo: u32,
+    item_hi: u32,
+    _pad: [u32; 2],
 }
 
 /// A union component's entry and exit ([`GpuScene::first_pieces`]).
@@ -125,7 +148,8 @@ pub struct GpuScene<'g> {
     /// The brute-force and first-component kernels, built on first use (a render needs neither,
     /// and each pipeline costs a shader compile, a long one with the spline kernel).
     brute: OnceLock<Kernel>,
-    piece: OnceLock<Kernel>,
+    seed: OnceLock<Kernel>,
+    span: OnceLock<Kernel>,
     /// The line-interval kernels (count, list), built on first use from `tree` (tree.wgsl
     /// with its stack size).
     lines: OnceLock<(Kernel, Kernel)>,
@@ -208,7 +232,8 @@ impl<'g> GpuScene<'g> {
             closest: gpu.kernel(&src, "closest_tree", 3)?,
             any: gpu.kernel(&src, "any_tree", 3)?,
             brute: OnceLock::new(),
-            piece: OnceLock::new(),
+            seed: OnceLock::new(),
+            span: OnceLock::new(),
             lines: OnceLock::new(),
             tree,
             splines,
@@ -259,14 +284,94 @@ impl<'g> GpuScene<'g> {
         (g, r.t0, r.len)
     }
 
-    /// The uniform of a dispatch over `n` rays.
-    fn params(&self, n: usize) -> Params {
+    /// The uniform of a dispatch over `n` rays (the brute force over the items `items`).
+    fn params(&self, n: usize, items: (u32, u32)) -> Params {
         Params {
             n_rays: n as u32,
             n_items: self.ex.item_prims.len() as u32,
             margin: (8.0 * self.ex.pad) as f32,
             scale: self.ex.scale as f32,
+            item_lo: items.0,
+            item_hi: items.1,
+            _pad: [0; 2],
         }
+    }
+
+    /// All items, for [`Self::params`].
+    fn all_items(&self) -> (u32, u32) {
+        (0, self.ex.item_prims.len() as u32)
+    }
+
+    /// Run `k` over the prepared rays `input`, `per` outputs per ray, over the items `items`
+    /// (brute force only). Each ray whose loops the driver cut short (lavapipe's loop budget,
+    /// shared by the rays of one SIMD vector: `shaders/tree.wgsl`'s `loops_cut`) is run again
+    /// alone in a workgroup; cut short alone too, it is an error: never a wrong answer.
+    fn run_rays(&self, k: &Kernel, input: &[GpuRay], per: usize, items: (u32, u32)) -> Result<Vec<GpuHit>, GpuError> {
+        let buf = self.gpu.upload("rays", input)?;
+        let inputs = [&self.nodes, &self.prims, &buf];
+        let mut out: Vec<GpuHit> =
+            self.gpu.run_sized(k, &self.params(input.len(), items), &inputs, input.len(), per * input.len())?;
+        let cut: Vec<usize> =
+            (0..input.len()).filter(|&i| out[per * i..per * (i + 1)].iter().any(|h| h.cut != 0)).collect();
+        if cut.is_empty() {
+            return Ok(out);
+        }
+        // Ray j of the rerun at slot `64·j` (thread i runs ray i): alone in workgroup j, whose
+        // other threads hold invalid rays, which walk nothing.
+        let stride = GROUP_THREADS;
+        let mut alone = vec![GpuRay::zeroed(); stride * (cut.len() - 1) + 1];
+        for (j, &i) in cut.iter().enumerate() {
+            alone[stride * j] = input[i];
+        }
+        let buf = self.gpu.upload("rays", &alone)?;
+        let inputs = [&self.nodes, &self.prims, &buf];
+        let again: Vec<GpuHit> =
+            self.gpu.run_sized(k, &self.params(alone.len(), items), &inputs, alone.len(), per * alone.len())?;
+        for (j, &i) in cut.iter().enumerate() {
+            let got = &again[per * stride * j..per * (stride * j + 1)];
+            if got.iter().any(|h| h.cut != 0) {
+                return Err(GpuError::LoopLimit(format!("ray {i} of the batch")));
+            }
+            out[per * i..per * (i + 1)].copy_from_slice(got);
+        }
+        Ok(out)
+    }
+
+    /// The brute-force closest hits of the prepared rays: dispatches over item ranges, merged
+    /// by tree.wgsl's `closer` (a total order on `(s, item)`, so the merge is the one-pass
+    /// answer), a range halved for the rays whose loops the driver cut short there.
+    fn brute(&self, input: &[GpuRay]) -> Result<Vec<GpuHit>, GpuError> {
+        let k = self.lazy(&self.brute, "closest_brute")?;
+        let mut best = vec![GpuHit { item: NONE, ..GpuHit::zeroed() }; input.len()];
+        let n = self.ex.item_prims.len() as u32;
+        let first = if self.splines { BRUTE_SPLINE_ITEMS } else { n.max(1) };
+        let all: Vec<usize> = (0..input.len()).collect();
+        let mut todo: Vec<(Vec<usize>, u32, u32)> =
+            (0..n.div_ceil(first)).map(|c| (all.clone(), c * first, ((c + 1) * first).min(n))).collect();
+        while let Some((which, lo, hi)) = todo.pop() {
+            let rays: Vec<GpuRay> = which.iter().map(|&i| input[i]).collect();
+            // One item per dispatch: the rerun alone decides (or fails).
+            let out = if hi - lo <= 1 {
+                self.run_rays(k, &rays, 1, (lo, hi))?
+            } else {
+                let buf = self.gpu.upload("rays", &rays)?;
+                self.gpu.run(k, &self.params(rays.len(), (lo, hi)), &[&self.nodes, &self.prims, &buf], rays.len())?
+            };
+            let mut cut = Vec::new();
+            for (h, &i) in out.iter().zip(&which) {
+                if h.cut != 0 {
+                    cut.push(i);
+                } else if h.closer(&best[i]) {
+                    best[i] = *h;
+                }
+            }
+            if !cut.is_empty() {
+                let mid = lo + (hi - lo) / 2;
+                todo.push((cut.clone(), lo, mid));
+                todo.push((cut, mid, hi));
+            }
+        }
+        Ok(best)
     }
 
     /// A GPU crossing in the ray's `t` (`t0`, `len` from [`Self::prepare`]); `None` for none.
@@ -280,13 +385,15 @@ impl<'g> GpuScene<'g> {
         })
     }
 
-    /// Run `k` over `rays`, `per` outputs per ray, mapped back to hits in the rays' `t`.
-    fn query(&self, k: &Kernel, rays: &[Ray<f64>], per: usize) -> Result<Vec<Option<Hit<f64>>>, GpuError> {
+    /// Run `k` over `rays` (the brute force where `k` is `None`), `per` outputs per ray, mapped
+    /// back to hits in the rays' `t`.
+    fn query(&self, k: Option<&Kernel>, rays: &[Ray<f64>], per: usize) -> Result<Vec<Option<Hit<f64>>>, GpuError> {
         let prep: Vec<(GpuRay, f64, f64)> = rays.iter().map(|r| self.prepare(r)).collect();
         let input: Vec<GpuRay> = prep.iter().map(|p| p.0).collect();
-        let buf = self.gpu.upload("rays", &input)?;
-        let out: Vec<GpuHit> =
-            self.gpu.run(k, &self.params(rays.len()), &[&self.nodes, &self.prims, &buf], per * rays.len())?;
+        let out = match k {
+            Some(k) => self.run_rays(k, &input, per, self.all_items())?,
+            None => self.brute(&input)?,
+        };
         Ok(out
             .iter()
             .zip(prep.iter().flat_map(|p| std::iter::repeat_n(p, per)))
@@ -297,21 +404,58 @@ impl<'g> GpuScene<'g> {
     /// The closest surface crossing of each ray in its `[t_min, t_max]` (entry, or exit for a
     /// ray starting inside), its `id` the primitive's ([`Tracer::prim`]). Rays must be valid.
     pub fn closest_hits(&self, rays: &[Ray<f64>], walk: Walk) -> Result<Vec<Option<Hit<f64>>>, GpuError> {
-        let k = if walk == Walk::Tree { &self.closest } else { self.lazy(&self.brute, "closest_brute")? };
+        let k = if walk == Walk::Tree { Some(&self.closest) } else { None };
         self.query(k, rays, 1)
     }
 
     /// Whether each ray meets a primitive's surface in its `[t_min, t_max]` (shadow and AO rays).
     pub fn any_hits(&self, rays: &[Ray<f64>]) -> Result<Vec<bool>, GpuError> {
-        Ok(self.query(&self.any, rays, 1)?.iter().map(Option::is_some).collect())
+        Ok(self.query(Some(&self.any), rays, 1)?.iter().map(Option::is_some).collect())
     }
 
     /// The entry and exit of the first component of the union of every primitive's line
     /// interval that reaches each ray's `[t_min, t_max]`
     /// ([`tubecast_render::accel::first_component`], the `intersect --query piece` answer).
+    ///
+    /// The seed interval, then steps that widen the span to every interval meeting it, one
+    /// walk per ray and dispatch (`shaders/tree.wgsl`'s `seed_piece`, `span_piece`), the span
+    /// compared in `f32` as the walk gives it.
     pub fn first_pieces(&self, rays: &[Ray<f64>]) -> Result<Vec<Option<Piece>>, GpuError> {
-        let out = self.query(self.lazy(&self.piece, "first_piece")?, rays, 2)?;
-        Ok(out.chunks_exact(2).map(|p| p[0].zip(p[1])).collect())
+        let (seed, span) = (self.lazy(&self.seed, "seed_piece")?, self.lazy(&self.span, "span_piece")?);
+        let prep: Vec<(GpuRay, f64, f64)> = rays.iter().map(|r| self.prepare(r)).collect();
+        let input: Vec<GpuRay> = prep.iter().map(|p| p.0).collect();
+        let mut f = self.run_rays(seed, &input, 2, self.all_items())?;
+        let mut growing: Vec<usize> = (0..input.len()).filter(|&i| f[2 * i].item != NONE).collect();
+        // Each step that grows adds an item's interval: at most one step per item, and a last
+        // that finds no growth.
+        for _ in 0..=self.ex.item_prims.len() {
+            if growing.is_empty() {
+                break;
+            }
+            let spans: Vec<GpuRay> =
+                growing.iter().map(|&i| GpuRay { s_min: f[2 * i].s, s_max: f[2 * i + 1].s, ..input[i] }).collect();
+            let g = self.run_rays(span, &spans, 2, self.all_items())?;
+            let mut still = Vec::new();
+            for (j, &i) in growing.iter().enumerate() {
+                let grew = g[2 * j].s < f[2 * i].s || g[2 * j + 1].s > f[2 * i + 1].s;
+                f[2 * i] = g[2 * j];
+                f[2 * i + 1] = g[2 * j + 1];
+                if grew {
+                    still.push(i);
+                }
+            }
+            growing = still;
+        }
+        Ok((0..input.len())
+            .map(|i| {
+                let (_, t0, len) = prep[i];
+                // A component that begins past the range does not reach it.
+                if f[2 * i].item == NONE || f[2 * i].s > input[i].s_max {
+                    return None;
+                }
+                self.hit(&f[2 * i], t0, len).zip(self.hit(&f[2 * i + 1], t0, len))
+            })
+            .collect())
     }
 
     /// Every primitive's line interval that meets each ray's `[t_min, t_max]` (closed), tagged
@@ -327,39 +471,41 @@ impl<'g> GpuScene<'g> {
         let (count, list) = self.line_kernels()?;
         let prep: Vec<(GpuRay, f64, f64)> = rays.iter().map(|r| self.prepare(r)).collect();
         let input: Vec<GpuRay> = prep.iter().map(|p| p.0).collect();
-        let buf = self.gpu.upload("rays", &input)?;
-        let counts: Vec<GpuHit> =
-            self.gpu.run(count, &self.params(rays.len()), &[&self.nodes, &self.prims, &buf], rays.len())?;
+        let counts: Vec<u32> = self.run_rays(count, &input, 1, self.all_items())?.iter().map(|c| c.item).collect();
         // Runs of rays whose intervals fit one output buffer (an entry and an exit each).
         let fit = (self.gpu.max_binding() / (2 * std::mem::size_of::<GpuHit>() as u64)).max(1);
         let mut all = Vec::with_capacity(rays.len());
         let mut start = 0;
         while start < rays.len() {
             let (mut end, mut total) = (start, 0u64);
-            while end < rays.len() && (end == start || total + u64::from(counts[end].item) <= fit) {
-                total += u64::from(counts[end].item);
+            while end < rays.len() && (end == start || total + u64::from(counts[end]) <= fit) {
+                total += u64::from(counts[end]);
                 end += 1;
             }
-            let offsets: Vec<u32> = std::iter::once(0)
-                .chain(counts[start..end].iter().scan(0u32, |acc, c| {
-                    *acc += c.item;
-                    Some(*acc)
-                }))
-                .collect();
-            let chunk = self.gpu.upload("rays", &input[start..end])?;
-            let offs = self.gpu.upload("interval offsets", &offsets)?;
-            let out: Vec<GpuHit> = self.gpu.run_sized(
-                list,
-                &self.params(end - start),
-                &[&self.nodes, &self.prims, &chunk, &offs],
-                end - start,
-                2 * total as usize,
-            )?;
-            for (k, w) in offsets.windows(2).enumerate() {
+            let mut lists = self.list_run(list, &input[start..end], &counts[start..end])?;
+            // Rays whose list walk the driver cut short: again, each alone in a workgroup
+            // (`Self::run_rays`), with empty lists between them.
+            let cut: Vec<usize> = (0..lists.len()).filter(|&k| lists[k].first().is_some_and(|h| h.cut != 0)).collect();
+            if !cut.is_empty() {
+                let mut alone = vec![GpuRay::zeroed(); GROUP_THREADS * (cut.len() - 1) + 1];
+                let mut alone_counts = vec![0; alone.len()];
+                for (j, &k) in cut.iter().enumerate() {
+                    alone[GROUP_THREADS * j] = input[start + k];
+                    alone_counts[GROUP_THREADS * j] = counts[start + k];
+                }
+                let again = self.list_run(list, &alone, &alone_counts)?;
+                for (j, &k) in cut.iter().enumerate() {
+                    let got = &again[GROUP_THREADS * j];
+                    if got.first().is_some_and(|h| h.cut != 0) {
+                        return Err(GpuError::LoopLimit(format!("ray {} of the batch", start + k)));
+                    }
+                    lists[k] = got.clone();
+                }
+            }
+            for (k, l) in lists.iter().enumerate() {
                 let (_, t0, len) = prep[start + k];
-                let pairs = out[2 * w[0] as usize..2 * w[1] as usize].chunks_exact(2);
                 all.push(
-                    pairs
+                    l.chunks_exact(2)
                         .filter_map(|p| {
                             let (e, x) = (self.hit(&p[0], t0, len)?, self.hit(&p[1], t0, len)?);
                             let c = |h: Hit<f64>| Crossing { t: h.t, n: h.n, u: h.u };
@@ -371,6 +517,28 @@ impl<'g> GpuScene<'g> {
             start = end;
         }
         Ok(all)
+    }
+
+    /// The list kernel over `input` with the intervals `counts` says each ray has: each ray's
+    /// entry/exit pairs (the first entry's `cut` set where the walk was cut short).
+    fn list_run(&self, list: &Kernel, input: &[GpuRay], counts: &[u32]) -> Result<Vec<Vec<GpuHit>>, GpuError> {
+        let offsets: Vec<u32> = std::iter::once(0)
+            .chain(counts.iter().scan(0u32, |acc, &c| {
+                *acc += c;
+                Some(*acc)
+            }))
+            .collect();
+        let total = offsets[offsets.len() - 1] as usize;
+        let chunk = self.gpu.upload("rays", input)?;
+        let offs = self.gpu.upload("interval offsets", &offsets)?;
+        let out: Vec<GpuHit> = self.gpu.run_sized(
+            list,
+            &self.params(input.len(), self.all_items()),
+            &[&self.nodes, &self.prims, &chunk, &offs],
+            input.len(),
+            2 * total,
+        )?;
+        Ok(offsets.windows(2).map(|w| out[2 * w[0] as usize..2 * w[1] as usize].to_vec()).collect())
     }
 
     /// The kernel of entry point `entry` of the queries' module, built into `cell` on first use.

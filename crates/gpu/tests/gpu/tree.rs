@@ -34,30 +34,20 @@ fn aim(rng: &mut Rng, scene: &Scene, k: usize) -> Ray<f64> {
 /// Compare the GPU with the CPU on `n` rays into `scene`; returns (rays, hits, worst
 /// |Δt|·|d|/(E + δ) over agreeing hits).
 pub(crate) fn compare(gpu: &Gpu, scene: &Scene, n: usize, name: &str) -> (usize, usize, f64) {
-    compare_with(gpu, scene, &WideBvh::from_scene(scene, Model::Links).unwrap(), n, true, name)
+    compare_with(gpu, scene, &WideBvh::from_scene(scene, Model::Links).unwrap(), n, name)
 }
 
 /// [`compare`] on a given tree over `scene`'s primitives (links, spheres or spline pieces: `E`
-/// and the gap are [`crate::bound`]'s and [`crate::gap`]'s).
-///
-/// `brute`: also hold the tree walk to the GPU brute force, bit for bit (off for spline
-/// scenes: with the spline kernel in its module, lavapipe's brute-force loop returns no hits at
-/// all, a compiler fault not understood yet; the walk is held to the CPU's answers alone).
-pub(crate) fn compare_with(
-    gpu: &Gpu,
-    scene: &Scene,
-    bvh: &WideBvh,
-    n: usize,
-    brute: bool,
-    name: &str,
-) -> (usize, usize, f64) {
+/// and the gap are [`crate::bound`]'s and [`crate::gap`]'s), the tree walk also held to the GPU
+/// brute force bit for bit.
+pub(crate) fn compare_with(gpu: &Gpu, scene: &Scene, bvh: &WideBvh, n: usize, name: &str) -> (usize, usize, f64) {
     let gs = GpuScene::upload(gpu, bvh).unwrap();
     let delta = gs.band();
     let mut rng = Rng::new(7);
     let rays: Vec<Ray<f64>> = (0..n).map(|k| aim(&mut rng, scene, k)).collect();
     let tree = gs.closest_hits(&rays, Walk::Tree).unwrap();
     // Brute force is O(rays × items): a prefix of the rays suffices to check the walk.
-    let brute = if brute { gs.closest_hits(&rays[..n.min(1500)], Walk::Brute).unwrap() } else { Vec::new() };
+    let brute = gs.closest_hits(&rays[..n.min(1500)], Walk::Brute).unwrap();
     let eps = f64::from(f32::EPSILON);
     let (mut hits, mut worst) = (0, 0.0f64);
     for (k, ray) in rays.iter().enumerate() {
@@ -234,6 +224,6 @@ fn tree_walk_matches_the_cpu_with_spheres_stored_whole() {
     let spheres = prims.iter().filter(|p| p.kind() == PrimKind::Sphere).count();
     assert!(spheres > 100, "{spheres} spheres");
     let bvh = WideBvh::build(prims);
-    let (_, hits, _) = compare_with(&gpu, &scene, &bvh, 3000, true, "beads");
+    let (_, hits, _) = compare_with(&gpu, &scene, &bvh, 3000, "beads");
     assert!(hits > 1000, "{hits} hits");
 }
