@@ -4,7 +4,7 @@
 use crate::args::MeshArgs;
 use crate::error::CliError;
 use tubecast_render::accel::{Bvh, Tracer};
-use tubecast_render::mesh::{export, tessellate, tessellate_union, MeshTracer};
+use tubecast_render::mesh::{export, tessellate, tessellate_union_with, MeshTracer, UnionOptions, UnionReport};
 use tubecast_render::scene::{Model, Prim, Scene};
 
 /// The tracer for `render`: the exact BVH, or with `tolerance` the certified mesh of the
@@ -29,18 +29,29 @@ pub fn mesh(a: &MeshArgs) -> Result<(), CliError> {
     let scene = crate::setup::load(&a.input, &a.radius, run, plan, "the mesh is empty", false)?.scene;
     // The union's surface by default; the spline model is meshed as shells only.
     let shells = a.shells || a.splines;
-    let m = crate::setup::with_threads(a.run.threads, || -> Result<_, CliError> {
-        Ok(if shells { tessellate(&scene, model, a.tolerance)? } else { tessellate_union(&scene, a.tolerance)?.0 })
+    // The union is refused before it is built when its estimated peak exceeds --memory-limit
+    // or, without it, the memory available.
+    let memory_limit = a.select.memory_limit.or_else(|| tubecast_render::estimate::available().map(|(b, _)| b));
+    let (m, report) = crate::setup::with_threads(a.run.threads, || -> Result<_, CliError> {
+        Ok(if shells {
+            (tessellate(&scene, model, a.tolerance)?, None)
+        } else {
+            let (m, r) = tessellate_union_with(&scene, a.tolerance, &UnionOptions { memory_limit })?;
+            (m, Some(r))
+        })
     })??;
     export::write(&a.out, &m)?;
     let (vertices, triangles, parts) = (m.mesh.positions.len(), m.mesh.triangles.len(), m.mesh.parts.len());
     let surface = if shells { "shells" } else { "union" };
     if a.json {
-        let j = serde_json::json!({
+        let mut j = serde_json::json!({
             "file": a.out.display().to_string(), "vertices": vertices, "triangles": triangles,
             "closed_parts": parts, "certified": m.mesh.certified, "tolerance": a.tolerance,
             "surface": surface,
         });
+        if let Some(r) = &report {
+            j["union"] = union_json(r);
+        }
         println!("{j}");
         return Ok(());
     }
@@ -51,10 +62,23 @@ pub fn mesh(a: &MeshArgs) -> Result<(), CliError> {
         a.tolerance
     );
     if m.mesh.certified > a.tolerance {
-        eprintln!(
-            "warning: the certified bound {:e} exceeds the tolerance: tubes closer than the finest grid tried without meeting (see docs/design/union-mesh.md)",
-            m.mesh.certified
-        );
+        let why = match &report {
+            Some(r) => format!(
+                "{} triangles at creases too narrow for the sphere resolution tried (least sin(β/2) {:.3}: tubes overlapping at a narrow angle, where the bound is the sagitta over sin(β/2); see docs/design/union-mesh.md)",
+                r.outside, r.min_sin_half
+            ),
+            None => "see docs/design/union-mesh.md".to_string(),
+        };
+        eprintln!("warning: the certified bound {:e} exceeds the tolerance: {why}", m.mesh.certified);
     }
     Ok(())
+}
+
+/// The union's certificate in the JSON summary.
+fn union_json(r: &UnionReport) -> serde_json::Value {
+    serde_json::json!({
+        "tries": r.tries, "sagitta": r.sagitta, "depth": r.depth, "out": r.out,
+        "over_tolerance": r.outside, "min_sin_half": r.min_sin_half,
+        "subdivisions": [r.subdiv.0, r.subdiv.1], "hull_triangles": r.hull_triangles,
+    })
 }

@@ -88,3 +88,76 @@ fn info_reports_the_automatic_choice() {
         .unwrap();
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
 }
+
+/// The PLY's faces: every directed edge once and its reverse once (closed, consistently
+/// oriented, each edge in two faces). Returns the face count.
+fn ply_is_watertight(bytes: &[u8]) -> usize {
+    let end = bytes.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
+    let head = String::from_utf8_lossy(&bytes[..end]).to_string();
+    let count = |what: &str| -> usize {
+        head.lines().find_map(|l| l.strip_prefix(&format!("element {what} "))).unwrap().trim().parse().unwrap()
+    };
+    let (nv, nf) = (count("vertex"), count("face"));
+    let faces = &bytes[end + 12 * nv..];
+    assert_eq!(faces.len(), 13 * nf, "face bytes");
+    let mut edges = std::collections::HashMap::new();
+    for f in faces.chunks(13) {
+        assert_eq!(f[0], 3);
+        let v: Vec<u32> = (0..3).map(|k| u32::from_le_bytes(f[1 + 4 * k..5 + 4 * k].try_into().unwrap())).collect();
+        for k in 0..3 {
+            *edges.entry((v[k], v[(k + 1) % 3])).or_insert(0) += 1;
+        }
+    }
+    for (&(a, b), &n) in &edges {
+        assert_eq!(n, 1, "edge {a}-{b} used {n} times");
+        assert_eq!(edges.get(&(b, a)), Some(&1), "edge {a}-{b} has no twin");
+    }
+    nf
+}
+
+/// A bifurcation and a crossing branch (SWC), as the union by default: one watertight
+/// surface, certified within the tolerance (the JSON's union certificate); `--shells` writes
+/// the per-chain shells instead.
+#[test]
+fn mesh_writes_the_union_by_default_and_shells_on_request() {
+    let swc = tmp("union_tree.swc");
+    std::fs::write(
+        &swc,
+        "1 1 0 0 0 0.5 -1\n2 3 2 0 0 0.45 1\n3 3 4 1.5 0 0.35 2\n4 3 4 -1 0.8 0.4 2\n5 3 1 -2 0.2 0.25 -1\n6 3 1.2 2 -0.1 0.3 5\n",
+    )
+    .unwrap();
+    let ply = tmp("union_tree.ply");
+    let json = |args: &[&str]| -> serde_json::Value {
+        let run = bin().arg("mesh").arg(&swc).args(args).args(["--json", "--force", "-o"]).arg(&ply).output().unwrap();
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        serde_json::from_slice(&run.stdout).unwrap()
+    };
+    let u = json(&["--tolerance", "0.005"]);
+    assert_eq!(u["surface"], "union");
+    assert!(u["certified"].as_f64().unwrap() <= 0.005, "{u}");
+    assert_eq!(u["union"]["over_tolerance"], 0, "{u}");
+    assert_eq!(u["closed_parts"], 1, "the crossing branch meets the tree: {u}");
+    assert_eq!(ply_is_watertight(&std::fs::read(&ply).unwrap()) as u64, u["triangles"].as_u64().unwrap());
+    let s = json(&["--tolerance", "0.005", "--shells"]);
+    assert_eq!(s["surface"], "shells");
+    assert!(s["union"].is_null());
+}
+
+/// A union too large for `--memory-limit` is refused before it is built, naming the estimate
+/// and what lowers it.
+#[test]
+fn mesh_refuses_a_union_above_the_memory_limit() {
+    let swc = tmp("union_mem.swc");
+    std::fs::write(&swc, "1 1 0 0 0 0.5 -1\n2 3 2 0 0 0.45 1\n3 3 4 1.5 0 0.35 2\n").unwrap();
+    let run = bin()
+        .arg("mesh")
+        .arg(&swc)
+        .args(["--tolerance", "1e-6", "--memory-limit", "64M", "--force", "-o"])
+        .arg(tmp("union_mem.ply"))
+        .output()
+        .unwrap();
+    assert!(!run.status.success());
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(err.contains("GB") && err.contains("raise the tolerance") && err.contains("limit"), "{err}");
+    assert!(!tmp("union_mem.ply").exists(), "nothing written");
+}

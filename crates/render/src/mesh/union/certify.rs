@@ -136,7 +136,7 @@ fn piece(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, depth: u32, set: &mut Vec<u3
     let r = v.iter().map(|&x| (x - c).length()).fold(0.0, f64::max);
     // Splitting helps where one tangent plane per tube cannot fit the piece: the piece is
     // large against its own bound.
-    if d <= ctx.goal || depth == MAX_DEPTH || r < 0.25 * d {
+    if d <= ctx.goal || depth == MAX_DEPTH || (d.is_finite() && r < 0.25 * d) {
         if d > ctx.goal {
             set.extend(a);
         }
@@ -169,26 +169,52 @@ fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P) -> (f64, f64, Vec<u32>) {
     let mut d_req = 0.0f64;
     loop {
         let active: Vec<&(u32, f64, P)> = lower.iter().filter(|l| l.1 < d_req || l.1 < 0.0).collect();
-        // One half-space per tube: the triangle's own normal (exact on the face of a hull) or
-        // the tube's gradient at the centroid, whichever puts the corners nearer.
-        let planes: Vec<(P, f64)> = active
-            .iter()
-            .map(|&&(k, _, g)| {
-                let t = &ctx.tubes[k as usize];
-                let gap = |n: P| {
-                    let h = support(t, n);
-                    (h, v.iter().map(|&x| h - n.dot(x)).fold(0.0, f64::max))
-                };
-                let (ht, dt) = gap(nt);
-                let (hg, dg) = gap(g);
-                if dt <= dg {
-                    (nt, ht)
-                } else {
-                    (g, hg)
-                }
+        // One half-space per tube, from one of three choices of normals, whichever gives
+        // the least bound: per tube the triangle's own normal (exact on the face of a hull) or
+        // the tube's gradient at the centroid, whichever puts the corners nearer; every tube's
+        // gradient at the centroid; and, with two tubes or more, every tube's gradient at the
+        // nearest crease point of the two least (there the half-spaces meet in the exterior
+        // wedge of the crease; at the centroid, inside two tubes overlapping at a narrow angle,
+        // they face apart and may not meet at all).
+        let plane = |k: u32, n: P| (n, support(&ctx.tubes[k as usize], n));
+        let mut options: Vec<Vec<(P, f64)>> = Vec::with_capacity(3);
+        options.push(
+            active
+                .iter()
+                .map(|&&(k, _, g)| {
+                    let t = &ctx.tubes[k as usize];
+                    let gap = |n: P| {
+                        let h = support(t, n);
+                        (h, v.iter().map(|&x| h - n.dot(x)).fold(0.0, f64::max))
+                    };
+                    let ((ht, dt), (hg, dg)) = (gap(nt), gap(g));
+                    if dt <= dg {
+                        (nt, ht)
+                    } else {
+                        (g, hg)
+                    }
+                })
+                .collect(),
+        );
+        if active.len() >= 2 {
+            options.push(active.iter().map(|&&(k, _, g)| plane(k, g)).collect());
+            let mut two: Vec<&&(u32, f64, P)> = active.iter().collect();
+            two.sort_by(|a, b| a.1.total_cmp(&b.1));
+            if let Some(x) = crease(&ctx.tubes[two[0].0 as usize], &ctx.tubes[two[1].0 as usize], c) {
+                options.push(active.iter().map(|&&(k, _, _)| plane(k, gradient(&ctx.tubes[k as usize], x))).collect());
+            }
+        }
+        let (d, planes) = options
+            .into_iter()
+            .map(|mut planes| {
+                // Tubes of one streamline or parallel ones give the same normal: the farther
+                // plane implies the nearer, which is dropped (fewer candidates, same W).
+                planes.sort_by(|a, b| (a.0.x, a.0.y, a.0.z, -a.1).partial_cmp(&(b.0.x, b.0.y, b.0.z, -b.1)).unwrap());
+                planes.dedup_by(|b, a| a.0 == b.0);
+                (v.iter().map(|&x| distance(&planes, x, ctx.tol)).fold(0.0, f64::max), planes)
             })
-            .collect();
-        let d = v.iter().map(|&x| distance(&planes, x, ctx.tol)).fold(0.0, f64::max);
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .expect("one option at least");
         let mut sh = 1.0f64;
         for i in 0..planes.len() {
             for j in i + 1..planes.len() {
@@ -201,6 +227,26 @@ fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P) -> (f64, f64, Vec<u32>) {
         }
         d_req = d;
     }
+}
+
+/// The point of the crease `f_a = f_b = 0` nearest `x` (Newton's least-norm steps on the two
+/// exact distances), or `None` where it does not converge. Only a choice of tangent planes
+/// rests on it: any point gives valid half-spaces.
+fn crease(a: &RoundCone<f64>, b: &RoundCone<f64>, mut x: P) -> Option<P> {
+    for _ in 0..20 {
+        let (fa, fb, ga, gb) = (sdf(a, x), sdf(b, x), gradient(a, x), gradient(b, x));
+        let c = ga.dot(gb);
+        let det = 1.0 - c * c;
+        if det < 1e-12 {
+            return None;
+        }
+        let step = ga * ((fa - c * fb) / det) + gb * ((fb - c * fa) / det);
+        x -= step;
+        if step.length() <= 1e-13 * (1.0 + x.length()) {
+            break;
+        }
+    }
+    x.is_finite().then_some(x)
 }
 
 /// An upper bound on the distance from `x` to `W = {y : n·y ≥ h for every (n, h)}`: the
@@ -243,7 +289,7 @@ fn distance(planes: &[(P, f64)], x: P, tol: f64) -> f64 {
     }
     // Vertices of three constraints (the projection can be one where W is a narrow cone);
     // many tubes at one piece (a hub of branches) keep to the cheaper candidates.
-    if n <= 12 {
+    if n <= 16 {
         for i in 0..n {
             for j in i + 1..n {
                 for k in j + 1..n {
