@@ -9,7 +9,7 @@ phase, peak resident memory, triangles, the binary PLY bytes tubecast's writer w
 Construction: every node sphere is manifold's `Manifold.sphere(r, n)`; each link is
 `batch_hull` of its two spheres; the solid is `batch_boolean(links, Add)`.
 
-Certificate (the same two-sided bound tubecast certifies):
+Certificate (one way of the two-sided bound tubecast certifies; see below for the other):
 * manifold's sphere is inscribed: its vertices lie on the sphere up to rounding, measured
   here (`vertex_out`), so the hulls, and their union, lie inside the exact union up to that.
 * if P_a, P_b contain the balls B(a, r_a - s_a), B(b, r_b - s_b) (s the sphere polyhedron's
@@ -17,10 +17,15 @@ Certificate (the same two-sided bound tubecast certifies):
   own triangles), their hull contains (1-t) P_a + t P_b, which contains
   B(c(t), r(t) - ((1-t) s_a + t s_b)): every generating ball of the round cone shrunk by at
   most max(s_a, s_b). The round cone shrunk by d (d <= both radii) is the round cone with both
-  radii reduced by d, the union of those balls shrunk by d. So a point of the mesh's surface
-  (on no hull's interior) is at most max s deep in any tube, and a point of the union's
-  surface is within max s of the solid, which lies inside the union: two-sided Hausdorff
-  <= max(max s, vertex_out).
+  radii reduced by d. So a point of the union's surface is within max s of the solid's
+  surface (union surface -> mesh <= max(max s, vertex_out)).
+* the other way is NOT max s: a mesh point is at most s deep in every tube, but where two
+  hulls' faces cross (a crease of the union, exterior opening beta) the mesh vertex there is
+  up to s / sin(beta/2) from the union's surface (its distance to the exact crease), and
+  sin(beta/2) -> 0 for tubes overlapping at a narrow angle. The `certified` printed here is
+  the one-way bound max s; --check measures min over tubes of the SDF, which is the depth
+  only away from creases. tubecast's own union (crates/render/src/mesh/union/) bounds the
+  depth with witnesses outside the union (docs/design/union-mesh.md, "The bound").
 The segment count n of each sphere is the least multiple of 4 (manifold rounds
 `circularSegments` to one) whose measured sagitta r * c(n) is <= eps - vertex_out, chosen per
 radius (a sphere of a thin branch needs fewer segments than the soma).
