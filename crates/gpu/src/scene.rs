@@ -263,10 +263,16 @@ impl<'g> GpuScene<'g> {
     /// (origin `rel·scale`, direction with `+ 0.0`, `tmax = s_end·scale`) for the tree, and
     /// unscaled for the primitives' local origins.
     fn prepare(&self, ray: &Ray<f64>) -> (GpuRay, f64, f64) {
+        self.prepare_over(ray, false)
+    }
+
+    /// [`Self::prepare`], the walk over the ray's whole line where `line` (its range still in
+    /// `s_min`, `s_max`): as the CPU's `Tracer::line_intervals` walks it.
+    fn prepare_over(&self, ray: &Ray<f64>, line: bool) -> (GpuRay, f64, f64) {
         let len = ray.d.length();
+        let (s_lo, s_hi) = if line { (f64::NEG_INFINITY, f64::INFINITY) } else { (ray.t_min * len, ray.t_max * len) };
         // (An empty tree has no root to walk: every ray misses, as `restart` says for it too.)
-        let restart =
-            if self.ex.nodes.is_empty() { None } else { self.ex.restart(ray, ray.t_min * len, ray.t_max * len) };
+        let restart = if self.ex.nodes.is_empty() { None } else { self.ex.restart(ray, s_lo, s_hi) };
         let Some(r) = restart else {
             return (GpuRay::zeroed(), 0.0, len);
         };
@@ -419,10 +425,13 @@ impl<'g> GpuScene<'g> {
     ///
     /// The seed interval, then steps that widen the span to every interval meeting it, one
     /// walk per ray and dispatch (`shaders/tree.wgsl`'s `seed_piece`, `span_piece`), the span
-    /// compared in `f32` as the walk gives it.
+    /// compared in `f32` as the walk gives it. The walks cover the whole line, as the CPU's: a
+    /// ray starting inside the union has its component's entry behind the origin, reached
+    /// through intervals that may lie wholly behind it (restarted at the origin, the walk missed
+    /// those, and the entry came out late).
     pub fn first_pieces(&self, rays: &[Ray<f64>]) -> Result<Vec<Option<Piece>>, GpuError> {
         let (seed, span) = (self.lazy(&self.seed, "seed_piece")?, self.lazy(&self.span, "span_piece")?);
-        let prep: Vec<(GpuRay, f64, f64)> = rays.iter().map(|r| self.prepare(r)).collect();
+        let prep: Vec<(GpuRay, f64, f64)> = rays.iter().map(|r| self.prepare_over(r, true)).collect();
         let input: Vec<GpuRay> = prep.iter().map(|p| p.0).collect();
         let mut f = self.run_rays(seed, &input, 2, self.all_items())?;
         let mut growing: Vec<usize> = (0..input.len()).filter(|&i| f[2 * i].item != NONE).collect();
