@@ -597,3 +597,61 @@ impl<'g> GpuScene<'g> {
         16.0 * f64::from(f32::EPSILON) * 0.5 * r
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tubecast_render::scene::generate::{self, Rng};
+    use tubecast_render::scene::{Model, Scene};
+
+    /// The loop budget check (`shaders/tree.wgsl`'s `loops_cut`) against what it guards: the
+    /// brute force over every item of a spline scene in one dispatch, which on lavapipe spends the
+    /// budget (its answers were no hits at all), beside [`GpuScene::brute`]'s ranges. Every ray
+    /// the check passes has the ranges' answer bit for bit; on lavapipe some ray is flagged (so
+    /// the check can fire); on other drivers none need be.
+    #[test]
+    fn loops_cut_flags_the_rays_whose_loops_ran_out() {
+        let gpu = match Gpu::new() {
+            Ok(g) => g,
+            Err(e @ GpuError::NoAdapter(_)) if std::env::var("TUBECAST_REQUIRE_GPU").map_or(true, |v| v != "1") => {
+                eprintln!("loops_cut_flags_the_rays_whose_loops_ran_out: skipped, {e}");
+                return;
+            }
+            Err(e) => panic!("{e}"),
+        };
+        let mut lines = generate::furball(40, 12, 2);
+        lines.extend(generate::bundle(20, 12, 3));
+        let scene = Scene::from_polylines(&lines, 0.05, "furball").unwrap();
+        let bvh = WideBvh::from_scene(&scene, Model::Splines).unwrap();
+        let gs = GpuScene::upload(&gpu, &bvh).unwrap();
+        let mut rng = Rng::new(5);
+        let rays: Vec<Ray<f64>> = (0..64)
+            .map(|_| {
+                let node = scene.nodes[(rng.uniform() * scene.nodes.len() as f64) as usize].pos;
+                let d = V3::from(rng.unit());
+                Ray::with_range(V3::from(node) - d * 30.0, d, 0.0, 60.0)
+            })
+            .collect();
+        let input: Vec<GpuRay> = rays.iter().map(|r| gs.prepare(r).0).collect();
+        let ranges = gs.brute(&input).unwrap();
+        let k = gs.lazy(&gs.brute, "closest_brute").unwrap();
+        let buf = gpu.upload("rays", &input).unwrap();
+        let once: Vec<GpuHit> =
+            gpu.run(k, &gs.params(input.len(), gs.all_items()), &[&gs.nodes, &gs.prims, &buf], input.len()).unwrap();
+        let key = |h: &GpuHit| (h.item, h.s.to_bits());
+        let mut cut = 0;
+        for (i, (a, b)) in once.iter().zip(&ranges).enumerate() {
+            if a.cut != 0 {
+                cut += 1;
+            } else {
+                assert_eq!(key(a), key(b), "ray {i}: one dispatch, not flagged, differs from the ranges");
+            }
+        }
+        let hits = ranges.iter().filter(|h| h.item != NONE).count();
+        eprintln!("{}: {cut} of {} rays flagged in one dispatch; {hits} hits", gpu.describe(), rays.len());
+        assert!(hits > 10, "{hits} hits: the test says little");
+        if gpu.describe().contains("llvmpipe") {
+            assert!(cut > 0, "lavapipe ran every spline piece's solves in one dispatch within its loop budget");
+        }
+    }
+}
