@@ -70,9 +70,14 @@ const TRIES: usize = 3;
 /// a right angle (`1/sin(45°) ≈ 1.41`).
 const FIRST_SAGITTA: f64 = 0.7;
 
-/// Peak bytes per hull triangle (manifold's input): the hulls, the boolean's working set and
-/// the result; calibrated on the generator's neuron and tractogram (`docs/design/union-mesh.md`).
-pub const UNION_BYTES_PER_HULL_TRIANGLE: f64 = 1500.0;
+/// Peak bytes per hull triangle (manifold's input): the hulls, the boolean's working set, the
+/// result and its certificate. Calibrated on the generator's 900-link neuron at ε = 10⁻²·r̄,
+/// whose peak resident memory was 535–570 bytes per hull triangle (one and two threads), with
+/// margin (`docs/design/union-mesh.md`, "Memory guard").
+pub const UNION_BYTES_PER_HULL_TRIANGLE: f64 = 650.0;
+
+/// The process's own memory beside the union (code, the scene, the thread pool).
+pub const UNION_BASE_BYTES: f64 = 64e6;
 
 /// Meshes the surface of the union of the scene's links within `eps` (absolute, scene units),
 /// both ways. The mesh's [`Mesh::certified`] is [`UnionReport::certified`]; it is at most `eps`
@@ -136,7 +141,7 @@ pub fn tessellate_union_with(
         let points = |k: u32| 4 * (k as usize) * (k as usize) + 2;
         let hull_tris: usize = pairs.iter().map(|&[a, b]| 2 * (points(subdiv[a]) + points(subdiv[b]))).sum();
         if let Some(limit) = options.memory_limit {
-            let estimate = (hull_tris as f64 * UNION_BYTES_PER_HULL_TRIANGLE) as u64;
+            let estimate = (UNION_BASE_BYTES + hull_tris as f64 * UNION_BYTES_PER_HULL_TRIANGLE) as u64;
             if estimate > limit {
                 if let Some(b) = best.take() {
                     // A refinement that would not fit: keep the mesh already made.
