@@ -16,7 +16,9 @@ use std::fmt::Write as _;
 use std::path::Path;
 use tubecast::V3;
 use tubecast_render::accel::Bvh;
-use tubecast_render::mesh::{export, tessellate, tessellate_union, SceneMesh};
+use tubecast_render::mesh::{
+    export, tessellate, tessellate_union, tessellate_union_with, MeshError, SceneMesh, UnionOptions,
+};
 use tubecast_render::scene::choice::{choose_with, Tolerance};
 use tubecast_render::scene::{Model, Scene};
 
@@ -25,9 +27,12 @@ pub const SIZE_EPS: [f64; 2] = [1e-2, 1e-3];
 /// Meshes whose estimated triangle count exceeds this are not built (the full run; about
 /// 1 GB of `f64` mesh while building and minutes of union contouring on 2 cores).
 pub const MAX_TRIANGLES: f64 = 2e7;
-/// The union's estimate above which it is not built, full run: the union contour is the
-/// slow one (minutes per 10⁶ triangles on 2 loaded cores).
+/// The union's estimate above which it is not built, full run (manifold's union: about a
+/// minute per 2·10⁵ triangles on 2 loaded cores, the certificate and refinements included).
 pub const MAX_UNION_TRIANGLES: f64 = 3e6;
+/// The union is also not built where its own memory estimate exceeds this (bytes): the row is
+/// then the estimate.
+pub const UNION_MEMORY_LIMIT: u64 = 5 << 30;
 /// The caps of the quick (test) run.
 pub const QUICK_MAX_TRIANGLES: f64 = 4e5;
 /// Links of the union's sample: one contiguous run from the middle of the scene (links of one
@@ -97,7 +102,9 @@ fn lateral_area(scene: &Scene) -> f64 {
 /// The union mesh's size estimated from a contiguous run of `n` links from the middle of the
 /// scene, meshed for real at `eps`: its triangles per unit of lateral area, scaled to the
 /// scene's lateral area (the union's spheres are resolved per node radius at the same ε, so
-/// the density carries over between runs of similar radii).
+/// the density carries over between runs of similar radii). High where the scene's chains are
+/// longer than the sample: the sample's two end caps (half a node sphere each) are spread over
+/// its few links.
 pub fn union_estimate(scene: &Scene, eps: f64, n: usize) -> Result<f64, ReportError> {
     let n = n.min(scene.links.len());
     if n == 0 {
@@ -201,10 +208,19 @@ pub fn measure_sizes(
             estimated_row(name, KINDS[2], k, r, est)
         });
         let est = pool.install(|| union_estimate(scene, eps, UNION_SAMPLE_LINKS))?;
-        rows.push(if est <= union_cap {
-            mesh_row(name, KINDS[3], k, r, &pool.install(|| tessellate_union(scene, eps)).map_err(err)?.0)
+        let opts = UnionOptions { memory_limit: Some(UNION_MEMORY_LIMIT) };
+        let built = if est <= union_cap {
+            match pool.install(|| tessellate_union_with(scene, eps, &opts)) {
+                Ok((m, _)) => Some(m),
+                Err(MeshError::Memory { .. }) => None,
+                Err(e) => return Err(err(e)),
+            }
         } else {
-            estimated_row(name, KINDS[3], k, r, est)
+            None
+        };
+        rows.push(match built {
+            Some(m) => mesh_row(name, KINDS[3], k, r, &m),
+            None => estimated_row(name, KINDS[3], k, r, est),
         });
     }
     Ok(rows)
@@ -316,14 +332,18 @@ pub fn run_mesh_size(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Re
          the union's exact surface). Bytes: meshes as the binary PLY `tubecast mesh` writes (12 per vertex, 13 per \
          triangle), link models as primitives + BVH in memory. Certified error: the representation's two-sided \
          Hausdorff bound (absolute). A mesh is built where its estimated triangle count is at most {:.0e} \
-         (union: {:.0e}); above it the row is the estimate (`est.`: shells from the first 200 links tessellated \
-         for real, scaled by the link count; union from a run of {} links from the middle of the scene meshed for \
-         real at the same ε, its triangles per unit of lateral tube area scaled to the scene's lateral area and by \
-         `(h_sample/h_scene)²` for the scene's smaller least radius; PLY bytes for V = T/2) and is drawn at ε. \
+         (union: {:.0e}, and its own memory estimate within {:.1} GB); above it the row is the estimate (`est.`: \
+         shells from the first 200 links tessellated for real, scaled by the link count; union from a run of {} \
+         links from the middle of the scene meshed for real at the same ε, its triangles per unit of lateral tube \
+         area scaled to the scene's lateral area, high by up to about 2× where the scene's chains are longer \
+         than the sample (its end caps); PLY bytes for V = T/2) and is drawn at ε. The union is \
+         manifold's union of the links' sphere hulls, certified against the exact union \
+         (`docs/design/union-mesh.md`). \
          Chart: bytes against certified error / r̄, one colour per representation, one marker per scene.\n\n",
         names.join(", "),
         cap,
         union_cap,
+        UNION_MEMORY_LIMIT as f64 / 1e9,
         UNION_SAMPLE_LINKS
     );
     md.push_str(&size_table(&rows));

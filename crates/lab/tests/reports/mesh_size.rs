@@ -30,16 +30,16 @@ fn estimated_ply_bytes_are_the_writers_count() {
 
 #[test]
 fn union_estimate_from_a_sample_is_near_the_union_built() {
-    // Triangles scale with the lateral area at a fixed step; a 3-link sample of a 10-link chain
-    // sees two of the nine joints and none of the end caps' share, so within a factor 1.5 (the
-    // caps are about 2·(4πr²)/(2πr·L_chain) ≈ 8 % of this chain's area; joints' creases add or
-    // remove a few grid cells each).
+    // The union's triangles are two end caps (half a node sphere each, `4k²` triangles) per
+    // chain and a strip per link (a few `k` triangles): a 3-link sample of a 10-link chain has
+    // the two caps over three links, the chain over ten, so the area-scaled estimate is high,
+    // by less than 2× here (the strips and joints carry about half the sample's triangles).
     let s = chain(10);
     let eps = 1e-2;
     let built = tessellate_union(&s, eps).unwrap().0.mesh.triangles.len() as f64;
     let est = union_estimate(&s, eps, 3).unwrap();
     let ratio = est / built;
-    assert!((1.0 / 1.5..=1.5).contains(&ratio), "estimate {est:e}, built {built:e}");
+    assert!((1.0..=2.0).contains(&ratio), "estimate {est:e}, built {built:e}");
 }
 
 #[test]
