@@ -29,7 +29,7 @@ struct Node {
 // crate::scene::GpuPrim: a link (kind 0) or a sphere (kind 1, radius ra) relative to `org`,
 // the primitive's origin relative to the tree centre; or a spline piece (kind & 3 == 2) with
 // control points a, b₁, b and radii ra, r₁, rb, where b₁, r₁ are the `a`, `ra` of the record
-// prims[kind >> 2] (past the items' records).
+// prim_at(kind >> 2) (past the items' records).
 struct Prim {
     a: vec3f,
     ra: f32,
@@ -67,11 +67,25 @@ struct HitOut {
 }
 
 @group(0) @binding(0) var<uniform> params: Params;
-@group(0) @binding(1) var<storage, read> nodes: array<Node>;
-@group(0) @binding(2) var<storage, read> prims: array<Prim>;
-@group(0) @binding(3) var<storage, read> rays: array<Ray>;
-// Binding 4 in the queries' module; lines.wgsl puts its per-ray offsets there and this at 5.
+// The tree's nodes and the primitives, each split on record boundaries across four bindings
+// (`Gpu::SPLIT`), every one within the adapter's storage buffer binding limit: records 0 to
+// n − 1 in the first, n to 2n − 1 in the second, … (n per kind: `GpuScene::upload`). Read only
+// through `node_at` and `prim_at`, which `crate::scene` writes in place of the placeholder below for
+// the scene's split: a scene in one binding reads it directly; otherwise they pick the binding
+// by index / n (branches, no loop: lavapipe's loop budget, `loops_cut`).
+@group(0) @binding(1) var<storage, read> nodes0: array<Node>;
+@group(0) @binding(2) var<storage, read> nodes1: array<Node>;
+@group(0) @binding(3) var<storage, read> nodes2: array<Node>;
+@group(0) @binding(4) var<storage, read> nodes3: array<Node>;
+@group(0) @binding(5) var<storage, read> prims0: array<Prim>;
+@group(0) @binding(6) var<storage, read> prims1: array<Prim>;
+@group(0) @binding(7) var<storage, read> prims2: array<Prim>;
+@group(0) @binding(8) var<storage, read> prims3: array<Prim>;
+@group(0) @binding(9) var<storage, read> rays: array<Ray>;
+// Binding 10 in the queries' module; lines.wgsl puts its per-ray offsets there and this at 11.
 @group(0) @binding(OUT_BINDING) var<storage, read_write> out: array<HitOut>;
+
+ACCESSORS
 
 const NONE: u32 = 0xffffffffu;
 const STACK: u32 = STACK_SIZEu;
@@ -101,7 +115,7 @@ fn loops_cut() -> u32 {
 // Item `it`'s line interval in distance from the restart point (Prim::intersect_unit's local
 // ray, then Prim::to_world's `tc + t`, unclipped).
 fn item_iv(r: Ray, it: u32) -> Iv {
-    let p = prims[it];
+    let p = prim_at(it);
     // Prim::local_origin: tc = (org − o)·dn, o_local = o + dn·tc − org.
     let tc = dot3(p.org - r.o, r.d);
     let lo = r.o + r.d * tc - p.org;
@@ -111,7 +125,7 @@ fn item_iv(r: Ray, it: u32) -> Iv {
         iv = sphere_line(lo, r.d, vec3f(0.0), p.ra, 0.0);
     } else if kind == SPLINE {
         // Prim::intersect_unit: QuadTube::intersect_with(Solver::Polynomial), the hull.
-        let x = prims[p.kind >> 2u];
+        let x = prim_at(p.kind >> 2u);
         iv = spline_line(p.a, x.a, p.b, vec3f(p.ra, x.ra, p.rb), lo, r.d);
     } else {
         iv = stable_line(Cone(p.a, p.ra, p.b, p.rb), lo, r.d);
@@ -125,17 +139,17 @@ const SPHERE: u32 = 1u;
 const SPLINE: u32 = 2u;
 
 fn is_spline(it: u32) -> bool {
-    return (prims[it].kind & 3u) == SPLINE;
+    return (prim_at(it).kind & 3u) == SPLINE;
 }
 
 // Item `it`'s exact line pieces (Prim::pieces): a spline piece's one interval per real interval
 // of g (QuadTube::intersect_pieces, slots that miss included), as distances from the restart
 // point. Only for spline items.
 fn item_pieces(r: Ray, it: u32) -> Pieces {
-    let p = prims[it];
+    let p = prim_at(it);
     let tc = dot3(p.org - r.o, r.d);
     let lo = r.o + r.d * tc - p.org;
-    let x = prims[p.kind >> 2u];
+    let x = prim_at(p.kind >> 2u);
     var ps = spline_pieces(p.a, x.a, p.b, vec3f(p.ra, x.ra, p.rb), lo, r.d);
     for (var k = 0u; k < 5u; k++) {
         ps.iv[k].t_in = tc + ps.iv[k].t_in;
@@ -268,7 +282,7 @@ fn walk(r: Ray, mode: u32, span: vec2f, slots: vec2u) -> Found {
     var node = 0u;
     loop {
         // Tree::entries
-        let n = nodes[node];
+        let n = node_at(node);
         var ot: array<f32, 8>;
         var oi: array<u32, 8>;
         var k = 0u;

@@ -91,7 +91,15 @@ impl Gpu {
     /// A read-only storage buffer holding `data`; an empty `data` gets one zeroed element (a
     /// binding must be at least one element long; the shaders never read it).
     pub(crate) fn upload<T: Pod>(&self, what: &'static str, data: &[T]) -> Result<wgpu::Buffer, GpuError> {
+        self.upload_within(what, data, self.max_binding())
+    }
+
+    /// [`Self::upload`] within `cap` bytes (at most [`Gpu::max_binding`]).
+    fn upload_within<T: Pod>(&self, what: &'static str, data: &[T], cap: u64) -> Result<wgpu::Buffer, GpuError> {
         let bytes: &[u8] = bytemuck::cast_slice(data);
+        if bytes.len() as u64 > cap {
+            return Err(GpuError::TooLarge { what, bytes: bytes.len() as u64, limit: cap });
+        }
         self.fits(what, bytes.len() as u64)?;
         let pad = vec![0u8; std::mem::size_of::<T>().max(16)];
         let contents = if bytes.is_empty() { &pad[..] } else { bytes };
@@ -102,6 +110,34 @@ impl Gpu {
         });
         self.take_error()?;
         Ok(buf)
+    }
+
+    /// `data` split on record boundaries into [`Gpu::SPLIT`] read-only storage buffers of at
+    /// most `cap` bytes each (the unused ones one zeroed record long: a binding cannot be
+    /// empty, and the shaders never read them), with the records per buffer (every buffer but
+    /// the last full). Errors: [`GpuError::TooLarge`] where `data` needs more buffers.
+    pub(crate) fn upload_split<T: Pod>(
+        &self,
+        what: &'static str,
+        data: &[T],
+        cap: u64,
+    ) -> Result<(Vec<wgpu::Buffer>, u32), GpuError> {
+        let size = std::mem::size_of::<T>() as u64;
+        // Record indices are u32 in the shaders.
+        let per = (cap / size).min(u64::from(u32::MAX));
+        let bytes = data.len() as u64 * size;
+        let limit = Self::SPLIT as u64 * per * size;
+        if bytes > limit {
+            return Err(GpuError::TooLarge { what, bytes, limit });
+        }
+        let mut bufs = Vec::with_capacity(Self::SPLIT);
+        for chunk in data.chunks(per.max(1) as usize) {
+            bufs.push(self.upload_within(what, chunk, cap)?);
+        }
+        while bufs.len() < Self::SPLIT {
+            bufs.push(self.upload_within::<T>(what, &[], cap)?);
+        }
+        Ok((bufs, per as u32))
     }
 
     /// Run `k` over `n` threads with the uniform `params` and `inputs`, returning `n` outputs.

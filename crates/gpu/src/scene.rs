@@ -138,8 +138,11 @@ pub enum Walk {
 /// A scene on the GPU: the wide BVH's nodes, its items' primitives, and the query pipelines.
 pub struct GpuScene<'g> {
     gpu: &'g Gpu,
-    nodes: wgpu::Buffer,
-    prims: wgpu::Buffer,
+    /// The nodes and the primitives, each split across [`Gpu::SPLIT`] buffers
+    /// ([`Gpu::upload_split`]), and how many of each hold records.
+    nodes: Vec<wgpu::Buffer>,
+    prims: Vec<wgpu::Buffer>,
+    used: [usize; 2],
     /// The tree as exported: its items' primitive ids ([`Tracer::prim`]), its frame, and the
     /// restart of every ray ([`TreeExport::restart`]).
     ex: TreeExport<'g>,
@@ -157,6 +160,25 @@ pub struct GpuScene<'g> {
     /// Whether the scene holds spline pieces (the modules then carry the spline kernel).
     splines: bool,
     bytes: u64,
+}
+
+/// The read-only storage inputs of the queries' kernels: the split nodes and primitives, and
+/// the rays (tree.wgsl's bindings 1 to 9).
+const INPUTS: usize = 2 * Gpu::SPLIT + 1;
+
+/// tree.wgsl's accessor `name` of the records of kind `ty` in the bindings `var`0, `var`1, …:
+/// record `i` is record `i mod per` of binding `i / per`, `used` of them holding records. One
+/// binding is read directly; several by branches on the binding (no loop: lavapipe's loop
+/// budget).
+fn accessor(name: &str, ty: &str, var: &str, per: u32, used: usize) -> String {
+    if used <= 1 {
+        return format!("fn {name}(i: u32) -> {ty} {{\n    return {var}0[i];\n}}\n");
+    }
+    let mut s = format!("fn {name}(i: u32) -> {ty} {{\n    let c = i / {per}u;\n    let j = i - c * {per}u;\n");
+    for b in 0..used - 1 {
+        s += &format!("    if c == {b}u {{\n        return {var}{b}[j];\n    }}\n");
+    }
+    s + &format!("    return {var}{}[j];\n}}\n", used - 1)
 }
 
 /// Depth of the tree under `root` (1 for a root of leaves).
@@ -221,16 +243,22 @@ impl<'g> GpuScene<'g> {
         prims.extend(middles);
         // Seven pushes a level at most (Tree::walk).
         let stack = 7 * (depth(&nodes) + 1);
-        let tree = TREE_WGSL.replace("STACK_SIZE", &stack.to_string());
-        let src = Self::module(&tree, false, splines);
         let bytes = (nodes.len() * 256 + prims.len() * std::mem::size_of::<GpuPrim>()) as u64;
+        let (node_bufs, node_per) = gpu.upload_split("tree nodes", &nodes, gpu.split[0])?;
+        let (prim_bufs, prim_per) = gpu.upload_split("primitives", &prims, gpu.split[1])?;
+        let used = [nodes.len().div_ceil(node_per as usize).max(1), prims.len().div_ceil(prim_per as usize).max(1)];
+        let accessors = accessor("node_at", "Node", "nodes", node_per, used[0])
+            + &accessor("prim_at", "Prim", "prims", prim_per, used[1]);
+        let tree = TREE_WGSL.replace("STACK_SIZE", &stack.to_string()).replace("ACCESSORS", &accessors);
+        let src = Self::module(&tree, false, splines);
         Ok(Self {
             gpu,
-            nodes: gpu.upload("tree nodes", &nodes)?,
-            prims: gpu.upload("primitives", &prims)?,
+            nodes: node_bufs,
+            prims: prim_bufs,
+            used,
             ex,
-            closest: gpu.kernel(&src, "closest_tree", 3)?,
-            any: gpu.kernel(&src, "any_tree", 3)?,
+            closest: gpu.kernel(&src, "closest_tree", INPUTS)?,
+            any: gpu.kernel(&src, "any_tree", INPUTS)?,
             brute: OnceLock::new(),
             seed: OnceLock::new(),
             span: OnceLock::new(),
@@ -243,19 +271,62 @@ impl<'g> GpuScene<'g> {
 
     /// The shader module: the link and spline kernels (the spline kernel's stubs where the
     /// scene has no spline pieces: `splines` false) and `tree` (tree.wgsl with its stack size),
-    /// its output at binding 4; or at 5, with lines.wgsl (its offsets at 4), for `list_lines`.
+    /// its output after the inputs (binding `INPUTS + 1`); or one further, with lines.wgsl (its
+    /// offsets before it), for `list_lines`.
     fn module(tree: &str, list: bool, splines: bool) -> String {
         let spline = if splines { SPLINE_WGSL } else { NO_SPLINE_WGSL };
         if list {
-            format!("{LINK_WGSL}\n{spline}\n{}\n{LINES_WGSL}", tree.replace("OUT_BINDING", "5"))
+            format!("{LINK_WGSL}\n{spline}\n{}\n{LINES_WGSL}", tree.replace("OUT_BINDING", &(INPUTS + 2).to_string()))
         } else {
-            format!("{LINK_WGSL}\n{spline}\n{}", tree.replace("OUT_BINDING", "4"))
+            format!("{LINK_WGSL}\n{spline}\n{}", tree.replace("OUT_BINDING", &(INPUTS + 1).to_string()))
         }
     }
 
     /// Bytes uploaded for the scene (nodes and primitives).
     pub fn bytes(&self) -> u64 {
         self.bytes
+    }
+
+    /// How many bindings the scene's tree nodes and its primitives take (each at most
+    /// [`Gpu::SPLIT`]; more than one where a kind is over [`Gpu::max_binding`]).
+    #[doc(hidden)]
+    pub fn bindings(&self) -> [usize; 2] {
+        self.used
+    }
+
+    /// The bind group's inputs: the split nodes and primitives, then `more` (the rays, and the
+    /// interval offsets of `list_lines`).
+    fn bind<'a>(&'a self, more: &[&'a wgpu::Buffer]) -> Vec<&'a wgpu::Buffer> {
+        self.nodes.iter().chain(&self.prims).chain(more.iter().copied()).collect()
+    }
+
+    /// The rays of one dispatch with `per` outputs each: as many as the rays' and the outputs'
+    /// buffers hold within [`Gpu::max_binding`], a whole number of workgroups (so that the
+    /// reruns of [`Self::run_rays`] keep each ray alone in its workgroup), at least one.
+    fn batch(&self, per: usize) -> usize {
+        let limit = self.gpu.max_binding() as usize;
+        let rays = limit / std::mem::size_of::<GpuRay>();
+        let outs = if per == 0 { rays } else { limit / (per * std::mem::size_of::<GpuHit>()) };
+        (rays.min(outs) / GROUP_THREADS * GROUP_THREADS).max(GROUP_THREADS)
+    }
+
+    /// Run `k` over the prepared rays `input`, `per` outputs per ray, over the items `items`,
+    /// in dispatches of [`Self::batch`] rays: the rays and outputs of a large query need not fit
+    /// one binding.
+    fn dispatch(&self, k: &Kernel, input: &[GpuRay], per: usize, items: (u32, u32)) -> Result<Vec<GpuHit>, GpuError> {
+        let mut out = Vec::with_capacity(per * input.len());
+        for chunk in input.chunks(self.batch(per)) {
+            let buf = self.gpu.upload("rays", chunk)?;
+            let got: Vec<GpuHit> = self.gpu.run_sized(
+                k,
+                &self.params(chunk.len(), items),
+                &self.bind(&[&buf]),
+                chunk.len(),
+                per * chunk.len(),
+            )?;
+            out.extend(got);
+        }
+        Ok(out)
     }
 
     /// The ray as the walk takes it, with `t0` (the restart, in the ray's `t`) and `|d|`: the
@@ -313,10 +384,7 @@ impl<'g> GpuScene<'g> {
     /// shared by the rays of one SIMD vector: `shaders/tree.wgsl`'s `loops_cut`) is run again
     /// alone in a workgroup; cut short alone too, it is an error: never a wrong answer.
     fn run_rays(&self, k: &Kernel, input: &[GpuRay], per: usize, items: (u32, u32)) -> Result<Vec<GpuHit>, GpuError> {
-        let buf = self.gpu.upload("rays", input)?;
-        let inputs = [&self.nodes, &self.prims, &buf];
-        let mut out: Vec<GpuHit> =
-            self.gpu.run_sized(k, &self.params(input.len(), items), &inputs, input.len(), per * input.len())?;
+        let mut out = self.dispatch(k, input, per, items)?;
         let cut: Vec<usize> =
             (0..input.len()).filter(|&i| out[per * i..per * (i + 1)].iter().any(|h| h.cut != 0)).collect();
         if cut.is_empty() {
@@ -329,10 +397,7 @@ impl<'g> GpuScene<'g> {
         for (j, &i) in cut.iter().enumerate() {
             alone[stride * j] = input[i];
         }
-        let buf = self.gpu.upload("rays", &alone)?;
-        let inputs = [&self.nodes, &self.prims, &buf];
-        let again: Vec<GpuHit> =
-            self.gpu.run_sized(k, &self.params(alone.len(), items), &inputs, alone.len(), per * alone.len())?;
+        let again = self.dispatch(k, &alone, per, items)?;
         for (j, &i) in cut.iter().enumerate() {
             let got = &again[per * stride * j..per * (stride * j + 1)];
             if got.iter().any(|h| h.cut != 0) {
@@ -360,8 +425,7 @@ impl<'g> GpuScene<'g> {
             let out = if hi - lo <= 1 {
                 self.run_rays(k, &rays, 1, (lo, hi))?
             } else {
-                let buf = self.gpu.upload("rays", &rays)?;
-                self.gpu.run(k, &self.params(rays.len(), (lo, hi)), &[&self.nodes, &self.prims, &buf], rays.len())?
+                self.dispatch(k, &rays, 1, (lo, hi))?
             };
             let mut cut = Vec::new();
             for (h, &i) in out.iter().zip(&which) {
@@ -481,21 +545,25 @@ impl<'g> GpuScene<'g> {
         let prep: Vec<(GpuRay, f64, f64)> = rays.iter().map(|r| self.prepare(r)).collect();
         let input: Vec<GpuRay> = prep.iter().map(|p| p.0).collect();
         let counts: Vec<u32> = self.run_rays(count, &input, 1, self.all_items())?.iter().map(|c| c.item).collect();
-        // Runs of rays whose intervals fit one output buffer (an entry and an exit each).
+        // Runs of rays whose intervals fit one output buffer (an entry and an exit each), and
+        // whose rays fit one binding.
         let fit = (self.gpu.max_binding() / (2 * std::mem::size_of::<GpuHit>() as u64)).max(1);
+        let most = self.batch(0);
         let mut all = Vec::with_capacity(rays.len());
         let mut start = 0;
         while start < rays.len() {
             let (mut end, mut total) = (start, 0u64);
-            while end < rays.len() && (end == start || total + u64::from(counts[end]) <= fit) {
+            while end < rays.len() && end - start < most && (end == start || total + u64::from(counts[end]) <= fit) {
                 total += u64::from(counts[end]);
                 end += 1;
             }
             let mut lists = self.list_run(list, &input[start..end], &counts[start..end])?;
             // Rays whose list walk the driver cut short: again, each alone in a workgroup
-            // (`Self::run_rays`), with empty lists between them.
-            let cut: Vec<usize> = (0..lists.len()).filter(|&k| lists[k].first().is_some_and(|h| h.cut != 0)).collect();
-            if !cut.is_empty() {
+            // (`Self::run_rays`), with empty lists between them, as many a dispatch as the rays'
+            // binding holds (their intervals are some of the run's: they fit).
+            let cut_all: Vec<usize> =
+                (0..lists.len()).filter(|&k| lists[k].first().is_some_and(|h| h.cut != 0)).collect();
+            for cut in cut_all.chunks(most / GROUP_THREADS) {
                 let mut alone = vec![GpuRay::zeroed(); GROUP_THREADS * (cut.len() - 1) + 1];
                 let mut alone_counts = vec![0; alone.len()];
                 for (j, &k) in cut.iter().enumerate() {
@@ -543,7 +611,7 @@ impl<'g> GpuScene<'g> {
         let out: Vec<GpuHit> = self.gpu.run_sized(
             list,
             &self.params(input.len(), self.all_items()),
-            &[&self.nodes, &self.prims, &chunk, &offs],
+            &self.bind(&[&chunk, &offs]),
             input.len(),
             2 * total,
         )?;
@@ -555,7 +623,7 @@ impl<'g> GpuScene<'g> {
         if let Some(k) = cell.get() {
             return Ok(k);
         }
-        let k = self.gpu.kernel(&Self::module(&self.tree, false, self.splines), entry, 3)?;
+        let k = self.gpu.kernel(&Self::module(&self.tree, false, self.splines), entry, INPUTS)?;
         Ok(cell.get_or_init(|| k))
     }
 
@@ -565,8 +633,8 @@ impl<'g> GpuScene<'g> {
         if let Some(k) = self.lines.get() {
             return Ok(k);
         }
-        let count = self.gpu.kernel(&Self::module(&self.tree, false, self.splines), "count_lines", 3)?;
-        let list = self.gpu.kernel(&Self::module(&self.tree, true, self.splines), "list_lines", 4)?;
+        let count = self.gpu.kernel(&Self::module(&self.tree, false, self.splines), "count_lines", INPUTS)?;
+        let list = self.gpu.kernel(&Self::module(&self.tree, true, self.splines), "list_lines", INPUTS + 1)?;
         let built = (count, list);
         Ok(self.lines.get_or_init(|| built))
     }
@@ -637,7 +705,7 @@ mod tests {
         let k = gs.lazy(&gs.brute, "closest_brute").unwrap();
         let buf = gpu.upload("rays", &input).unwrap();
         let once: Vec<GpuHit> =
-            gpu.run(k, &gs.params(input.len(), gs.all_items()), &[&gs.nodes, &gs.prims, &buf], input.len()).unwrap();
+            gpu.run(k, &gs.params(input.len(), gs.all_items()), &gs.bind(&[&buf]), input.len()).unwrap();
         let key = |h: &GpuHit| (h.item, h.s.to_bits());
         let mut cut = 0;
         for (i, (a, b)) in once.iter().zip(&ranges).enumerate() {

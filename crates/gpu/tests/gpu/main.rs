@@ -8,6 +8,7 @@ mod lines;
 mod piece;
 mod render;
 mod spline;
+mod split;
 mod tree;
 
 use std::io::Write;
