@@ -16,9 +16,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use tubecast::V3;
 use tubecast_render::accel::Bvh;
-use tubecast_render::mesh::{
-    export, tessellate, tessellate_union, tessellate_union_with, MeshError, SceneMesh, UnionOptions,
-};
+use tubecast_render::mesh::{export, tessellate, tessellate_union_with, MeshError, SceneMesh, UnionOptions};
 use tubecast_render::scene::choice::{choose_with, Tolerance};
 use tubecast_render::scene::{Model, Scene};
 
@@ -117,7 +115,15 @@ pub fn union_estimate(scene: &Scene, eps: f64, n: usize) -> Result<f64, ReportEr
         coverage: Vec::new(),
         ..scene.clone()
     };
-    let (m, _) = tessellate_union(&part, eps).map_err(err)?;
+    // Under the same memory limit as the rows built: a sample whose refinements would not fit
+    // keeps its last mesh; one whose first union would not fit has no estimate (infinite: the
+    // row is left out).
+    let opts = UnionOptions { memory_limit: Some(UNION_MEMORY_LIMIT) };
+    let m = match tessellate_union_with(&part, eps, &opts) {
+        Ok((m, _)) => m,
+        Err(MeshError::Memory { .. }) => return Ok(f64::INFINITY),
+        Err(e) => return Err(err(e)),
+    };
     let density = m.mesh.triangles.len() as f64 / lateral_area(&part);
     Ok(density * lateral_area(scene))
 }
@@ -218,10 +224,11 @@ pub fn measure_sizes(
         } else {
             None
         };
-        rows.push(match built {
-            Some(m) => mesh_row(name, KINDS[3], k, r, &m),
-            None => estimated_row(name, KINDS[3], k, r, est),
-        });
+        match built {
+            Some(m) => rows.push(mesh_row(name, KINDS[3], k, r, &m)),
+            None if est.is_finite() => rows.push(estimated_row(name, KINDS[3], k, r, est)),
+            None => {}
+        }
     }
     Ok(rows)
 }
@@ -336,7 +343,8 @@ pub fn run_mesh_size(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Re
          shells from the first 200 links tessellated for real, scaled by the link count; union from a run of {} \
          links from the middle of the scene meshed for real at the same ε, its triangles per unit of lateral tube \
          area scaled to the scene's lateral area, high by up to about 2× where the scene's chains are longer \
-         than the sample (its end caps); PLY bytes for V = T/2) and is drawn at ε. The union is \
+         than the sample (its end caps); PLY bytes for V = T/2) and is drawn at ε; a union whose sample itself \
+         exceeds the memory limit has no row. The union is \
          manifold's union of the links' sphere hulls, certified against the exact union \
          (`docs/design/union-mesh.md`). \
          Chart: bytes against certified error / r̄, one colour per representation, one marker per scene.\n\n",
