@@ -220,11 +220,12 @@ impl<'g> GpuScene<'g> {
                 }
                 Shape::Spline { quad: q, .. } => {
                     // The record's index must fit the kind word's upper 30 bits (2³⁰ records of
-                    // 48 bytes are far above any adapter's binding limit anyway).
+                    // 48 bytes, 48 GiB, are far above the four bindings of any adapter anyway).
                     let index = ex.item_prims.len() + middles.len();
                     if index >= 1 << 30 {
                         let bytes = (index as u64 + 1) * std::mem::size_of::<GpuPrim>() as u64;
-                        return Err(GpuError::TooLarge { what: "primitives", bytes, limit: gpu.max_binding() });
+                        let limit = Gpu::SPLIT as u64 * gpu.max_binding();
+                        return Err(GpuError::TooLarge { what: "primitives", bytes, limit });
                     }
                     let index = index as u32;
                     middles.push(GpuPrim { a: q.b[1].to_array(), ra: q.r[1], b: [0.0; 3], rb: 0.0, org, kind: 2 });
