@@ -673,6 +673,30 @@ mod tests {
     use tubecast_render::scene::generate::{self, Rng};
     use tubecast_render::scene::{Model, Scene};
 
+    /// The shaders' bindings are the ones the host binds: [`Gpu::SPLIT`] node bindings from 1,
+    /// as many primitive bindings after them, the rays at `INPUTS`, lines.wgsl's offsets after
+    /// them; the accessors read one binding directly and several by the record's binding; the
+    /// records are the sizes `tests/gpu/split.rs` splits by.
+    #[test]
+    fn the_shaders_bindings_are_the_hosts() {
+        for k in 0..Gpu::SPLIT {
+            let node = format!("@binding({}) var<storage, read> nodes{k}: array<Node>;", 1 + k);
+            let prim = format!("@binding({}) var<storage, read> prims{k}: array<Prim>;", 1 + Gpu::SPLIT + k);
+            assert!(TREE_WGSL.contains(&node) && TREE_WGSL.contains(&prim), "{node} {prim}");
+        }
+        assert!(!TREE_WGSL.contains(&format!("nodes{}:", Gpu::SPLIT)));
+        assert!(TREE_WGSL.contains(&format!("@binding({INPUTS}) var<storage, read> rays")));
+        assert!(LINES_WGSL.contains(&format!("@binding({}) var<storage, read> offsets", INPUTS + 1)));
+        let one = accessor("node_at", "Node", "nodes", 7, 1);
+        assert!(one.contains("return nodes0[i];") && !one.contains("nodes1"), "{one}");
+        let three = accessor("prim_at", "Prim", "prims", 7, 3);
+        assert!(
+            three.contains("let c = i / 7u;") && three.contains("return prims2[j];") && !three.contains("prims3"),
+            "{three}"
+        );
+        assert_eq!((std::mem::size_of::<GpuNode>(), std::mem::size_of::<GpuPrim>()), (256, 48));
+    }
+
     /// The loop budget check (`shaders/tree.wgsl`'s `loops_cut`) against what it guards: the
     /// brute force over every item of a spline scene in one dispatch, which on lavapipe spends the
     /// budget (its answers were no hits at all), beside [`GpuScene::brute`]'s ranges. Every ray
