@@ -124,11 +124,10 @@ fn a_split_scene_answers_as_the_whole_one() {
 }
 
 /// Spline pieces read their middle control point from a record past the items' (another
-/// binding once split): the closest hits still equal the whole scene's. Ignored by default: it
-/// compiles the spline module for two scenes, some 20 s on lavapipe on a loaded 2-core machine
-/// (`cargo test -p tubecast-gpu --test gpu split -- --include-ignored` runs it).
+/// binding once split): the closest hits still equal the whole scene's. The only test where
+/// that read crosses a binding, so it runs in CI although it compiles the spline module for two
+/// scenes (some 20 s on lavapipe on a loaded 2-core machine).
 #[test]
-#[ignore = "compiles the spline module twice (about 20 s on lavapipe); run with --include-ignored"]
 fn a_split_spline_scene_answers_as_the_whole_one() {
     let mut lines = tubecast_render::scene::generate::furball(12, 8, 2);
     lines.extend(tubecast_render::scene::generate::bundle(8, 8, 3));
