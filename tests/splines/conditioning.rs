@@ -114,16 +114,12 @@ fn band_is_linear_in_length_over_radius() {
 /// kernel's), and holds every other answer there too.
 #[test]
 fn stability_report_regions_within_the_band() {
-    use tubecast_oracle::{spline_case, SPLINE_REGIONS};
+    use tubecast_oracle::{report_spline_case, SPLINE_REGIONS};
     let mut bad = Vec::new();
     for region in SPLINE_REGIONS {
-        // `crates/lab/src/report/runs.rs::spline_cases` at seed 1.
-        let base = 1_000_033u64.wrapping_add(region as u64 * 0x1_0000_0000);
         for i in 0..400 {
-            let s = spline_case(base + i, region);
-            let m = s.tube.point(0.5);
-            let extent = s.tube.b.iter().map(|&p| (p - m).length()).fold(0.0, f64::max) + s.radius;
-            let c = ThinCase { tube: s.tube, ray: s.ray, extent, origin_dist: (s.ray.o - m).length() };
+            // The stability report's cases at seed 1.
+            let c = ThinCase::from(&report_spline_case(1, region, i));
             for solver in ACCURATE {
                 for (name, eps, got) in [
                     ("f32", f32::EPSILON as f64, kernel::<f32>(&c, solver)),

@@ -40,7 +40,9 @@ pub use link_cases::{
 };
 pub use minimise::{convex_argmin, golden_min};
 pub use spline::{quad_crossing, quad_gap, quad_hit_measure, Quad, QuadCrossing};
-pub use spline_cases::{spline_case, spline_truth, SplineCase, SplineRegion, SplineTruth, SPLINE_REGIONS};
+pub use spline_cases::{
+    report_spline_case, spline_case, spline_truth, SplineCase, SplineRegion, SplineTruth, SPLINE_REGIONS,
+};
 pub use spline_fine::{quad_crossing_offset, quad_gap_fine};
 pub use spline_thin::{thin_case, ThinCase, ThinFamily, THIN_FAMILIES};
 pub use vec::{line_dist, sphere_crossing, Line, Vec3};

@@ -98,6 +98,13 @@ fn sampled_truth(c: &SplineCase) -> SplineTruth {
     SplineTruth { gap, iv }
 }
 
+/// Case `i` of `region` in the stability report run with `seed` (the lab's `spline_cases`): the
+/// one seeding that the report and every test scoring "the report's cases" share.
+pub fn report_spline_case(seed: u64, region: SplineRegion, i: u64) -> SplineCase {
+    let base = seed.wrapping_mul(1_000_033).wrapping_add(region as u64 * 0x1_0000_0000);
+    spline_case(base.wrapping_add(i), region)
+}
+
 /// A deterministic spline case for `seed`, aimed at `region`. Sizes ~1 around the origin.
 ///
 /// Every generated segment is a valid tube for the kernel (finite, radii in `[0.02, 0.5]`, so
@@ -187,7 +194,7 @@ mod tests {
     #[test]
     fn grazed_second_part_is_in_the_hull() {
         let region = SplineRegion::Grazing;
-        let c = spline_case(1_000_033u64.wrapping_add(region as u64 * 0x1_0000_0000) + 94, region);
+        let c = report_spline_case(1, region, 94);
         let n = 2_000_000;
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         for k in 0..=n {

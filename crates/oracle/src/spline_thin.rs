@@ -68,6 +68,16 @@ pub struct ThinCase {
     pub origin_dist: f64,
 }
 
+impl From<&crate::SplineCase> for ThinCase {
+    /// The same segment and ray with the sweep's rounding scales, so the stability report's
+    /// cases are judged by the band the thin-tube cases are.
+    fn from(s: &crate::SplineCase) -> Self {
+        let m = s.tube.point(0.5);
+        let extent = s.tube.b.iter().map(|&p| (p - m).length()).fold(0.0, f64::max) + s.radius;
+        ThinCase { tube: s.tube, ray: s.ray, extent, origin_dist: (s.ray.o - m).length() }
+    }
+}
+
 fn pt(rng: &mut SplitMix64) -> Vec3 {
     Vec3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0))
 }

@@ -22,7 +22,9 @@
 
 use tubecast::{Interval, QuadTube, Ray, Solver, V3};
 use tubecast_gpu::kernel::{Local, Pairs};
-use tubecast_oracle::{quad_crossing_offset, spline_case, thin_case, ThinCase, Vec3, SPLINE_REGIONS, THIN_FAMILIES};
+use tubecast_oracle::{
+    quad_crossing_offset, report_spline_case, thin_case, ThinCase, Vec3, SPLINE_REGIONS, THIN_FAMILIES,
+};
 
 fn v32(v: Vec3) -> V3<f32> {
     V3::new(v.x as f32, v.y as f32, v.z as f32)
@@ -65,13 +67,9 @@ fn accuracy_cases() -> Vec<(String, ThinCase, QuadTube<f32>, Ray<f32>)> {
         }
     }
     for region in SPLINE_REGIONS {
-        // The stability report's seeds (`crates/lab/src/report/runs.rs::spline_cases`, seed 1).
-        let base = 1_000_033u64.wrapping_add(region as u64 * 0x1_0000_0000);
+        // The stability report's cases at seed 1.
         for i in 0..60 {
-            let s = spline_case(base + i, region);
-            let m = s.tube.point(0.5);
-            let extent = s.tube.b.iter().map(|&p| (p - m).length()).fold(0.0, f64::max) + s.radius;
-            let c = ThinCase { tube: s.tube, ray: s.ray, extent, origin_dist: (s.ray.o - m).length() };
+            let c = ThinCase::from(&report_spline_case(1, region, i));
             cases.push((format!("{region:?} case {i}"), c));
         }
     }
@@ -118,6 +116,19 @@ fn spline_kernel_within_the_band_of_the_cpu() {
     assert!(bad.is_empty(), "{} failures:\n{}", bad.len(), bad.join("\n"));
 }
 
+/// The tree tests' spline scene: a small furball and bundle with the `--splines` model, and its
+/// wide tree (which must hold spline pieces, or the tests would compare links only).
+fn spline_scene() -> (tubecast_render::scene::Scene, tubecast_render::accel::WideBvh) {
+    use tubecast_render::accel::{Tracer, WideBvh};
+    use tubecast_render::scene::{generate, Model, Scene};
+    let mut lines = generate::furball(40, 12, 2);
+    lines.extend(generate::bundle(20, 12, 3));
+    let scene = Scene::from_polylines(&lines, 0.05, "furball").unwrap();
+    let bvh = WideBvh::from_scene(&scene, Model::Splines).unwrap();
+    assert!((0..bvh.prim_count() as u32).any(|i| bvh.prim(i).quad().is_some()), "no spline pieces");
+    (scene, bvh)
+}
+
 /// Spline pieces through the tree: a generated bundle and furball with the `--splines` model,
 /// GPU closest hits against the CPU tracer's (the tree test's checks, with [`crate::bound`]'s
 /// spline `E`) and the tree walk against the GPU brute force, bit for bit. The brute force runs
@@ -126,15 +137,8 @@ fn spline_kernel_within_the_band_of_the_cpu() {
 /// (`shaders/tree.wgsl`'s `loops_cut`).
 #[test]
 fn spline_tree_walk_matches_the_cpu() {
-    use tubecast_render::accel::{Tracer, WideBvh};
-    use tubecast_render::scene::generate;
-    use tubecast_render::scene::{Model, Scene};
     let Some(gpu) = crate::gpu("spline_tree_walk_matches_the_cpu") else { return };
-    let mut lines = generate::furball(40, 12, 2);
-    lines.extend(generate::bundle(20, 12, 3));
-    let fur = Scene::from_polylines(&lines, 0.05, "furball").unwrap();
-    let bvh = WideBvh::from_scene(&fur, Model::Splines).unwrap();
-    assert!((0..bvh.prim_count() as u32).any(|i| bvh.prim(i).quad().is_some()), "no spline pieces");
+    let (fur, bvh) = spline_scene();
     let (_, hits, _) = crate::tree::compare_with(&gpu, &fur, &bvh, 200, "furball, splines");
     assert!(hits > 80, "{hits} hits");
 }
@@ -162,15 +166,8 @@ fn gpu_render_matches_the_cpu_with_splines() {
 /// the two spent the driver's loop budget (`shaders/tree.wgsl`'s `loops_cut`).
 #[test]
 fn first_piece_matches_the_cpu_with_splines() {
-    use tubecast_render::accel::{Tracer, WideBvh};
-    use tubecast_render::scene::generate;
-    use tubecast_render::scene::{Model, Scene};
     let Some(gpu) = crate::gpu("first_piece_matches_the_cpu_with_splines") else { return };
-    let mut lines = generate::furball(40, 12, 2);
-    lines.extend(generate::bundle(20, 12, 3));
-    let scene = Scene::from_polylines(&lines, 0.05, "furball").unwrap();
-    let bvh = WideBvh::from_scene(&scene, Model::Splines).unwrap();
-    assert!((0..bvh.prim_count() as u32).any(|i| bvh.prim(i).quad().is_some()), "no spline pieces");
+    let (scene, bvh) = spline_scene();
     let (both, near_touch) = crate::piece::compare_first_pieces(&gpu, &scene, &bvh, 300, 23, "splines");
     eprintln!("first piece, splines: {both} of 300 rays hit on both; {near_touch} boundaries at near-touches");
     assert!(both > 100, "{both}");

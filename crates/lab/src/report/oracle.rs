@@ -5,8 +5,8 @@
 use tubecast::QuadTube;
 use tubecast::{Ray, RoundCone, V3};
 pub use tubecast_oracle::{
-    link_bound, link_case, link_truth, spline_case, spline_truth, LinkCase, LinkRegion, LinkTruth, SplineCase,
-    SplineRegion, SplineTruth, LINK_REGIONS, SPLINE_REGIONS,
+    link_bound, link_case, link_truth, report_spline_case, spline_case, spline_truth, LinkCase, LinkRegion, LinkTruth,
+    SplineCase, SplineRegion, SplineTruth, LINK_REGIONS, SPLINE_REGIONS,
 };
 use tubecast_oracle::{Line, Link, Quad, Vec3};
 

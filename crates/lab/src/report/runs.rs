@@ -18,8 +18,7 @@ pub(crate) fn link_cases(opts: &ReportOptions, region: LinkRegion) -> Vec<LinkCa
 
 /// Spline cases of one region, deterministic in `(seed, region)`.
 pub(crate) fn spline_cases(opts: &ReportOptions, region: SplineRegion) -> Vec<SplineCase> {
-    let base = opts.seed.wrapping_mul(1_000_033).wrapping_add(region as u64 * 0x1_0000_0000);
-    (0..opts.spline_cases as u64).map(|i| oracle::spline_case(base.wrapping_add(i), region)).collect()
+    (0..opts.spline_cases as u64).map(|i| oracle::report_spline_case(opts.seed, region, i)).collect()
 }
 
 pub(super) fn header(title: &str, opts: &ReportOptions, cmd: &str) -> String {
