@@ -248,15 +248,6 @@ pub fn farthest_from_mesh(m: &SceneMesh, samples: &[P], r: f64) -> f64 {
 /// both SDFs, which is where a mesh cut across the valley would be farthest.
 pub fn surface_samples(tubes: &[RoundCone<f64>], n: usize, seed: u64) -> Vec<P> {
     let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
-    let grad = |t: &RoundCone<f64>, x: P| {
-        let e = 1e-7 * (1.0 + t.ra.max(t.rb));
-        let g = V3::new(
-            t.sdf(x + V3::new(e, 0.0, 0.0)) - t.sdf(x - V3::new(e, 0.0, 0.0)),
-            t.sdf(x + V3::new(0.0, e, 0.0)) - t.sdf(x - V3::new(0.0, e, 0.0)),
-            t.sdf(x + V3::new(0.0, 0.0, e)) - t.sdf(x - V3::new(0.0, 0.0, e)),
-        );
-        g * (1.0 / g.length())
-    };
     let mut out = Vec::new();
     let mut tries = 0;
     while out.len() < n && tries < 50 * n {
@@ -269,22 +260,14 @@ pub fn surface_samples(tubes: &[RoundCone<f64>], n: usize, seed: u64) -> Vec<P> 
             rng.gen_range(bb.min.z..=bb.max.z),
         );
         for _ in 0..6 {
-            x = x - grad(t, x) * t.sdf(x);
+            x = x - num_grad(t, x) * t.sdf(x);
         }
         // Every other sample: slide onto the crease with the nearest other tube.
         if out.len() % 2 == 1 {
             if let Some(u) = tubes.iter().filter(|u| !std::ptr::eq(*u, t)).min_by(|a, b| a.sdf(x).total_cmp(&b.sdf(x)))
             {
                 if u.sdf(x).abs() < 0.3 * t.ra.max(t.rb) {
-                    for _ in 0..20 {
-                        let (fa, fb, ga, gb) = (t.sdf(x), u.sdf(x), grad(t, x), grad(u, x));
-                        let c = ga.dot(gb);
-                        let det = 1.0 - c * c;
-                        if det < 1e-6 {
-                            break;
-                        }
-                        x = x - ga * ((fa - c * fb) / det) - gb * ((fb - c * fa) / det);
-                    }
+                    x = onto_crease(t, u, x, 20, 1e-6);
                 }
             }
         }
@@ -324,6 +307,22 @@ fn num_grad(t: &RoundCone<f64>, x: P) -> P {
     }
 }
 
+/// `x` moved onto the crease of tubes `a` and `b` (both SDFs zero): at most `steps` Gauss–Newton
+/// steps on the pair, stopped where the two normals are parallel to within `det_min`
+/// (`1 − (nₐ·n_b)²`), where the crease is ill-defined.
+fn onto_crease(a: &RoundCone<f64>, b: &RoundCone<f64>, mut x: P, steps: usize, det_min: f64) -> P {
+    for _ in 0..steps {
+        let (fa, fb, ga, gb) = (a.sdf(x), b.sdf(x), num_grad(a, x), num_grad(b, x));
+        let c = ga.dot(gb);
+        let det = 1.0 - c * c;
+        if det < det_min {
+            break;
+        }
+        x = x - ga * ((fa - c * fb) / det) - gb * ((fb - c * fa) / det);
+    }
+    x
+}
+
 /// An upper bound on the distance from `p` to the union's surface, found by witnesses: points
 /// `q` outside the union (`sdf(q) ≥ 0`, checked with the brute-force union SDF), so that the
 /// distance is at most `|p − q|`. Outside the union that distance is `sdf(p)` itself (the
@@ -356,16 +355,7 @@ pub fn depth_witness(tubes: &[RoundCone<f64>], p: P, d: f64) -> f64 {
     }
     for (i, a) in near.iter().enumerate() {
         for b in &near[i + 1..] {
-            let mut x = p;
-            for _ in 0..30 {
-                let (fa, fb, ga, gb) = (a.sdf(x), b.sdf(x), num_grad(a, x), num_grad(b, x));
-                let c = ga.dot(gb);
-                let det = 1.0 - c * c;
-                if det < 1e-12 {
-                    break;
-                }
-                x = x - ga * ((fa - c * fb) / det) - gb * ((fb - c * fa) / det);
-            }
+            let x = onto_crease(a, b, p, 30, 1e-12);
             let (ga, gb) = (num_grad(a, x), num_grad(b, x));
             let n = ga + gb;
             if n.length() > 0.0 {
