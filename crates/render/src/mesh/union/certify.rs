@@ -27,7 +27,7 @@
 //! And outward: `f ≤ bₜ = minₘ maxⱼ fₘ(vⱼ)` on T (convexity of each `fₘ`); manifold's triangles
 //! lie on the faces of hulls inside their tubes, so `bₜ` is rounding.
 
-use super::tube::{gradient, sdf, support, unit, Index, P};
+use super::tube::{gradient, support, unit, Index, P};
 use rayon::prelude::*;
 use tubecast::{Primitive, RoundCone};
 
@@ -105,7 +105,7 @@ fn triangle(ctx: &Ctx, v: [P; 3], margin: f64, near: &mut Vec<u32>) -> Measure {
         // Outside: bₜ against the tubes near (a tube holding the three corners is among them).
         let b = near
             .iter()
-            .map(|&k| v.iter().map(|&x| sdf(&ctx.tubes[k as usize], x)).fold(f64::NEG_INFINITY, f64::max))
+            .map(|&k| v.iter().map(|&x| ctx.tubes[k as usize].sdf(x)).fold(f64::NEG_INFINITY, f64::max))
             .fold(f64::INFINITY, f64::min);
         m.out = b.max(0.0);
         let mut set = Vec::new();
@@ -160,7 +160,7 @@ fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P) -> (f64, f64, Vec<u32>) {
         .iter()
         .map(|&k| {
             let t = &ctx.tubes[k as usize];
-            let fc = sdf(t, c);
+            let fc = t.sdf(c);
             let g = gradient(t, c);
             let lin = v.iter().map(|&x| g.dot(x - c)).fold(f64::INFINITY, f64::min);
             (k, (fc + lin).max(fc - r), g)
@@ -234,7 +234,7 @@ fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P) -> (f64, f64, Vec<u32>) {
 /// rests on it: any point gives valid half-spaces.
 fn crease(a: &RoundCone<f64>, b: &RoundCone<f64>, mut x: P) -> Option<P> {
     for _ in 0..20 {
-        let (fa, fb, ga, gb) = (sdf(a, x), sdf(b, x), gradient(a, x), gradient(b, x));
+        let (fa, fb, ga, gb) = (a.sdf(x), b.sdf(x), gradient(a, x), gradient(b, x));
         let c = ga.dot(gb);
         let det = 1.0 - c * c;
         if det < 1e-12 {

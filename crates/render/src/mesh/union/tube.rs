@@ -1,6 +1,6 @@
-//! The exact round cones the certificate measures against: their signed distance (the
-//! kernel's closed form), its gradient, their support function, and a hash of cells that
-//! finds the tubes near a box.
+//! The exact round cones the certificate measures against (their signed distance is the
+//! kernel's closed form, `Primitive::sdf`): its gradient, their support function, and a hash of
+//! cells that finds the tubes near a box.
 
 use std::collections::HashMap;
 use tubecast::{Primitive, RoundCone, V3};
@@ -16,11 +16,6 @@ pub(super) fn unit(v: P) -> P {
     } else {
         V3::new(1.0, 0.0, 0.0)
     }
-}
-
-/// The exact signed distance of the round cone at `x` (negative inside).
-pub(super) fn sdf(t: &RoundCone<f64>, x: P) -> f64 {
-    t.sdf(x)
 }
 
 /// The gradient of the round cone's signed distance at `x`: the unit vector from the nearest
