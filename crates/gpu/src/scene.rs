@@ -181,6 +181,18 @@ fn accessor(name: &str, ty: &str, var: &str, per: u32, used: usize) -> String {
     s + &format!("    return {var}{}[j];\n}}\n", used - 1)
 }
 
+/// `xs` spread one per workgroup for a rerun: item j at slot `GROUP_THREADS·j` (thread i runs
+/// ray i), alone in workgroup j, whose other slots hold `empty` (an invalid ray, which walks
+/// nothing; a count of 0), so that no two rerun rays share a SIMD vector's loop budget.
+fn one_per_group<T: Copy>(xs: impl ExactSizeIterator<Item = T>, empty: T) -> Vec<T> {
+    let n = xs.len();
+    let mut out = vec![empty; GROUP_THREADS * n.saturating_sub(1) + 1];
+    for (j, x) in xs.enumerate() {
+        out[GROUP_THREADS * j] = x;
+    }
+    out
+}
+
 /// Depth of the tree under `root` (1 for a root of leaves).
 fn depth(nodes: &[GpuNode]) -> usize {
     let mut deepest = 0;
@@ -391,16 +403,10 @@ impl<'g> GpuScene<'g> {
         if cut.is_empty() {
             return Ok(out);
         }
-        // Ray j of the rerun at slot `64·j` (thread i runs ray i): alone in workgroup j, whose
-        // other threads hold invalid rays, which walk nothing.
-        let stride = GROUP_THREADS;
-        let mut alone = vec![GpuRay::zeroed(); stride * (cut.len() - 1) + 1];
-        for (j, &i) in cut.iter().enumerate() {
-            alone[stride * j] = input[i];
-        }
+        let alone = one_per_group(cut.iter().map(|&i| input[i]), GpuRay::zeroed());
         let again = self.dispatch(k, &alone, per, items)?;
         for (j, &i) in cut.iter().enumerate() {
-            let got = &again[per * stride * j..per * (stride * j + 1)];
+            let got = &again[per * GROUP_THREADS * j..per * (GROUP_THREADS * j + 1)];
             if got.iter().any(|h| h.cut != 0) {
                 return Err(GpuError::LoopLimit(format!("ray {i} of the batch")));
             }
@@ -565,12 +571,8 @@ impl<'g> GpuScene<'g> {
             let cut_all: Vec<usize> =
                 (0..lists.len()).filter(|&k| lists[k].first().is_some_and(|h| h.cut != 0)).collect();
             for cut in cut_all.chunks(most / GROUP_THREADS) {
-                let mut alone = vec![GpuRay::zeroed(); GROUP_THREADS * (cut.len() - 1) + 1];
-                let mut alone_counts = vec![0; alone.len()];
-                for (j, &k) in cut.iter().enumerate() {
-                    alone[GROUP_THREADS * j] = input[start + k];
-                    alone_counts[GROUP_THREADS * j] = counts[start + k];
-                }
+                let alone = one_per_group(cut.iter().map(|&k| input[start + k]), GpuRay::zeroed());
+                let alone_counts = one_per_group(cut.iter().map(|&k| counts[start + k]), 0);
                 let again = self.list_run(list, &alone, &alone_counts)?;
                 for (j, &k) in cut.iter().enumerate() {
                     let got = &again[GROUP_THREADS * j];
