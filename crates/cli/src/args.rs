@@ -453,6 +453,11 @@ pub struct MeshArgs {
     /// instead of the surface of the union: for renderers that composite through a depth buffer.
     #[arg(long)]
     pub shells: bool,
+    /// Union: mesh each stretch of a chain with one radius (a streamline) as one body of
+    /// mitred rings instead of a hull per link: fewer triangles on tractograms at the same
+    /// tolerance; slower to certify where streamlines nearly coincide.
+    #[arg(long, conflicts_with = "shells")]
+    pub runs: bool,
     /// Print the summary as one JSON object.
     #[arg(long)]
     pub json: bool,

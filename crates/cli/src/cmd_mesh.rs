@@ -36,7 +36,7 @@ pub fn mesh(a: &MeshArgs) -> Result<(), CliError> {
         Ok(if shells {
             (tessellate(&scene, model, a.tolerance)?, None)
         } else {
-            let (m, r) = tessellate_union_with(&scene, a.tolerance, &UnionOptions { memory_limit })?;
+            let (m, r) = tessellate_union_with(&scene, a.tolerance, &UnionOptions { memory_limit, runs: a.runs })?;
             (m, Some(r))
         })
     })??;
@@ -79,6 +79,7 @@ fn union_json(r: &UnionReport) -> serde_json::Value {
     serde_json::json!({
         "tries": r.tries, "sagitta": r.sagitta, "depth": r.depth, "out": r.out,
         "over_tolerance": r.outside, "min_sin_half": r.min_sin_half,
-        "subdivisions": [r.subdiv.0, r.subdiv.1], "hull_triangles": r.hull_triangles,
+        "subdivisions": [r.subdiv.0, r.subdiv.1], "runs": r.runs, "ring": [r.ring.0, r.ring.1],
+        "input_triangles": r.hull_triangles,
     })
 }

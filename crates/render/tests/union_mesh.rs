@@ -12,7 +12,7 @@ mod trees;
 use checks::{sdf, tubes, P};
 use tubecast::V3;
 use tubecast_render::io::Polyline;
-use tubecast_render::mesh::{tessellate_union, SceneMesh, UnionReport};
+use tubecast_render::mesh::{tessellate_union, tessellate_union_with, SceneMesh, UnionOptions, UnionReport};
 use tubecast_render::scene::Scene;
 
 /// Every check on one scene; returns the mesh and report for case-specific assertions.
@@ -25,7 +25,12 @@ use tubecast_render::scene::Scene;
 /// least depth in one tube, which is smaller), and every sampled point of the union's surface
 /// (crease points included) is within the bound of the mesh.
 fn check(scene: &Scene, eps: f64, bound_holds: bool) -> (SceneMesh, UnionReport) {
-    let (m, rep) = tessellate_union(scene, eps).unwrap();
+    check_with(scene, eps, bound_holds, &UnionOptions::default())
+}
+
+/// [`check`] with the union's options (the runs' bodies).
+fn check_with(scene: &Scene, eps: f64, bound_holds: bool, opts: &UnionOptions) -> (SceneMesh, UnionReport) {
+    let (m, rep) = tessellate_union_with(scene, eps, opts).unwrap();
     checks::closed_manifold(&m);
     checks::embedded(&m);
     let ts = tubes(scene);
@@ -88,9 +93,11 @@ fn disjoint_tubes_are_separate_components() {
         "t",
     )
     .unwrap();
-    let (m, _) = check(&s, 2e-2, true);
-    assert_eq!(checks::components(&m), 2);
-    assert_eq!(m.mesh.parts.len(), 2);
+    for opts in [UnionOptions::default(), RUNS] {
+        let (m, _) = check_with(&s, 2e-2, true, &opts);
+        assert_eq!(checks::components(&m), 2);
+        assert_eq!(m.mesh.parts.len(), 2);
+    }
 }
 
 /// A 'T' and a 'Y' of three links on one node, and crossing tubes: creases of several
@@ -103,7 +110,59 @@ fn bifurcations_and_crossings() {
         line(&[[1.0, -2.0, 0.2], [1.2, 2.0, -0.1]], &[0.25, 0.35]),
     ];
     let s = Scene::from_polylines(&lines, 0.5, "t").unwrap();
-    let (m, _) = check(&s, 1e-2, true);
+    for opts in [UnionOptions::default(), RUNS] {
+        let (m, _) = check_with(&s, 1e-2, true, &opts);
+        assert_eq!(checks::components(&m), 1);
+    }
+}
+
+/// The union with the runs' bodies (`UnionOptions::runs`).
+const RUNS: UnionOptions = UnionOptions { memory_limit: None, runs: true };
+
+/// Streamlines of one radius (a tractogram's tubes): each becomes one body of mitred rings
+/// (`UnionReport::runs`), two of them cross, and the union is smaller than the per-chain
+/// shells (the kernel's `tessellate_chain_solid`, an independent construction) at the same ε.
+#[test]
+fn crossing_streamlines_are_runs_smaller_than_their_shells() {
+    use tubecast_render::mesh::tessellate;
+    use tubecast_render::scene::Model;
+    let wave = |y: f64, z: f64, tilt: f64| {
+        let pts: Vec<[f64; 3]> = (0..=24)
+            .map(|k| k as f64 * 0.25)
+            .map(|x| [x, y + tilt * (x - 3.0) + 0.1 * (1.5 * x).sin(), z + 0.2 * x.cos()])
+            .collect();
+        line(&pts, &[])
+    };
+    let s =
+        Scene::from_polylines(&[wave(0.0, 0.0, 0.0), wave(0.05, 0.08, 0.4), wave(1.5, 0.0, 0.0)], 0.1, "t").unwrap();
+    let eps = 1e-3;
+    let (m, rep) = check_with(&s, eps, true, &RUNS);
+    assert_eq!(rep.runs, 3, "{rep:?}");
+    assert_eq!(checks::components(&m), 2, "{rep:?}");
+    let shells = tessellate(&s, Model::Links, eps).unwrap();
+    assert!(
+        m.mesh.triangles.len() < shells.mesh.triangles.len(),
+        "union {} triangles, shells {} ({rep:?})",
+        m.mesh.triangles.len(),
+        shells.mesh.triangles.len()
+    );
+}
+
+/// A streamline coiled tighter than its diameter (a helix of pitch 0.4 at radius 0.3, every
+/// bend mitred): the bodies of links a turn apart would overlap, so the run is cut (both parts
+/// closed with half-spheres) and the union joins the parts; the surface stays embedded and
+/// within ε.
+#[test]
+fn coiled_streamline_is_cut_into_runs() {
+    let pts: Vec<[f64; 3]> = (0..=60)
+        .map(|k| {
+            let a = 2.0 * std::f64::consts::PI * k as f64 / 40.0;
+            [a.cos(), a.sin(), 0.4 * a / (2.0 * std::f64::consts::PI)]
+        })
+        .collect();
+    let s = Scene::from_polylines(&[line(&pts, &[])], 0.3, "t").unwrap();
+    let (m, rep) = check_with(&s, 1e-2, true, &RUNS);
+    assert!(rep.runs >= 2, "the run must be cut: {rep:?}");
     assert_eq!(checks::components(&m), 1);
 }
 

@@ -118,7 +118,7 @@ pub fn union_estimate(scene: &Scene, eps: f64, n: usize) -> Result<f64, ReportEr
     // Under the same memory limit as the rows built: a sample whose refinements would not fit
     // keeps its last mesh; one whose first union would not fit has no estimate (infinite: the
     // row is left out).
-    let opts = UnionOptions { memory_limit: Some(UNION_MEMORY_LIMIT) };
+    let opts = UnionOptions { memory_limit: Some(UNION_MEMORY_LIMIT), ..Default::default() };
     let m = match tessellate_union_with(&part, eps, &opts) {
         Ok((m, _)) => m,
         Err(MeshError::Memory { .. }) => return Ok(f64::INFINITY),
@@ -214,7 +214,7 @@ pub fn measure_sizes(
             estimated_row(name, KINDS[2], k, r, est)
         });
         let est = pool.install(|| union_estimate(scene, eps, UNION_SAMPLE_LINKS))?;
-        let opts = UnionOptions { memory_limit: Some(UNION_MEMORY_LIMIT) };
+        let opts = UnionOptions { memory_limit: Some(UNION_MEMORY_LIMIT), ..Default::default() };
         let built = if est <= union_cap {
             match pool.install(|| tessellate_union_with(scene, eps, &opts)) {
                 Ok((m, _)) => Some(m),

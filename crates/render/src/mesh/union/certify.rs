@@ -52,17 +52,23 @@ struct Ctx<'a> {
     tubes: &'a [RoundCone<f64>],
     index: &'a Index,
     goal: f64,
+    /// A bound that is good enough: the search for a smaller one stops below it (the caller's
+    /// certificate is at least this much anyway).
+    enough: f64,
     /// Relative rounding allowed in a witness's feasibility (its excess is added to `d`).
     tol: f64,
 }
 
-/// Measures every triangle; `goal` is the tolerance (pieces are split while above it).
+/// Measures every triangle; `goal` is the tolerance (pieces are split while above it);
+/// `enough` a bound below which no tighter one is sought (the sagitta, which the certificate
+/// counts whatever the depth).
 pub(super) fn measure(
     tubes: &[RoundCone<f64>],
     positions: &[P],
     triangles: &[[u32; 3]],
     margin: f64,
     goal: f64,
+    enough: f64,
 ) -> Measure {
     let mut lo = f64::INFINITY;
     let mut hi = f64::NEG_INFINITY;
@@ -75,7 +81,7 @@ pub(super) fn measure(
     }
     let scale = lo.abs().max(hi.abs());
     let index = Index::new(tubes, (4.0 * r_max).max(margin));
-    let ctx = Ctx { tubes, index: &index, goal, tol: 1e-13 * scale };
+    let ctx = Ctx { tubes, index: &index, goal, enough: enough.min(goal), tol: 1e-13 * scale };
     triangles
         .par_iter()
         .map_init(Vec::new, |near, t| {
@@ -204,17 +210,21 @@ fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P) -> (f64, f64, Vec<u32>) {
                 options.push(active.iter().map(|&&(k, _, _)| plane(k, gradient(&ctx.tubes[k as usize], x))).collect());
             }
         }
-        let (d, planes) = options
-            .into_iter()
-            .map(|mut planes| {
-                // Tubes of one streamline or parallel ones give the same normal: the farther
-                // plane implies the nearer, which is dropped (fewer candidates, same W).
-                planes.sort_by(|a, b| (a.0.x, a.0.y, a.0.z, -a.1).partial_cmp(&(b.0.x, b.0.y, b.0.z, -b.1)).unwrap());
-                planes.dedup_by(|b, a| a.0 == b.0);
-                (v.iter().map(|&x| distance(&planes, x, ctx.tol)).fold(0.0, f64::max), planes)
-            })
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-            .expect("one option at least");
+        let mut best: Option<(f64, Vec<(P, f64)>)> = None;
+        for mut planes in options {
+            // Tubes of one streamline or parallel ones give the same normal: the farther
+            // plane implies the nearer, which is dropped (fewer candidates, same W).
+            planes.sort_by(|a, b| (a.0.x, a.0.y, a.0.z, -a.1).partial_cmp(&(b.0.x, b.0.y, b.0.z, -b.1)).unwrap());
+            planes.dedup_by(|b, a| a.0 == b.0);
+            let d = v.iter().map(|&x| distance(&planes, x, ctx.tol, ctx.enough)).fold(0.0, f64::max);
+            if best.as_ref().map_or(true, |b| d < b.0) {
+                best = Some((d, planes));
+            }
+            if d <= ctx.enough {
+                break;
+            }
+        }
+        let (d, planes) = best.expect("one option at least");
         let mut sh = 1.0f64;
         for i in 0..planes.len() {
             for j in i + 1..planes.len() {
@@ -252,9 +262,10 @@ fn crease(a: &RoundCone<f64>, b: &RoundCone<f64>, mut x: P) -> Option<P> {
 /// An upper bound on the distance from `x` to `W = {y : n·y ≥ h for every (n, h)}`: the
 /// distance to the nearest point of `W` among the projections of `x` onto the planes of one,
 /// two or three constraints (the projection onto W is one of them when W is not empty);
-/// infinite when none is in `W`. A candidate may violate a constraint by rounding (`tol`):
+/// infinite when none is in `W`; the search stops at a candidate within `enough`. A candidate
+/// may violate a constraint by rounding (`tol`):
 /// that excess is added.
-fn distance(planes: &[(P, f64)], x: P, tol: f64) -> f64 {
+fn distance(planes: &[(P, f64)], x: P, tol: f64, enough: f64) -> f64 {
     let excess = |y: P| planes.iter().map(|&(n, h)| h - n.dot(y)).fold(0.0, f64::max);
     let ok = |y: P| {
         let e = excess(y);
@@ -271,6 +282,9 @@ fn distance(planes: &[(P, f64)], x: P, tol: f64) -> f64 {
             best = best.min(d);
         }
     }
+    if best <= enough {
+        return best;
+    }
     for i in 0..n {
         for j in i + 1..n {
             let ((a, ha), (b, hb)) = (planes[i], planes[j]);
@@ -286,6 +300,9 @@ fn distance(planes: &[(P, f64)], x: P, tol: f64) -> f64 {
                 best = best.min(d);
             }
         }
+    }
+    if best <= enough {
+        return best;
     }
     // Vertices of three constraints (the projection can be one where W is a narrow cone);
     // many tubes at one piece (a hub of branches) keep to the cheaper candidates.

@@ -4,11 +4,12 @@
 //! (its CSG tree, which unites disjoint pieces by composition and the rest pairwise in order
 //! of size).
 
+use super::piece::Body;
 use super::tube::P;
 use manifold_rust::csg_tree::CsgNode;
 use manifold_rust::linalg::Vec3;
 use manifold_rust::manifold::Manifold;
-use manifold_rust::types::{Error, OpType};
+use manifold_rust::types::{Error, MeshGL64, OpType};
 use std::collections::HashMap;
 use tubecast::V3;
 
@@ -80,13 +81,15 @@ pub(super) struct Built {
 #[derive(Debug)]
 pub(super) struct BuildError(pub String);
 
-/// The union of the hulls of `links`, each a pair of node indices into `centres`/`radii` with
-/// the nodes' subdivision counts `subdiv`.
+/// The union of the runs' bodies and of the hulls of `links` (tube index, node pair into
+/// `centres`/`radii`, with the nodes' subdivision counts `subdiv`); each output triangle names
+/// the tube it lies on.
 pub(super) fn union(
     centres: &[P],
     radii: &[f64],
     subdiv: &[u32],
-    links: &[[usize; 2]],
+    links: &[(u32, [usize; 2])],
+    bodies: &[Body],
     spheres: &mut Spheres,
 ) -> Result<Built, BuildError> {
     for k in subdiv {
@@ -102,8 +105,7 @@ pub(super) fn union(
     use rayon::prelude::*;
     let hulls: Vec<Result<(i32, Manifold), BuildError>> = links
         .par_iter()
-        .enumerate()
-        .map(|(k, &[a, b])| {
+        .map(|&(k, [a, b])| {
             let mut pts = Vec::new();
             points(a, &mut pts);
             points(b, &mut pts);
@@ -114,12 +116,35 @@ pub(super) fn union(
             Ok((h.original_id(), h))
         })
         .collect();
+    // Bodies carry their tubes as face IDs, which manifold keeps on every piece of a face.
+    let runs: Vec<Result<Manifold, BuildError>> = bodies
+        .par_iter()
+        .map(|b| {
+            let mesh = MeshGL64 {
+                num_prop: 3,
+                vert_properties: b.positions.iter().flat_map(|p| [p.x, p.y, p.z]).collect(),
+                tri_verts: b.triangles.iter().flat_map(|t| t.map(u64::from)).collect(),
+                face_id: b.tags.iter().map(|&t| u64::from(t)).collect(),
+                run_original_id: vec![Manifold::reserve_ids(1)],
+                ..Default::default()
+            };
+            let m = Manifold::from_mesh_gl64(&mesh);
+            if m.status() != Error::NoError || m.is_empty() {
+                let l = b.tags.first().copied().unwrap_or(0);
+                return Err(BuildError(format!("the body of the run of link {l} was refused: {:?}", m.status())));
+            }
+            Ok(m)
+        })
+        .collect();
     let mut ids = HashMap::with_capacity(links.len());
-    let mut leaves = Vec::with_capacity(links.len());
-    for (k, h) in hulls.into_iter().enumerate() {
+    let mut leaves = Vec::with_capacity(links.len() + bodies.len());
+    for (&(k, _), h) in links.iter().zip(hulls) {
         let (id, m) = h?;
-        ids.insert(id as u32, k as u32);
+        ids.insert(id as u32, k);
         leaves.push(CsgNode::leaf(m.into_impl()));
+    }
+    for m in runs {
+        leaves.push(CsgNode::leaf(m?.into_impl()));
     }
     let solid = Manifold::from_impl(CsgNode::op_n(OpType::Add, leaves).evaluate());
     if solid.status() != Error::NoError {
@@ -138,8 +163,11 @@ pub(super) fn union(
     let mut link = vec![0u32; triangles.len()];
     for r in 0..gl.run_original_id.len() {
         let (s, e) = (gl.run_index[r] as usize / 3, gl.run_index[r + 1] as usize / 3);
-        let l = ids.get(&gl.run_original_id[r]).copied().unwrap_or(0);
-        link[s..e].iter_mut().for_each(|x| *x = l);
+        match ids.get(&gl.run_original_id[r]) {
+            Some(&l) => link[s..e].iter_mut().for_each(|x| *x = l),
+            // A run's body: the face ID is the tube.
+            None => (s..e).for_each(|t| link[t] = gl.face_id.get(t).map_or(0, |&f| f as u32)),
+        }
     }
     Ok(Built { positions, triangles, link })
 }

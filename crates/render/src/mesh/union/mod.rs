@@ -13,6 +13,7 @@
 
 mod certify;
 mod hull;
+mod piece;
 mod tube;
 
 use super::{MeshError, SceneMesh};
@@ -43,7 +44,12 @@ pub struct UnionReport {
     /// The least and largest subdivisions per octant edge of a node's polyhedron (a sphere of
     /// `8·k²` triangles).
     pub subdiv: (u32, u32),
-    /// The triangles of all the links' hulls (manifold's input).
+    /// The least and largest ring size of the runs' bodies (vertices per ring).
+    pub ring: (u32, u32),
+    /// The runs meshed as one body each (equal-radius stretches of chains).
+    pub runs: usize,
+    /// Manifold's input triangles: the runs' bodies and the other links' hulls (counted at
+    /// their bound `2·(points) − 4`).
     pub hull_triangles: usize,
 }
 
@@ -60,6 +66,11 @@ pub struct UnionOptions {
     /// Refuse, before building, a union whose estimated peak memory exceeds this many bytes
     /// (`None`: no limit).
     pub memory_limit: Option<u64>,
+    /// Mesh each stretch of a chain with one radius (a streamline) as one body of mitred
+    /// rings before the union, instead of a hull per link (`docs/design/union-mesh.md`,
+    /// "Runs"): fewer triangles on tractograms at the same ε; slower to certify where
+    /// streamlines nearly coincide.
+    pub runs: bool,
 }
 
 /// Builds made at most (the first, then refinements where the bound exceeds ε).
@@ -112,7 +123,7 @@ pub fn tessellate_union(scene: &Scene, eps: f64) -> Result<(SceneMesh, UnionRepo
 /// use tubecast_render::scene::Scene;
 /// let line = Polyline { points: vec![[0.0; 3], [4.0, 0.0, 0.0]], radii: vec![] };
 /// let scene = Scene::from_polylines(&[line], 0.5, "tube").unwrap();
-/// let small = UnionOptions { memory_limit: Some(1000) };
+/// let small = UnionOptions { memory_limit: Some(1000), ..Default::default() };
 /// assert!(matches!(tessellate_union_with(&scene, 1e-3, &small), Err(MeshError::Memory { .. })));
 /// ```
 pub fn tessellate_union_with(
@@ -131,30 +142,51 @@ pub fn tessellate_union_with(
     let n = scene.nodes.len();
     let centres: Vec<P> = scene.nodes.iter().map(|x| V3::from(x.pos)).collect();
     let radii: Vec<f64> = (0..n).map(|i| scene.radius(i)).collect();
+    let chains: Vec<Vec<(usize, u32)>> = scene
+        .chains()
+        .iter()
+        .map(|c| {
+            c.nodes
+                .iter()
+                .enumerate()
+                .map(|(i, &v)| (v as usize, c.links.get(i).copied().unwrap_or(u32::MAX)))
+                .collect()
+        })
+        .collect();
     let mut spheres = hull::Spheres::default();
     // Sagitta targets per node (only the links' nodes matter).
     let mut target = vec![FIRST_SAGITTA * eps; n];
     let mut best: Option<(hull::Built, UnionReport)> = None;
     for tries in 1..=TRIES {
+        let bodies = if options.runs { bodies(&chains, &centres, &radii, &target) } else { Vec::new() };
+        let mut in_body = vec![false; pairs.len()];
+        for b in &bodies {
+            b.tags.iter().for_each(|&t| in_body[t as usize] = true);
+        }
+        let hull_links: Vec<(u32, [usize; 2])> =
+            pairs.iter().enumerate().filter(|(k, _)| !in_body[*k]).map(|(k, &p)| (k as u32, p)).collect();
         let subdiv: Vec<u32> = (0..n).map(|i| spheres.subdivisions_for(radii[i], target[i])).collect();
         // Every hull has at most 2·(its points) − 4 triangles.
         let points = |k: u32| 4 * (k as usize) * (k as usize) + 2;
-        let hull_tris: usize = pairs.iter().map(|&[a, b]| 2 * (points(subdiv[a]) + points(subdiv[b]))).sum();
+        let input_tris: usize =
+            hull_links.iter().map(|&(_, [a, b])| 2 * (points(subdiv[a]) + points(subdiv[b]))).sum::<usize>()
+                + bodies.iter().map(|b| b.triangles.len()).sum::<usize>();
         if let Some(limit) = options.memory_limit {
-            let estimate = (UNION_BASE_BYTES + hull_tris as f64 * UNION_BYTES_PER_HULL_TRIANGLE) as u64;
+            let estimate = (UNION_BASE_BYTES + input_tris as f64 * UNION_BYTES_PER_HULL_TRIANGLE) as u64;
             if estimate > limit {
                 if let Some(b) = best.take() {
                     // A refinement that would not fit: keep the mesh already made.
                     best = Some(b);
                     break;
                 }
-                return Err(MeshError::Memory { eps, estimate, limit, hull_triangles: hull_tris });
+                return Err(MeshError::Memory { eps, estimate, limit, hull_triangles: input_tris });
             }
         }
-        let built = hull::union(&centres, &radii, &subdiv, &pairs, &mut spheres)
+        let built = hull::union(&centres, &radii, &subdiv, &hull_links, &bodies, &mut spheres)
             .map_err(|e| MeshError::Union { eps, what: e.0 })?;
         // Every point of a tube's polyhedra-hull boundary is within the larger sagitta of its
-        // two spheres; positions carry rounding of a few ulps of the coordinates.
+        // two spheres; positions carry rounding of a few ulps of the coordinates. A run's
+        // body certifies its own sagitta.
         let sag: Vec<f64> = (0..n)
             .map(|i| {
                 let c = centres[i];
@@ -162,9 +194,14 @@ pub fn tessellate_union_with(
                 radii[i] * spheres.get(subdiv[i]).sagitta + ulps
             })
             .collect();
-        let sagitta = pairs.iter().map(|&[a, b]| sag[a].max(sag[b])).fold(0.0, f64::max);
+        let sagitta = hull_links
+            .iter()
+            .map(|&(_, [a, b])| sag[a].max(sag[b]))
+            .chain(bodies.iter().map(|b| b.sagitta))
+            .fold(0.0, f64::max);
+        let hull_nodes = || hull_links.iter().flat_map(|(_, p)| p.map(|i| subdiv[i]));
         let margin = 4.0 * eps.max(sagitta);
-        let m = certify::measure(&tubes, &built.positions, &built.triangles, margin, eps);
+        let m = certify::measure(&tubes, &built.positions, &built.triangles, margin, eps, sagitta);
         let mut report = UnionReport {
             tries,
             sagitta,
@@ -172,11 +209,10 @@ pub fn tessellate_union_with(
             out: m.out,
             outside: m.over.len(),
             min_sin_half: m.min_sin_half,
-            subdiv: (
-                pairs.iter().flat_map(|p| p.map(|i| subdiv[i])).min().unwrap_or(0),
-                pairs.iter().flat_map(|p| p.map(|i| subdiv[i])).max().unwrap_or(0),
-            ),
-            hull_triangles: hull_tris,
+            subdiv: (hull_nodes().min().unwrap_or(0), hull_nodes().max().unwrap_or(0)),
+            ring: (bodies.iter().map(|b| b.ring).min().unwrap_or(0), bodies.iter().map(|b| b.ring).max().unwrap_or(0)),
+            runs: bodies.len(),
+            hull_triangles: input_tris,
         };
         if !report.certified().is_finite() {
             report.depth = f64::INFINITY;
@@ -191,12 +227,26 @@ pub fn tessellate_union_with(
         // The depth bound is about the sagitta over sin(β/2): refine the spheres of the tubes
         // that set each excess by the factor that would meet ε (at most 1/16 per build).
         let mut changed = false;
+        // A run's links refine with their body's sagitta and ring, a hull's with its spheres.
+        let mut body_of = vec![None; pairs.len()];
+        for b in &bodies {
+            b.tags.iter().for_each(|&t| body_of[t as usize] = Some((b.sagitta, b.ring < piece::MAX_RING)));
+        }
+        let before = target.clone();
         for (d, set) in &m.over {
+            // A run's rings grow all around the tube and into its caps: its links are refined
+            // only where one build can plausibly fix the crease (a finite bound within 4ε);
+            // the others are reported.
+            let runs = set.iter().any(|&t| body_of[t as usize].is_some());
+            if runs && (d.is_nan() || *d > 4.0 * eps) {
+                continue;
+            }
             let f = if d.is_finite() { (0.9 * eps / d).clamp(1.0 / 16.0, 0.9) } else { 1.0 / 16.0 };
             for &t in set {
                 for node in pairs[t as usize] {
-                    let s = (sag[node] * f).min(target[node]);
-                    if s < target[node] && subdiv[node] < hull::MAX_SUBDIV {
+                    let (now, room) = body_of[t as usize].unwrap_or((sag[node], subdiv[node] < hull::MAX_SUBDIV));
+                    let s = (now.min(before[node]) * f).min(target[node]);
+                    if s < target[node] && room {
                         target[node] = s;
                         changed = true;
                     }
@@ -209,6 +259,31 @@ pub fn tessellate_union_with(
     }
     let (built, report) = best.expect("at least one build");
     Ok((assemble(scene, built, &links, report.certified()), report))
+}
+
+/// The runs' bodies at the current sagitta targets: each run at its ring size, cut where its
+/// body would turn back onto itself (both parts then close with half-spheres).
+fn bodies(chains: &[Vec<(usize, u32)>], centres: &[P], radii: &[f64], target: &[f64]) -> Vec<piece::Body> {
+    use rayon::prelude::*;
+    piece::runs(chains, centres, radii, target)
+        .into_par_iter()
+        .flat_map_iter(|run| {
+            let mut todo = vec![run];
+            let mut out = Vec::new();
+            while let Some(run) = todo.pop() {
+                let sizes = piece::ring_sizes(&run, centres, target);
+                match piece::body(&run, centres, &sizes) {
+                    Ok(b) => out.push(b),
+                    Err(j) => {
+                        let r = run.r;
+                        todo.push(piece::Run { nodes: run.nodes[..=j].to_vec(), links: run.links[..j].to_vec(), r });
+                        todo.push(piece::Run { nodes: run.nodes[j..].to_vec(), links: run.links[j..].to_vec(), r });
+                    }
+                }
+            }
+            out
+        })
+        .collect()
 }
 
 /// The scene's links as round cones (radius 0 and non-finite data refused), with their

@@ -1,0 +1,449 @@
+//! Runs of equal-radius links meshed as one closed body each, before the union: a ring of `n`
+//! vertices on the node sphere at every node (in the plane that bisects the joint, a *mitre*),
+//! bands of triangles between consecutive rings, and a polyhedral half-sphere at each end of
+//! the run. A streamline of a tractogram becomes one body of about `2n` triangles per link,
+//! where a hull of two sphere polyhedra per link (`hull.rs`) leaves every joint a crease of
+//! the sphere's facets.
+//!
+//! The body is inscribed (every vertex on a node sphere, every triangle in one link's round
+//! cone or one ball), and it contains every link's round cone shrunk by the run's sagitta
+//! `s = r − R` (`R` measured on the triangles, below), which is all the union's certificate
+//! needs from a construction (`docs/design/union-mesh.md`, "Runs"). Joints that cannot be
+//! mitred within the budget, or whose neighbouring links are too short for the rings to stay
+//! apart, end the run there: both sides then close with a half-sphere, and manifold's union
+//! joins them.
+
+use super::tube::P;
+use std::collections::HashMap;
+use std::f64::consts::{FRAC_PI_2, PI};
+use tubecast::V3;
+
+/// Ring vertices at most (a ring's sagitta goes as `1/n²`: `r·1.2·10⁻⁶` at the cap).
+pub(super) const MAX_RING: u32 = 2048;
+
+/// A run of links to mesh as one body: nodes in chain order, the links between them, one
+/// radius.
+#[derive(Clone, Debug)]
+pub(super) struct Run {
+    pub nodes: Vec<usize>,
+    pub links: Vec<u32>,
+    pub r: f64,
+}
+
+/// One run's closed body: outward-oriented triangles, per triangle the link (tube index) it
+/// stands for, the ring size and the certified sagitta (every point of the run's links'
+/// surfaces is within it of the body).
+pub(super) struct Body {
+    pub positions: Vec<P>,
+    pub triangles: Vec<[u32; 3]>,
+    pub tags: Vec<u32>,
+    pub ring: u32,
+    pub sagitta: f64,
+}
+
+fn unit(v: P) -> P {
+    v * (1.0 / v.length())
+}
+
+/// Half-angle cosine and sine of the bend between unit directions `d1` and `d2`.
+fn half(d1: P, d2: P) -> (f64, f64) {
+    let t = d1.cross(d2).length().atan2(d1.dot(d2)) / 2.0;
+    (t.cos(), t.sin())
+}
+
+/// The runs of the scene's chains: maximal stretches of links of positive length whose nodes
+/// all have the same radius, cut at joints that cannot be mitred (see [`mitre`]). `target` is
+/// the sagitta target per node. Links in no run are left to the hulls.
+pub(super) fn runs(chains: &[Vec<(usize, u32)>], centres: &[P], radii: &[f64], target: &[f64]) -> Vec<Run> {
+    let mut out = Vec::new();
+    for chain in chains {
+        // chain[i] = (node i, link from node i to node i + 1); the last entry's link is unused.
+        let mut k = 0;
+        while k + 1 < chain.len() {
+            let (n0, _) = chain[k];
+            let r = radii[n0];
+            // The stretch of equal radii and positive lengths from k.
+            let mut e = k;
+            while e + 1 < chain.len() && radii[chain[e + 1].0] == r && centres[chain[e + 1].0] != centres[chain[e].0] {
+                e += 1;
+            }
+            if e == k {
+                k += 1;
+                continue;
+            }
+            let nodes: Vec<usize> = chain[k..=e].iter().map(|c| c.0).collect();
+            let links: Vec<u32> = chain[k..e].iter().map(|c| c.1).collect();
+            // Cut where a joint cannot be mitred.
+            let dirs: Vec<P> = nodes.windows(2).map(|w| unit(centres[w[1]] - centres[w[0]])).collect();
+            let lens: Vec<f64> = nodes.windows(2).map(|w| (centres[w[1]] - centres[w[0]]).length()).collect();
+            let bend: Vec<(f64, f64)> = (0..nodes.len())
+                .map(|j| if j == 0 || j + 1 == nodes.len() { (1.0, 0.0) } else { half(dirs[j - 1], dirs[j]) })
+                .collect();
+            let mut start = 0;
+            let mut cuts = Vec::new();
+            for j in 1..nodes.len() {
+                if j + 1 == nodes.len() || !mitre(j, &bend, &lens, r, target[nodes[j]]) {
+                    cuts.push((start, j));
+                    start = j;
+                }
+            }
+            // A run is meshed at the least target of its nodes (`ring_size`): its bends must
+            // fit that one too, else it is cut there as well (the parts' targets are no
+            // smaller, so their bends all fit).
+            for (a, b) in cuts {
+                let s = nodes[a..=b].iter().map(|&i| target[i]).fold(f64::INFINITY, f64::min);
+                let mut from = a;
+                for j in a + 1..=b {
+                    if j == b || r * (1.0 - bend[j].0) > 0.5 * s {
+                        out.push(Run { nodes: nodes[from..=j].to_vec(), links: links[from..j].to_vec(), r });
+                        from = j;
+                    }
+                }
+            }
+            k = e;
+        }
+    }
+    out
+}
+
+/// Whether interior node `j` of a stretch may be a mitre: the bend costs at most half the
+/// sagitta target (`r·(1 − cos(θ/2))`, which also keeps `θ` below a right angle), and each of
+/// its two links is long enough for the conditions of `docs/design/union-mesh.md` ("Runs"):
+/// each end ring lies strictly on its link's side of the other end's plane, a shrunk round
+/// cone's part beyond a mitre stays within the next link's cylinder (`L ≥ r·sin θ` for the
+/// bends at both ends), and the outer wedge of a joint's ball stays behind the next plane
+/// (`L·cos(θ/2) > r·sin(θ/2)`). The neighbours' bends are taken as mitred: a cut there (a
+/// bend of 0) only relaxes every condition.
+fn mitre(j: usize, bend: &[(f64, f64)], lens: &[f64], r: f64, target: f64) -> bool {
+    let (c, s) = bend[j];
+    if r * (1.0 - c) > 0.5 * target {
+        return false;
+    }
+    let r = r * (1.0 + 1e-9);
+    // The sine of the angle between two mitre planes' normals: at most the sine of the sum
+    // of the half-bends, or 1 past a right angle.
+    let tilt =
+        |(c1, s1): (f64, f64), (c2, s2): (f64, f64)| if c1 * c2 - s1 * s2 >= 0.0 { s1 * c2 + c1 * s2 } else { 1.0 };
+    let ok = |len: f64, (co, so): (f64, f64)| {
+        let t = tilt((co, so), (c, s));
+        len * c > r * t
+            && len * co > r * t
+            && len >= r * 2.0 * s * c
+            && len >= r * 2.0 * so * co
+            && len * c > r * s
+            && len * co > r * so
+    };
+    ok(lens[j - 1], bend[j - 1]) && ok(lens[j], bend[j + 1])
+}
+
+/// The ring sizes of a run, per node: the least `n` whose ring keeps within the node's
+/// sagitta target `s`, `r·(1 − cos(π/n)·cos(θ/2)) ≤ s` at a mitre of bend `θ`, and at the
+/// run's ends `r·(1 − cos(π/n)·cos(Δφ/2))` on the caps' latitude bands of
+/// `Δφ = π/(2·⌈n/2⌉)`. Sizes vary along the run: a refinement raises them only near the
+/// crease that asked for it.
+pub(super) fn ring_sizes(run: &Run, centres: &[P], target: &[f64]) -> Vec<u32> {
+    let m = run.nodes.len() - 1;
+    (0..=m)
+        .map(|j| {
+            let c = if j == 0 || j == m {
+                1.0
+            } else {
+                let [a, b, d] = [j - 1, j, j + 1].map(|i| centres[run.nodes[i]]);
+                half(unit(b - a), unit(d - b)).0
+            };
+            let s = target[run.nodes[j]];
+            // Margin for the bands' diagonals and the rounding, which the body measures.
+            let want = 1.0 - 0.8 * s / run.r;
+            let end = j == 0 || j == m;
+            let fits = |n: u32| {
+                let ring = (PI / n as f64).cos();
+                let lat = if end { (FRAC_PI_2 / latitudes(n) as f64 / 2.0).cos() } else { 1.0 };
+                ring * c >= want && ring * lat >= want
+            };
+            // The sagitta goes as 1/n²: start from that estimate.
+            let mut n = ((PI * PI * run.r / (1.6 * s)).sqrt() as u32).clamp(4, MAX_RING);
+            while n > 4 && fits(n - 1) {
+                n -= 1;
+            }
+            while n < MAX_RING && !fits(n) {
+                n += 1;
+            }
+            n
+        })
+        .collect()
+}
+
+/// Latitude bands of a half-sphere cap for rings of `n`.
+fn latitudes(n: u32) -> u32 {
+    n.div_ceil(2).max(2)
+}
+
+/// Meshes a run with ring sizes `sizes` (per node). `Err(j)`: the bodies of two links that
+/// are not neighbours may overlap (the run turns back on itself); cut the run at its node `j`.
+pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32]) -> Result<Body, usize> {
+    let r = run.r;
+    let pts: Vec<P> = run.nodes.iter().map(|&i| centres[i]).collect();
+    let m = pts.len() - 1;
+    let dirs: Vec<P> = pts.windows(2).map(|w| unit(w[1] - w[0])).collect();
+    let mut positions: Vec<P> = Vec::new();
+    // Rings in order along the run: (first vertex, size). Ring vertex i of size n sits at
+    // angle 2πi/n in a frame carried along the run by each joint's rotation (parallel
+    // transport), so that rings of equal size line up.
+    let mut rings: Vec<(usize, usize)> = Vec::new();
+    let mut ring = |c: P, rad: f64, f1: P, f2: P, n: u32, positions: &mut Vec<P>| {
+        rings.push((positions.len(), n as usize));
+        for i in 0..n {
+            let (sa, ca) = (2.0 * PI * i as f64 / n as f64).sin_cos();
+            positions.push(c + (f1 * ca + f2 * sa) * rad);
+        }
+    };
+    let d0 = dirs[0];
+    let helper = if d0.x.abs() < 0.6 { V3::new(1.0, 0.0, 0.0) } else { V3::new(0.0, 1.0, 0.0) };
+    let mut e1 = unit(helper - d0 * helper.dot(d0));
+    let lat = |n: u32| -> Vec<f64> {
+        let k = latitudes(n);
+        (1..k).map(|j| FRAC_PI_2 * j as f64 / k as f64).collect()
+    };
+    // Start cap: its pole, then its latitudes towards the equator (ring of node 0).
+    let (lat0, lat1) = (lat(sizes[0]), lat(sizes[m]));
+    positions.push(pts[0] - d0 * r);
+    let e2 = d0.cross(e1);
+    // A latitude ring of radius r·cos φ dips r·cos²φ·(1 − cos(π/n)) below the sphere between
+    // its vertices: n·cos φ vertices keep the equator's dip.
+    let cap_size = |n: u32, phi: f64| ((n as f64 * phi.cos()).ceil() as u32).max(3);
+    for &phi in lat0.iter().rev() {
+        ring(pts[0] - d0 * (r * phi.sin()), r * phi.cos(), e1, e2, cap_size(sizes[0], phi), &mut positions);
+    }
+    // The node rings: the equator at each end, the mitre (bisecting plane) in between.
+    let mut normals = vec![d0];
+    ring(pts[0], r, e1, e2, sizes[0], &mut positions);
+    for j in 1..m {
+        let (a, b) = (dirs[j - 1], dirs[j]);
+        let axis = a.cross(b);
+        let theta = axis.length().atan2(a.dot(b));
+        let rot = |v: P, t: f64| {
+            if axis.length() == 0.0 {
+                return v;
+            }
+            let k = unit(axis);
+            v * t.cos() + k.cross(v) * t.sin() + k * (k.dot(v) * (1.0 - t.cos()))
+        };
+        let u = unit(a + b);
+        let h = unit(rot(e1, theta / 2.0));
+        let h = unit(h - u * h.dot(u));
+        ring(pts[j], r, h, u.cross(h), sizes[j], &mut positions);
+        normals.push(u);
+        e1 = unit(rot(e1, theta));
+        e1 = unit(e1 - b * e1.dot(b));
+    }
+    let d = dirs[m - 1];
+    e1 = unit(e1 - d * e1.dot(d));
+    let e2 = d.cross(e1);
+    ring(pts[m], r, e1, e2, sizes[m], &mut positions);
+    normals.push(d);
+    // End cap: its latitudes, then its pole.
+    for &phi in &lat1 {
+        ring(pts[m] + d * (r * phi.sin()), r * phi.cos(), e1, e2, cap_size(sizes[m], phi), &mut positions);
+    }
+    positions.push(pts[m] + d * r);
+    let nl = lat0.len();
+    // Ring index of node j's ring.
+    let node_ring = |j: usize| nl + j;
+
+    // Bands: band b joins ring b and b + 1; start cap bands come first, then one per link,
+    // then the end cap's. Rings of different sizes are zipped by angle.
+    let mut triangles: Vec<[u32; 3]> = Vec::new();
+    let mut band_of: Vec<usize> = Vec::new();
+    const START_FAN: usize = usize::MAX;
+    const END_FAN: usize = usize::MAX - 1;
+    let (s0, n0) = rings[0];
+    for i in 0..n0 {
+        triangles.push([0, (s0 + (i + 1) % n0) as u32, (s0 + i) as u32]);
+        band_of.push(START_FAN);
+    }
+    for b in 0..rings.len() - 1 {
+        let ((sa, na), (sb, nb)) = (rings[b], rings[b + 1]);
+        let va = |i: usize| (sa + i % na) as u32;
+        let vb = |i: usize| (sb + i % nb) as u32;
+        let (mut i, mut k) = (0, 0);
+        while i < na || k < nb {
+            // Advance the ring whose next vertex comes first in angle (ties: the lower ring
+            // when its next quad diagonal is the shorter).
+            let next_a = (i + 1) as f64 / na as f64;
+            let next_b = (k + 1) as f64 / nb as f64;
+            let step_a = if i == na {
+                false
+            } else if k == nb || next_a < next_b {
+                true
+            } else if next_b < next_a {
+                false
+            } else {
+                let dist = |x: u32, y: u32| (positions[x as usize] - positions[y as usize]).length2();
+                dist(va(i + 1), vb(k)) <= dist(va(i), vb(k + 1))
+            };
+            if step_a {
+                triangles.push([va(i), va(i + 1), vb(k)]);
+                i += 1;
+            } else {
+                triangles.push([va(i), vb(k + 1), vb(k)]);
+                k += 1;
+            }
+            band_of.push(b);
+        }
+    }
+    let last = positions.len() as u32 - 1;
+    let (sl, nl_last) = *rings.last().expect("a run has rings");
+    for i in 0..nl_last {
+        triangles.push([last, (sl + i) as u32, (sl + (i + 1) % nl_last) as u32]);
+        band_of.push(END_FAN);
+    }
+    // Which link each triangle stands for.
+    let link_of = |b: usize| -> usize {
+        match b {
+            START_FAN => 0,
+            END_FAN => m - 1,
+            b => b.saturating_sub(nl).min(m - 1),
+        }
+    };
+    let tags: Vec<u32> = band_of.iter().map(|&b| run.links[link_of(b)]).collect();
+    // Outward: the enclosed volume is positive.
+    let vol: f64 = triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| positions[i as usize] - pts[0]);
+            a.dot(b.cross(c))
+        })
+        .sum();
+    if vol < 0.0 {
+        triangles.iter_mut().for_each(|t| t.swap(1, 2));
+    }
+
+    // Bodies of links that are not neighbours must be apart: a plane at a node ring between
+    // them separates them, or the run is cut.
+    let body_verts = |l: usize| -> Vec<usize> {
+        let lo = if l == 0 { 0 } else { node_ring(l) };
+        let hi = if l + 1 == m { rings.len() - 1 } else { node_ring(l + 1) };
+        let mut v: Vec<usize> = (rings[lo].0..rings[hi].0 + rings[hi].1).collect();
+        if l == 0 {
+            v.push(0);
+        }
+        if l + 1 == m {
+            v.push(positions.len() - 1);
+        }
+        v
+    };
+    if m >= 3 {
+        let boxes: Vec<(P, P)> = (0..m)
+            .map(|l| {
+                let (a, b) = (pts[l], pts[l + 1]);
+                let lo = V3::new(a.x.min(b.x), a.y.min(b.y), a.z.min(b.z));
+                let hi = V3::new(a.x.max(b.x), a.y.max(b.y), a.z.max(b.z));
+                (lo - V3::new(r, r, r) * 1.001, hi + V3::new(r, r, r) * 1.001)
+            })
+            .collect();
+        let cell = boxes.iter().map(|(a, b)| (*b - *a).max_abs()).fold(0.0, f64::max);
+        let key = |p: P| [p.x, p.y, p.z].map(|x| (x / cell).floor() as i64);
+        let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+        for (l, (lo, hi)) in boxes.iter().enumerate() {
+            let (a, b) = (key(*lo), key(*hi));
+            for x in a[0]..=b[0] {
+                for y in a[1]..=b[1] {
+                    for z in a[2]..=b[2] {
+                        grid.entry([x, y, z]).or_default().push(l);
+                    }
+                }
+            }
+        }
+        let overlap = |a: &(P, P), b: &(P, P)| {
+            a.0.x <= b.1.x && b.0.x <= a.1.x && a.0.y <= b.1.y && b.0.y <= a.1.y && a.0.z <= b.1.z && b.0.z <= a.1.z
+        };
+        let side = |node: usize, v: &[usize]| {
+            let (c, u) = (pts[node], normals[node]);
+            v.iter()
+                .map(|&i| u.dot(positions[i] - c))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |m, x| (m.0.min(x), m.1.max(x)))
+        };
+        for cellv in grid.values() {
+            for (x, &l) in cellv.iter().enumerate() {
+                for &q in &cellv[x + 1..] {
+                    let (l, q) = (l.min(q), l.max(q));
+                    if q < l + 2 || !overlap(&boxes[l], &boxes[q]) {
+                        continue;
+                    }
+                    // Link l's body is behind the plane of its far ring (node l + 1), q's is
+                    // beyond the plane of its near ring (node q).
+                    let tol = 1e-12 * (r + pts[l].max_abs());
+                    if !(side(l + 1, &body_verts(q)).0 > tol || side(q, &body_verts(l)).1 < -tol) {
+                        return Err(l + 1);
+                    }
+                }
+            }
+        }
+    }
+
+    // The certificate: R, the radius of the shrunk round cones the body holds. Bands: a line
+    // parallel to link l's axis within R of it meets no band triangle of l (their projections
+    // along the axis keep R from it), so it runs inside the body from one ring's polygon to
+    // the other's. Caps: the half-ball of radius R behind the end ring's plane meets no cap
+    // triangle.
+    let mut big_r = f64::INFINITY;
+    for (t, &b) in triangles.iter().zip(&band_of) {
+        let corners = t.map(|i| positions[i as usize]);
+        let d = if b != START_FAN && b != END_FAN && b >= nl && b < nl + m {
+            let l = b - nl;
+            let (o, d) = (pts[l], dirs[l]);
+            let g1 = unit(if d.x.abs() < 0.6 { V3::new(1.0, 0.0, 0.0) } else { V3::new(0.0, 1.0, 0.0) }.cross(d));
+            let g2 = d.cross(g1);
+            dist_2d_triangle(corners.map(|v| [(v - o).dot(g1), (v - o).dot(g2)]))
+        } else {
+            let end = if b == START_FAN || b < nl { 0 } else { m };
+            dist_point_triangle(pts[end], corners[0], corners[1], corners[2])
+        };
+        big_r = big_r.min(d);
+    }
+    let extent = pts.iter().map(|p| p.max_abs()).fold(0.0, f64::max) + r;
+    let sagitta = (r - big_r).max(0.0) + 16.0 * f64::EPSILON * extent;
+    let ring = sizes.iter().copied().max().unwrap_or(0);
+    Ok(Body { positions, triangles, tags, ring, sagitta })
+}
+
+/// Distance from the origin to a filled 2-D triangle.
+fn dist_2d_triangle(q: [[f64; 2]; 3]) -> f64 {
+    let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
+    let s: Vec<f64> = (0..3).map(|i| cross(q[i], q[(i + 1) % 3])).collect();
+    if (s[0] >= 0.0 && s[1] >= 0.0 && s[2] >= 0.0) || (s[0] <= 0.0 && s[1] <= 0.0 && s[2] <= 0.0) {
+        return 0.0;
+    }
+    (0..3)
+        .map(|i| {
+            let (a, b) = (q[i], q[(i + 1) % 3]);
+            let ab = [b[0] - a[0], b[1] - a[1]];
+            let l2 = ab[0] * ab[0] + ab[1] * ab[1];
+            let t = if l2 > 0.0 { (-(a[0] * ab[0] + a[1] * ab[1]) / l2).clamp(0.0, 1.0) } else { 0.0 };
+            let p = [a[0] + t * ab[0], a[1] + t * ab[1]];
+            p[0].hypot(p[1])
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Distance from `p` to the filled triangle `abc`.
+fn dist_point_triangle(p: P, a: P, b: P, c: P) -> f64 {
+    let n = (b - a).cross(c - a);
+    let nn = n.length2();
+    let seg = |a: P, b: P| {
+        let ab = b - a;
+        let l2 = ab.length2();
+        let t = if l2 > 0.0 { ((p - a).dot(ab) / l2).clamp(0.0, 1.0) } else { 0.0 };
+        (p - (a + ab * t)).length()
+    };
+    let edges = seg(a, b).min(seg(b, c)).min(seg(c, a));
+    if nn == 0.0 {
+        return edges;
+    }
+    let inside = [(a, b), (b, c), (c, a)].iter().all(|&(x, y)| (y - x).cross(p - x).dot(n) >= 0.0);
+    if inside {
+        (p - a).dot(n).abs() / nn.sqrt()
+    } else {
+        edges
+    }
+}
