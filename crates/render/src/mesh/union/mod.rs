@@ -142,29 +142,21 @@ pub fn tessellate_union_with(
     let n = scene.nodes.len();
     let centres: Vec<P> = scene.nodes.iter().map(|x| V3::from(x.pos)).collect();
     let radii: Vec<f64> = (0..n).map(|i| scene.radius(i)).collect();
-    let chains: Vec<Vec<(usize, u32)>> = scene
-        .chains()
-        .iter()
-        .map(|c| {
-            c.nodes
-                .iter()
-                .enumerate()
-                .map(|(i, &v)| (v as usize, c.links.get(i).copied().unwrap_or(u32::MAX)))
-                .collect()
-        })
-        .collect();
+    // Only the runs need the chains.
+    let chains = if options.runs { scene.chains() } else { Vec::new() };
     let mut spheres = hull::Spheres::default();
     // Sagitta targets per node (only the links' nodes matter).
     let mut target = vec![FIRST_SAGITTA * eps; n];
     let mut best: Option<(hull::Built, UnionReport)> = None;
     for tries in 1..=TRIES {
         let bodies = if options.runs { bodies(&chains, &centres, &radii, &target) } else { Vec::new() };
-        let mut in_body = vec![false; pairs.len()];
+        // Per link: its run's body's sagitta and whether its rings may still grow (`None`: a hull).
+        let mut body_of = vec![None; pairs.len()];
         for b in &bodies {
-            b.tags.iter().for_each(|&t| in_body[t as usize] = true);
+            b.tags.iter().for_each(|&t| body_of[t as usize] = Some((b.sagitta, b.ring < piece::MAX_RING)));
         }
         let hull_links: Vec<(u32, [usize; 2])> =
-            pairs.iter().enumerate().filter(|(k, _)| !in_body[*k]).map(|(k, &p)| (k as u32, p)).collect();
+            pairs.iter().enumerate().filter(|(k, _)| body_of[*k].is_none()).map(|(k, &p)| (k as u32, p)).collect();
         let subdiv: Vec<u32> = (0..n).map(|i| spheres.subdivisions_for(radii[i], target[i])).collect();
         // Every hull has at most 2·(its points) − 4 triangles.
         let points = |k: u32| 4 * (k as usize) * (k as usize) + 2;
@@ -228,10 +220,6 @@ pub fn tessellate_union_with(
         // that set each excess by the factor that would meet ε (at most 1/16 per build).
         let mut changed = false;
         // A run's links refine with their body's sagitta and ring, a hull's with its spheres.
-        let mut body_of = vec![None; pairs.len()];
-        for b in &bodies {
-            b.tags.iter().for_each(|&t| body_of[t as usize] = Some((b.sagitta, b.ring < piece::MAX_RING)));
-        }
         let before = target.clone();
         for (d, set) in &m.over {
             // A run's rings grow all around the tube and into its caps: its links are refined
@@ -263,7 +251,7 @@ pub fn tessellate_union_with(
 
 /// The runs' bodies at the current sagitta targets: each run at its ring size, cut where its
 /// body would turn back onto itself (both parts then close with half-spheres).
-fn bodies(chains: &[Vec<(usize, u32)>], centres: &[P], radii: &[f64], target: &[f64]) -> Vec<piece::Body> {
+fn bodies(chains: &[crate::scene::Chain], centres: &[P], radii: &[f64], target: &[f64]) -> Vec<piece::Body> {
     use rayon::prelude::*;
     piece::runs(chains, centres, radii, target)
         .into_par_iter()

@@ -13,7 +13,8 @@
 //! apart, end the run there: both sides then close with a half-sphere, and manifold's union
 //! joins them.
 
-use super::tube::P;
+use super::tube::{unit, P};
+use crate::scene::Chain;
 use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, PI};
 use tubecast::V3;
@@ -41,8 +42,10 @@ pub(super) struct Body {
     pub sagitta: f64,
 }
 
-fn unit(v: P) -> P {
-    v * (1.0 / v.length())
+/// A unit vector perpendicular to the unit vector `d`.
+fn across(d: P) -> P {
+    let helper = if d.x.abs() < 0.6 { V3::new(1.0, 0.0, 0.0) } else { V3::new(0.0, 1.0, 0.0) };
+    unit(helper - d * helper.dot(d))
 }
 
 /// Half-angle cosine and sine of the bend between unit directions `d1` and `d2`.
@@ -54,25 +57,24 @@ fn half(d1: P, d2: P) -> (f64, f64) {
 /// The runs of the scene's chains: maximal stretches of links of positive length whose nodes
 /// all have the same radius, cut at joints that cannot be mitred (see [`mitre`]). `target` is
 /// the sagitta target per node. Links in no run are left to the hulls.
-pub(super) fn runs(chains: &[Vec<(usize, u32)>], centres: &[P], radii: &[f64], target: &[f64]) -> Vec<Run> {
+pub(super) fn runs(chains: &[Chain], centres: &[P], radii: &[f64], target: &[f64]) -> Vec<Run> {
     let mut out = Vec::new();
     for chain in chains {
-        // chain[i] = (node i, link from node i to node i + 1); the last entry's link is unused.
+        let node = |i: usize| chain.nodes[i] as usize;
         let mut k = 0;
-        while k + 1 < chain.len() {
-            let (n0, _) = chain[k];
-            let r = radii[n0];
+        while k + 1 < chain.nodes.len() {
+            let r = radii[node(k)];
             // The stretch of equal radii and positive lengths from k.
             let mut e = k;
-            while e + 1 < chain.len() && radii[chain[e + 1].0] == r && centres[chain[e + 1].0] != centres[chain[e].0] {
+            while e + 1 < chain.nodes.len() && radii[node(e + 1)] == r && centres[node(e + 1)] != centres[node(e)] {
                 e += 1;
             }
             if e == k {
                 k += 1;
                 continue;
             }
-            let nodes: Vec<usize> = chain[k..=e].iter().map(|c| c.0).collect();
-            let links: Vec<u32> = chain[k..e].iter().map(|c| c.1).collect();
+            let nodes: Vec<usize> = (k..=e).map(node).collect();
+            let links: Vec<u32> = chain.links[k..e].to_vec();
             // Cut where a joint cannot be mitred.
             let dirs: Vec<P> = nodes.windows(2).map(|w| unit(centres[w[1]] - centres[w[0]])).collect();
             let lens: Vec<f64> = nodes.windows(2).map(|w| (centres[w[1]] - centres[w[0]]).length()).collect();
@@ -87,9 +89,10 @@ pub(super) fn runs(chains: &[Vec<(usize, u32)>], centres: &[P], radii: &[f64], t
                     start = j;
                 }
             }
-            // A run is meshed at the least target of its nodes (`ring_size`): its bends must
-            // fit that one too, else it is cut there as well (the parts' targets are no
-            // smaller, so their bends all fit).
+            // Cut also where a bend exceeds half the least target of its stretch between cuts
+            // (a refined node's small target cuts the sharper bends near it). Conservative:
+            // ring sizes are per node (`ring_sizes`), so the bound needs each mitre to fit only
+            // its own node's target.
             for (a, b) in cuts {
                 let s = nodes[a..=b].iter().map(|&i| target[i]).fold(f64::INFINITY, f64::min);
                 let mut from = a;
@@ -198,8 +201,7 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32]) -> Result<Body, usiz
         }
     };
     let d0 = dirs[0];
-    let helper = if d0.x.abs() < 0.6 { V3::new(1.0, 0.0, 0.0) } else { V3::new(0.0, 1.0, 0.0) };
-    let mut e1 = unit(helper - d0 * helper.dot(d0));
+    let mut e1 = across(d0);
     let lat = |n: u32| -> Vec<f64> {
         let k = latitudes(n);
         (1..k).map(|j| FRAC_PI_2 * j as f64 / k as f64).collect()
@@ -392,7 +394,7 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32]) -> Result<Body, usiz
         let d = if b != START_FAN && b != END_FAN && b >= nl && b < nl + m {
             let l = b - nl;
             let (o, d) = (pts[l], dirs[l]);
-            let g1 = unit(if d.x.abs() < 0.6 { V3::new(1.0, 0.0, 0.0) } else { V3::new(0.0, 1.0, 0.0) }.cross(d));
+            let g1 = across(d);
             let g2 = d.cross(g1);
             dist_2d_triangle(corners.map(|v| [(v - o).dot(g1), (v - o).dot(g2)]))
         } else {
