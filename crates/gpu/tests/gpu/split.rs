@@ -58,6 +58,16 @@ fn split_gpu(bvh: &WideBvh, model: Model) -> Option<Gpu> {
     Some(gpu.with_binding_limit(limit).with_split_limits(cap(nodes, NODE), cap(prims, PRIM)))
 }
 
+/// The tree walk's closest hits of the whole and the split upload, ray by ray bit for bit;
+/// returns how many rays hit.
+fn same_closest_hits(whole: &GpuScene, split: &GpuScene, rays: &[Ray<f64>]) -> usize {
+    let (a, b) = (whole.closest_hits(rays, Walk::Tree).unwrap(), split.closest_hits(rays, Walk::Tree).unwrap());
+    for (k, (x, y)) in a.iter().zip(&b).enumerate() {
+        assert_eq!(key(x), key(y), "ray {k}: closest hit, whole {x:?}, split {y:?}");
+    }
+    a.iter().filter(|h| h.is_some()).count()
+}
+
 #[test]
 fn a_split_scene_answers_as_the_whole_one() {
     let scene = crate::fur();
@@ -72,12 +82,8 @@ fn a_split_scene_answers_as_the_whole_one() {
     assert_eq!(split.bytes(), whole.bytes());
 
     let rays = rays(&scene, 400);
-    let (a, b) = (whole.closest_hits(&rays, Walk::Tree).unwrap(), split.closest_hits(&rays, Walk::Tree).unwrap());
-    let hits = a.iter().filter(|h| h.is_some()).count();
+    let hits = same_closest_hits(&whole, &split, &rays);
     assert!(hits > 100, "{hits} hits of {}: the test says little", rays.len());
-    for (k, (x, y)) in a.iter().zip(&b).enumerate() {
-        assert_eq!(key(x), key(y), "ray {k}: closest hit, whole {x:?}, split {y:?}");
-    }
     let n = 100;
     let (a, b) =
         (whole.closest_hits(&rays[..n], Walk::Brute).unwrap(), split.closest_hits(&rays[..n], Walk::Brute).unwrap());
@@ -140,12 +146,8 @@ fn a_split_spline_scene_answers_as_the_whole_one() {
     let [nb, pb] = split.bindings();
     assert!(nb >= 3 && pb >= 3, "the split scene takes {nb} node and {pb} primitive bindings");
     let rays = rays(&scene, 100);
-    let (a, b) = (whole.closest_hits(&rays, Walk::Tree).unwrap(), split.closest_hits(&rays, Walk::Tree).unwrap());
-    let hits = a.iter().filter(|h| h.is_some()).count();
+    let hits = same_closest_hits(&whole, &split, &rays);
     assert!(hits > 20, "{hits} hits of {}: the test says little", rays.len());
-    for (k, (x, y)) in a.iter().zip(&b).enumerate() {
-        assert_eq!(key(x), key(y), "ray {k}: closest hit, whole {x:?}, split {y:?}");
-    }
     eprintln!(
         "split spline scene: {nb} node and {pb} primitive bindings; {hits} hits of {} rays as in one binding",
         rays.len()
