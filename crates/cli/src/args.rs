@@ -456,7 +456,7 @@ pub struct MeshArgs {
     /// Union: mesh each stretch of a chain with one radius (a streamline) as one body of
     /// mitred rings instead of a hull per link: fewer triangles on tractograms at the same
     /// tolerance; slower to certify where streamlines nearly coincide.
-    #[arg(long, conflicts_with = "shells")]
+    #[arg(long, conflicts_with_all = ["shells", "splines"])]
     pub runs: bool,
     /// Print the summary as one JSON object.
     #[arg(long)]

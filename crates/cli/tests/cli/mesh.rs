@@ -40,6 +40,7 @@ fn mesh_errors_exit_nonzero_with_a_message() {
         (vec!["mesh", "--tolerance", "0", "-o", "x.ply"], "tolerance"),
         (vec!["mesh", "--tolerance", "0.01", "-o", "x.stl"], ".ply, .obj or .glb"),
         (vec!["render", "--model", "mesh", "-o", "x.png"], "--tolerance"),
+        (vec!["mesh", "--tolerance", "0.01", "--runs", "--splines", "-o", "x.ply"], "--splines"),
     ] {
         let out = bin().arg(args[0]).arg(&tck).args(&args[1..]).current_dir(std::env::temp_dir()).output().unwrap();
         assert!(!out.status.success());
@@ -138,6 +139,10 @@ fn mesh_writes_the_union_by_default_and_shells_on_request() {
     assert_eq!(u["union"]["over_tolerance"], 0, "{u}");
     assert_eq!(u["closed_parts"], 1, "the crossing branch meets the tree: {u}");
     assert_eq!(ply_is_watertight(&std::fs::read(&ply).unwrap()) as u64, u["triangles"].as_u64().unwrap());
+    // Every radius of this tree differs from its neighbours': `--runs` leaves every link to
+    // the hulls, so the same union.
+    let r = json(&["--tolerance", "0.005", "--runs"]);
+    assert_eq!((r["union"]["runs"].as_u64(), &r["triangles"]), (Some(0), &u["triangles"]), "{r}");
     let s = json(&["--tolerance", "0.005", "--shells"]);
     assert_eq!(s["surface"], "shells");
     assert!(s["union"].is_null());
