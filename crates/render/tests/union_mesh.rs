@@ -148,6 +148,37 @@ fn crossing_streamlines_are_runs_smaller_than_their_shells() {
     );
 }
 
+/// Two straight streamlines crossing at a grazing angle (`sin(β/2)` = 10⁻², radius 0.1, links
+/// of 0.5): where they part, the union's exterior is a notch, and rings of sagitta s leave a
+/// slit about `√(2·r·s)` deep there (2.3·ε at ε = 10⁻²·r before the rings were graded, and no
+/// uniform refinement within the budget reached ε). With the runs' rings graded towards the
+/// other tube the union meets ε, with fewer triangles than the shells.
+#[test]
+fn grazing_streamlines_meet_eps_with_runs() {
+    use tubecast_render::mesh::tessellate;
+    use tubecast_render::scene::Model;
+    let beta = 2.0 * 1e-2f64.asin();
+    // Long enough for the tubes (radius 0.1) to part within them: 2r/β ≈ 10.
+    let straight = |angle: f64| {
+        let pts: Vec<[f64; 3]> =
+            (0..=60).map(|k| 0.5 * k as f64 - 15.0).map(|t| [t * angle.cos(), t * angle.sin(), 0.0]).collect();
+        line(&pts, &[])
+    };
+    let s = Scene::from_polylines(&[straight(0.0), straight(beta)], 0.1, "t").unwrap();
+    let eps = 1e-3;
+    let (m, rep) = check_with(&s, eps, true, &RUNS);
+    assert_eq!(rep.runs, 2, "{rep:?}");
+    assert!(rep.min_sin_half < 0.05, "the grazing creases are measured: {rep:?}");
+    assert_eq!(checks::components(&m), 1);
+    let shells = tessellate(&s, Model::Links, eps).unwrap();
+    assert!(
+        m.mesh.triangles.len() < shells.mesh.triangles.len(),
+        "union {} triangles, shells {} ({rep:?})",
+        m.mesh.triangles.len(),
+        shells.mesh.triangles.len()
+    );
+}
+
 /// A streamline coiled tighter than its diameter (a helix of pitch 0.4 at radius 0.3, every
 /// bend mitred): the bodies of links a turn apart would overlap, so the run is cut (both parts
 /// closed with half-spheres) and the union joins the parts; the surface stays embedded and

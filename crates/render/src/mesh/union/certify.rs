@@ -27,12 +27,15 @@
 //! And outward: `f ≤ bₜ = minₘ maxⱼ fₘ(vⱼ)` on T (convexity of each `fₘ`); manifold's triangles
 //! lie on the faces of hulls inside their tubes, so `bₜ` is rounding.
 
-use super::tube::{gradient, support, unit, Index, P};
+use super::tube::{gradient, side, support, unit, Index, P};
 use rayon::prelude::*;
 use tubecast::{Primitive, RoundCone};
 
 /// Splits of a triangle into four at most.
-const MAX_DEPTH: u32 = 6;
+const MAX_DEPTH: u32 = 10;
+
+/// Splits of a triangle into four where its bound is far above the goal.
+const PLANE_DEPTH: u32 = 6;
 
 /// A measured mesh.
 #[derive(Clone, Debug, Default)]
@@ -44,8 +47,27 @@ pub(super) struct Measure {
     /// The least `sin(β/2) = √((1 + nᵢ·nⱼ)/2)` over the pairs of half-spaces that bound a
     /// piece (1 when none).
     pub min_sin_half: f64,
-    /// Triangles whose bound exceeds the goal: the bound and the tubes that set it.
-    pub over: Vec<(f64, Vec<u32>)>,
+    /// Triangles whose bound exceeds the goal.
+    pub over: Vec<Over>,
+}
+
+/// A triangle whose bound exceeds the goal.
+#[derive(Clone, Debug)]
+pub(super) struct Over {
+    /// Its bound.
+    pub d: f64,
+    /// The tubes whose half-spaces set it.
+    pub tubes: Vec<u32>,
+    /// The centroid of its deepest piece.
+    pub at: P,
+}
+
+/// What the pieces of a triangle over the goal leave: the tubes of their half-spaces, and the
+/// deepest one's centroid and bound.
+#[derive(Default)]
+struct Hot {
+    tubes: Vec<u32>,
+    deepest: Option<(P, f64)>,
 }
 
 struct Ctx<'a> {
@@ -114,51 +136,111 @@ fn triangle(ctx: &Ctx, v: [P; 3], margin: f64, near: &mut Vec<u32>) -> Measure {
             .map(|&k| v.iter().map(|&x| ctx.tubes[k as usize].sdf(x)).fold(f64::NEG_INFINITY, f64::max))
             .fold(f64::INFINITY, f64::min);
         m.out = b.max(0.0);
-        let mut set = Vec::new();
-        let (d, sh) = piece(ctx, near, v, nt, 0, &mut set);
+        let mut hot = Hot::default();
+        let (d, sh) = piece(ctx, near, v, nt, 0, margin, &mut hot);
         m.min_sin_half = sh;
         if d <= margin {
             m.depth = d;
             if d > ctx.goal {
-                set.sort_unstable();
-                set.dedup();
-                m.over.push((d, set));
+                let Hot { mut tubes, deepest } = hot;
+                tubes.sort_unstable();
+                tubes.dedup();
+                let at = deepest.map_or((v[0] + v[1] + v[2]) * (1.0 / 3.0), |x| x.0);
+                m.over.push(Over { d, tubes, at });
             }
             return m;
         }
         margin = 2.0 * d.min(1e6 * margin);
     }
     m.depth = f64::INFINITY;
-    m.over.push((f64::INFINITY, near.clone()));
+    m.over.push(Over { d: f64::INFINITY, tubes: near.clone(), at: (v[0] + v[1] + v[2]) * (1.0 / 3.0) });
     m
 }
 
 /// The depth bound of the piece `v` of a triangle with outward unit normal `nt`, split while
-/// that lowers it; the tubes whose half-spaces bound it are added to `set` where it exceeds
-/// the goal. Returns `(d, least sin(β/2))`.
-fn piece(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, depth: u32, set: &mut Vec<u32>) -> (f64, f64) {
-    let (d, sh, a) = leaf(ctx, near, v, nt);
+/// that lowers it (`margin`: the tubes' query margin); where it exceeds the goal, `hot` gains
+/// the tubes whose half-spaces bound it and keeps the deepest piece. Returns
+/// `(d, least sin(β/2))`.
+fn piece(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, depth: u32, margin: f64, hot: &mut Hot) -> (f64, f64) {
+    let (d, sh, a, hopeful) = leaf(ctx, near, v, nt, margin);
     let c = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
     let r = v.iter().map(|&x| (x - c).length()).fold(0.0, f64::max);
     // Splitting helps where one tangent plane per tube cannot fit the piece: the piece is
     // large against its own bound.
-    if d <= ctx.goal || depth == MAX_DEPTH || (d.is_finite() && r < 0.25 * d) {
+    // Past the splits that fit tangent planes (`PLANE_DEPTH`), only a point witness near
+    // enough the centroid still gains.
+    let deep = depth >= PLANE_DEPTH && !hopeful;
+    if d <= ctx.goal || depth == MAX_DEPTH || deep || (d.is_finite() && r < 0.25 * d) {
         if d > ctx.goal {
-            set.extend(a);
+            hot.tubes.extend(a);
+            if hot.deepest.map_or(true, |s| d > s.1) {
+                hot.deepest = Some((c, d));
+            }
         }
         return (d, sh);
     }
     let m = [(v[0] + v[1]) * 0.5, (v[1] + v[2]) * 0.5, (v[2] + v[0]) * 0.5];
     let mut out = (0.0f64, 1.0f64);
     for p in [[v[0], m[0], m[2]], [m[0], v[1], m[1]], [m[2], m[1], v[2]], [m[0], m[1], m[2]]] {
-        let (d, sh) = piece(ctx, near, p, nt, depth + 1, set);
+        let (d, sh) = piece(ctx, near, p, nt, depth + 1, margin, hot);
         out = (out.0.max(d), out.1.min(sh));
     }
     out
 }
 
-/// One piece, unsplit: `(d, least sin(β/2) among its half-spaces, the tubes of A)`.
-fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P) -> (f64, f64, Vec<u32>) {
+/// One piece, unsplit: `(d, least sin(β/2) among its half-spaces, the tubes of A)`; `d` the
+/// lesser of the half-spaces' bound and a point witness's: a point `q` outside every tube
+/// (checked on each tube near, and nearer the piece's centroid `c` than `margin`, so outside
+/// the others) bounds the depth of every point `p` of the piece by
+/// `|p − q| ≤ |p − c| + |c − q|` (the piece's radius plus `|c − q|`). The half-spaces need one
+/// tangent plane per tube to fit the piece; where two streamlines' joints nearly touch, none
+/// does, while the surface is a hair's breadth from the centroid.
+///
+/// Also whether smaller pieces would meet the goal through the point witness: its distance
+/// from the centroid is below the goal.
+fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, margin: f64) -> (f64, f64, Vec<u32>, bool) {
+    let (d, sh, a) = planes(ctx, near, v, nt);
+    // Below the goal nothing is gained; far above it (a crease to refine) the witness is
+    // rarely nearer.
+    if d <= ctx.goal || d > 4.0 * ctx.goal {
+        return (d, sh, a, false);
+    }
+    let c = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
+    let r = v.iter().map(|&x| (x - c).length()).fold(0.0, f64::max);
+    let outside = |q: P| near.iter().all(|&k| ctx.tubes[k as usize].sdf(q) >= ctx.tol);
+    let push = 4.0 * ctx.tol;
+    let mut best = f64::INFINITY;
+    let mut take = |q: P| {
+        let e = (q - c).length();
+        if e + r < best && e < margin && outside(q) {
+            best = e + r;
+        }
+    };
+    let hopeful = |best: f64| best - r < 0.9 * ctx.goal;
+    // The centroid itself, its projections out of each tube holding it, and the crease points
+    // of the two tubes holding it deepest.
+    let mut inside: Vec<(f64, u32)> =
+        near.iter().map(|&k| (ctx.tubes[k as usize].sdf(c), k)).filter(|x| x.0 < 0.0).collect();
+    if inside.is_empty() {
+        take(c);
+    }
+    inside.sort_by(|x, y| x.0.total_cmp(&y.0));
+    for &(f, k) in &inside {
+        take(c + gradient(&ctx.tubes[k as usize], c) * (push - f));
+    }
+    for i in 0..inside.len().min(3) {
+        for j in i + 1..inside.len().min(3) {
+            let (ta, tb) = (&ctx.tubes[inside[i].1 as usize], &ctx.tubes[inside[j].1 as usize]);
+            if let Some(x) = crease(ta, tb, c) {
+                take(x + unit(gradient(ta, x) + gradient(tb, x)) * push);
+            }
+        }
+    }
+    (best.min(d), sh, a, hopeful(best))
+}
+
+/// The half-spaces' bound of one piece (see [`leaf`]).
+fn planes(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P) -> (f64, f64, Vec<u32>) {
     let c = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
     let r = v.iter().map(|&x| (x - c).length()).fold(0.0, f64::max);
     // Lower bounds of each tube's distance on the piece, and its gradient at the centroid.
@@ -175,39 +257,63 @@ fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P) -> (f64, f64, Vec<u32>) {
     let mut d_req = 0.0f64;
     loop {
         let active: Vec<&(u32, f64, P)> = lower.iter().filter(|l| l.1 < d_req || l.1 < 0.0).collect();
-        // One half-space per tube, from one of three choices of normals, whichever gives
-        // the least bound: per tube the triangle's own normal (exact on the face of a hull) or
-        // the tube's gradient at the centroid, whichever puts the corners nearer; every tube's
+        // One half-space per tube, from one of five choices of normals, whichever gives
+        // the least bound: per tube the triangle's own normal (exact on the face of a hull)
+        // or the tube's gradient at the centroid, whichever puts the corners nearer; the same
+        // with its side's normal there as a third choice (`side`); every tube's
         // gradient at the centroid; and, with two tubes or more, every tube's gradient at the
-        // nearest crease point of the two least (there the half-spaces meet in the exterior
-        // wedge of the crease; at the centroid, inside two tubes overlapping at a narrow angle,
-        // they face apart and may not meet at all).
+        // nearest crease point of the two least, and of the least and the next one apart
+        // (there the half-spaces meet in the exterior wedge of the crease; at the centroid,
+        // inside two tubes overlapping at a narrow angle, they face apart and may not meet at
+        // all). The first choice alone is the bound's earlier form: the others only lower it.
         let plane = |k: u32, n: P| (n, support(&ctx.tubes[k as usize], n));
-        let mut options: Vec<Vec<(P, f64)>> = Vec::with_capacity(3);
-        options.push(
+        let mut options: Vec<Vec<(P, f64)>> = Vec::with_capacity(5);
+        // Per tube, the normal with the least gap among `choices` at the piece.
+        let nearest = |choices: &dyn Fn(&RoundCone<f64>, P) -> Vec<P>| -> Vec<(P, f64)> {
             active
                 .iter()
                 .map(|&&(k, _, g)| {
                     let t = &ctx.tubes[k as usize];
-                    let gap = |n: P| {
-                        let h = support(t, n);
-                        (h, v.iter().map(|&x| h - n.dot(x)).fold(0.0, f64::max))
-                    };
-                    let ((ht, dt), (hg, dg)) = (gap(nt), gap(g));
-                    if dt <= dg {
-                        (nt, ht)
-                    } else {
-                        (g, hg)
-                    }
+                    choices(t, g)
+                        .into_iter()
+                        .map(|n| {
+                            let h = support(t, n);
+                            (n, h, v.iter().map(|&x| h - n.dot(x)).fold(0.0, f64::max))
+                        })
+                        .min_by(|a, b| a.2.total_cmp(&b.2))
+                        .map(|(n, h, _)| (n, h))
+                        .expect("two choices")
                 })
-                .collect(),
-        );
+                .collect()
+        };
+        options.push(nearest(&|_, g| vec![nt, g]));
+        let sides = nearest(&|t, g| vec![nt, g, side(t, c)]);
+        if sides != options[0] {
+            options.push(sides);
+        }
         if active.len() >= 2 {
             options.push(active.iter().map(|&&(k, _, g)| plane(k, g)).collect());
             let mut two: Vec<&&(u32, f64, P)> = active.iter().collect();
             two.sort_by(|a, b| a.1.total_cmp(&b.1));
-            if let Some(x) = crease(&ctx.tubes[two[0].0 as usize], &ctx.tubes[two[1].0 as usize], c) {
-                options.push(active.iter().map(|&&(k, _, _)| plane(k, gradient(&ctx.tubes[k as usize], x))).collect());
+            // The crease of the two least tubes, and of the least with the next one that is
+            // not its neighbour along a chain (neighbours meet at a joint's ball, not at the
+            // crease of two crossing tubes).
+            let first = &ctx.tubes[two[0].0 as usize];
+            let apart = |k: u32| {
+                let t = &ctx.tubes[k as usize];
+                t.a != first.a && t.a != first.b && t.b != first.a && t.b != first.b
+            };
+            let mut partners = vec![two[1].0];
+            if let Some(l) = two[1..].iter().find(|l| apart(l.0)) {
+                if l.0 != two[1].0 {
+                    partners.push(l.0);
+                }
+            }
+            for k in partners {
+                if let Some(x) = crease(first, &ctx.tubes[k as usize], c) {
+                    options
+                        .push(active.iter().map(|&&(k, _, _)| plane(k, gradient(&ctx.tubes[k as usize], x))).collect());
+                }
             }
         }
         let mut best: Option<(f64, Vec<(P, f64)>)> = None;

@@ -76,6 +76,10 @@ pub struct UnionOptions {
 /// Builds made at most (the first, then refinements where the bound exceeds ε).
 const TRIES: usize = 3;
 
+/// Builds made at most with runs: a crease's grading, then a node's rings where the grading
+/// fell short, then once more.
+const RUN_TRIES: usize = 4;
+
 /// The first sagitta target, as a fraction of ε: a crease of exterior opening β multiplies
 /// the sagitta by `1/sin(β/2)`, and most of a tree's creases (bends, branches) are wider than
 /// a right angle (`1/sin(45°) ≈ 1.41`).
@@ -147,9 +151,12 @@ pub fn tessellate_union_with(
     let mut spheres = hull::Spheres::default();
     // Sagitta targets per node (only the links' nodes matter).
     let mut target = vec![FIRST_SAGITTA * eps; n];
+    // Directions about which a node's ring is graded finer (runs only: `piece::graded`).
+    let mut focus: Vec<Vec<P>> = vec![Vec::new(); n];
     let mut best: Option<(hull::Built, UnionReport)> = None;
-    for tries in 1..=TRIES {
-        let bodies = if options.runs { bodies(&chains, &centres, &radii, &target) } else { Vec::new() };
+    let most = if options.runs { RUN_TRIES } else { TRIES };
+    for tries in 1..=most {
+        let bodies = if options.runs { bodies(&chains, &centres, &radii, &target, &focus, eps) } else { Vec::new() };
         // Per link: its run's body's sagitta and whether its rings may still grow (`None`: a hull).
         let mut body_of = vec![None; pairs.len()];
         for b in &bodies {
@@ -213,7 +220,7 @@ pub fn tessellate_union_with(
         if best.as_ref().map_or(true, |(_, r)| report.certified() <= r.certified()) {
             best = Some((built, report));
         }
-        if done || tries == TRIES {
+        if done || tries == most {
             break;
         }
         // The depth bound is about the sagitta over sin(β/2): refine the spheres of the tubes
@@ -221,15 +228,43 @@ pub fn tessellate_union_with(
         let mut changed = false;
         // A run's links refine with their body's sagitta and ring, a hull's with its spheres.
         let before = target.clone();
-        for (d, set) in &m.over {
-            // A run's rings grow all around the tube and into its caps: its links are refined
-            // only where one build can plausibly fix the crease (a finite bound within 4ε);
-            // the others are reported.
-            let runs = set.iter().any(|&t| body_of[t as usize].is_some());
-            if runs && (d.is_nan() || *d > 4.0 * eps) {
+        let old: Vec<usize> = focus.iter().map(Vec::len).collect();
+        // The deepest excess first: its focus directions are the ones kept.
+        let mut over: Vec<&certify::Over> = m.over.iter().collect();
+        over.sort_by(|a, b| b.d.total_cmp(&a.d));
+        for certify::Over { d, tubes: set, at: x } in over {
+            let (d, x) = (*d, *x);
+            let f = if d.is_finite() { (0.9 * eps / d).clamp(1.0 / 16.0, 0.9) } else { 1.0 / 16.0 };
+            if set.iter().any(|&t| body_of[t as usize].is_some()) {
+                let mut graded = false;
+                let mut nodes = Vec::new();
+                for &t in set.iter().filter(|&&t| body_of[t as usize].is_some()) {
+                    // Two foci within the finest spacing are one; a crease's slit spans about
+                    // the uniform spacing at ε (`piece::graded`).
+                    let r = tubes[t as usize].ra;
+                    let (near, wide) = ((eps / r).min(0.5).cos(), (2.0 * eps / r).sqrt().min(0.5).cos());
+                    for v in towards(&tubes, &pairs, t, set, x) {
+                        graded |= add_focus(&mut focus, &old, pairs[t as usize], v, near, wide);
+                    }
+                    nodes.extend(near_nodes(&tubes[t as usize], pairs[t as usize], x));
+                }
+                changed |= graded;
+                // Graded before and still over: the excess is at a node (a cap, a mitre's
+                // bend) or the grading falls short; the rings there grow all around, where
+                // one build can plausibly fix the crease (a finite bound within 4ε).
+                if graded || d.is_nan() || d > 4.0 * eps {
+                    continue;
+                }
+                for node in nodes {
+                    // A notch's depth goes as the square root of the sagitta.
+                    let s = before[node] * (f * f).max(1.0 / 16.0);
+                    if s < target[node] {
+                        target[node] = s;
+                        changed = true;
+                    }
+                }
                 continue;
             }
-            let f = if d.is_finite() { (0.9 * eps / d).clamp(1.0 / 16.0, 0.9) } else { 1.0 / 16.0 };
             for &t in set {
                 for node in pairs[t as usize] {
                     let (now, room) = body_of[t as usize].unwrap_or((sag[node], subdiv[node] < hull::MAX_SUBDIV));
@@ -249,9 +284,67 @@ pub fn tessellate_union_with(
     Ok((assemble(scene, built, &links, report.certified()), report))
 }
 
+/// The directions, across link `t`'s axis, towards the other tubes of `set` (not its
+/// neighbours) at their axis points nearest `x`: where two tubes cross or graze, the crease's
+/// opening shrinks towards the other tube (to a notch where they graze).
+fn towards(tubes: &[RoundCone<f64>], pairs: &[[usize; 2]], t: u32, set: &[u32], x: P) -> Vec<P> {
+    let own = &tubes[t as usize];
+    let ax = tube::unit(own.b - own.a);
+    set.iter()
+        .filter(|&&u| !pairs[u as usize].iter().any(|k| pairs[t as usize].contains(k)))
+        .filter_map(|&u| {
+            let o = &tubes[u as usize];
+            let w = o.b - o.a;
+            let k = ((x - o.a).dot(w) / w.length2()).clamp(0.0, 1.0);
+            let y = o.a + w * k - own.a;
+            let v = y - ax * y.dot(ax);
+            (v.length() > 1e-3 * own.ra).then(|| tube::unit(v))
+        })
+        .collect()
+}
+
+/// The nodes of a link whose rings set the mesh at `x`: the one within half a radius of `x`
+/// along the axis (a cap or a mitre), or both.
+fn near_nodes(own: &RoundCone<f64>, [a, b]: [usize; 2], x: P) -> Vec<usize> {
+    let w = own.b - own.a;
+    let k = (x - own.a).dot(w) / w.length2();
+    let end = 0.5 * own.ra / w.length();
+    if k < end {
+        vec![a]
+    } else if k > 1.0 - end {
+        vec![b]
+    } else {
+        vec![a, b]
+    }
+}
+
+/// Adds the focus direction `v` to both nodes of a link, unless a focus lies within the angle
+/// whose cosine is `near`; whether the rings change there. A node graded in an earlier build
+/// (its first `old[node]` foci) within the angle whose cosine is `wide` is left alone: the
+/// excess persists beside its grading, so grading more does not reach it.
+fn add_focus(focus: &mut [Vec<P>], old: &[usize], nodes: [usize; 2], v: P, near: f64, wide: f64) -> bool {
+    let mut fresh = false;
+    for node in nodes {
+        if focus[node][..old[node]].iter().any(|u| u.dot(v) >= wide) {
+            continue;
+        }
+        fresh = true;
+        if focus[node].iter().all(|u| u.dot(v) < near) {
+            focus[node].push(v);
+        }
+    }
+    fresh
+}
 /// The runs' bodies at the current sagitta targets: each run at its ring size, cut where its
 /// body would turn back onto itself (both parts then close with half-spheres).
-fn bodies(chains: &[crate::scene::Chain], centres: &[P], radii: &[f64], target: &[f64]) -> Vec<piece::Body> {
+fn bodies(
+    chains: &[crate::scene::Chain],
+    centres: &[P],
+    radii: &[f64],
+    target: &[f64],
+    focus: &[Vec<P>],
+    eps: f64,
+) -> Vec<piece::Body> {
     use rayon::prelude::*;
     piece::runs(chains, centres, radii, target)
         .into_par_iter()
@@ -260,7 +353,7 @@ fn bodies(chains: &[crate::scene::Chain], centres: &[P], radii: &[f64], target: 
             let mut out = Vec::new();
             while let Some(run) = todo.pop() {
                 let sizes = piece::ring_sizes(&run, centres, target);
-                match piece::body(&run, centres, &sizes) {
+                match piece::body(&run, centres, &sizes, focus, eps) {
                     Ok(b) => out.push(b),
                     Err(j) => {
                         let r = run.r;

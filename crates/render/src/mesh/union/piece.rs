@@ -89,19 +89,8 @@ pub(super) fn runs(chains: &[Chain], centres: &[P], radii: &[f64], target: &[f64
                     start = j;
                 }
             }
-            // Cut also where a bend exceeds half the least target of its stretch between cuts
-            // (a refined node's small target cuts the sharper bends near it). Conservative:
-            // ring sizes are per node (`ring_sizes`), so the bound needs each mitre to fit only
-            // its own node's target.
             for (a, b) in cuts {
-                let s = nodes[a..=b].iter().map(|&i| target[i]).fold(f64::INFINITY, f64::min);
-                let mut from = a;
-                for j in a + 1..=b {
-                    if j == b || r * (1.0 - bend[j].0) > 0.5 * s {
-                        out.push(Run { nodes: nodes[from..=j].to_vec(), links: links[from..j].to_vec(), r });
-                        from = j;
-                    }
-                }
+                out.push(Run { nodes: nodes[a..=b].to_vec(), links: links[a..b].to_vec(), r });
             }
             k = e;
         }
@@ -176,6 +165,53 @@ pub(super) fn ring_sizes(run: &Run, centres: &[P], target: &[f64]) -> Vec<u32> {
         .collect()
 }
 
+/// A node ring's angles (radians, ascending in `[0, 2π)`): `n` uniform ones, graded finer
+/// about each `focus` direction (projected on the ring's frame `f1`, `f2`). Where two tubes
+/// separate at a grazing angle, the exterior is a narrow notch; a polygon of sagitta `s`
+/// there leaves a slit in the union `√(2·r·s)` deep, and where the crease meets the ring at
+/// angle `φ` from the notch, about `s/φ` deep (its walls meet at an angle `2φ`). So the
+/// spacing is `fine` at the notch (sagitta `r·fine²/8`, a slit `r·fine/2` deep) and grows as
+/// `2·√(tol·φ)` (sagitta `tol·φ/2`) until it reaches the uniform spacing (`fine` and `tol`
+/// relative to `r`). The body's sagitta is measured on its triangles whatever the angles.
+fn graded(n: u32, focus: &[P], f1: P, f2: P, fine: f64, tol: f64) -> Vec<f64> {
+    let base = 2.0 * PI / n as f64;
+    let mut out = Vec::new();
+    let mut spans: Vec<(f64, f64)> = Vec::new();
+    for v in focus {
+        let (x, y) = (v.dot(f1), v.dot(f2));
+        // A direction mostly along the axis names no angle of this ring.
+        if x.hypot(y) < 0.5 {
+            continue;
+        }
+        let a = y.atan2(x);
+        out.push(a);
+        let mut phi = 0.0;
+        loop {
+            let step = fine.max(2.0 * (tol * phi).sqrt());
+            if step >= base || phi + step >= PI {
+                break;
+            }
+            phi += step;
+            out.extend([a + phi, a - phi]);
+        }
+        spans.push((a, phi));
+    }
+    let off = |t: f64, a: f64| {
+        let d = (t - a).rem_euclid(2.0 * PI);
+        d.min(2.0 * PI - d)
+    };
+    out.extend((0..n).map(|i| base * i as f64).filter(|&t| spans.iter().all(|&(a, w)| off(t, a) >= w)));
+    let mut out: Vec<f64> = out.into_iter().map(|t| t.rem_euclid(2.0 * PI)).collect();
+    out.sort_by(f64::total_cmp);
+    // Angles closer than a quarter of the finest spacing add nothing but slivers.
+    let close = 0.25 * fine.min(base);
+    out.dedup_by(|b, a| *b - *a < close);
+    while out.len() > 3 && out[0] + 2.0 * PI - out[out.len() - 1] < close {
+        out.pop();
+    }
+    out
+}
+
 /// Latitude bands of a half-sphere cap for rings of `n`.
 fn latitudes(n: u32) -> u32 {
     n.div_ceil(2).max(2)
@@ -183,7 +219,7 @@ fn latitudes(n: u32) -> u32 {
 
 /// Meshes a run with ring sizes `sizes` (per node). `Err(j)`: the bodies of two links that
 /// are not neighbours may overlap (the run turns back on itself); cut the run at its node `j`.
-pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32]) -> Result<Body, usize> {
+pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], focus: &[Vec<P>], eps: f64) -> Result<Body, usize> {
     let r = run.r;
     let pts: Vec<P> = run.nodes.iter().map(|&i| centres[i]).collect();
     let m = pts.len() - 1;
@@ -193,13 +229,18 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32]) -> Result<Body, usiz
     // angle 2πi/n in a frame carried along the run by each joint's rotation (parallel
     // transport), so that rings of equal size line up.
     let mut rings: Vec<(usize, usize)> = Vec::new();
-    let mut ring = |c: P, rad: f64, f1: P, f2: P, n: u32, positions: &mut Vec<P>| {
-        rings.push((positions.len(), n as usize));
-        for i in 0..n {
-            let (sa, ca) = (2.0 * PI * i as f64 / n as f64).sin_cos();
+    // Per ring, its vertices' angles in turns, ascending in [0, 1).
+    let mut turns: Vec<Vec<f64>> = Vec::new();
+    let mut ring = |c: P, rad: f64, f1: P, f2: P, angles: Vec<f64>, positions: &mut Vec<P>| {
+        rings.push((positions.len(), angles.len()));
+        for &a in &angles {
+            let (sa, ca) = a.sin_cos();
             positions.push(c + (f1 * ca + f2 * sa) * rad);
         }
+        turns.push(angles.iter().map(|a| a / (2.0 * PI)).collect());
     };
+    let uniform = |n: u32| (0..n).map(|i| 2.0 * PI * i as f64 / n as f64).collect::<Vec<f64>>();
+    let node_angles = |j: usize, f1: P, f2: P| graded(sizes[j], &focus[run.nodes[j]], f1, f2, eps / r, eps / r);
     let d0 = dirs[0];
     let mut e1 = across(d0);
     let lat = |n: u32| -> Vec<f64> {
@@ -214,11 +255,11 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32]) -> Result<Body, usiz
     // its vertices: n·cos φ vertices keep the equator's dip.
     let cap_size = |n: u32, phi: f64| ((n as f64 * phi.cos()).ceil() as u32).max(3);
     for &phi in lat0.iter().rev() {
-        ring(pts[0] - d0 * (r * phi.sin()), r * phi.cos(), e1, e2, cap_size(sizes[0], phi), &mut positions);
+        ring(pts[0] - d0 * (r * phi.sin()), r * phi.cos(), e1, e2, uniform(cap_size(sizes[0], phi)), &mut positions);
     }
     // The node rings: the equator at each end, the mitre (bisecting plane) in between.
     let mut normals = vec![d0];
-    ring(pts[0], r, e1, e2, sizes[0], &mut positions);
+    ring(pts[0], r, e1, e2, node_angles(0, e1, e2), &mut positions);
     for j in 1..m {
         let (a, b) = (dirs[j - 1], dirs[j]);
         let axis = a.cross(b);
@@ -233,7 +274,7 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32]) -> Result<Body, usiz
         let u = unit(a + b);
         let h = unit(rot(e1, theta / 2.0));
         let h = unit(h - u * h.dot(u));
-        ring(pts[j], r, h, u.cross(h), sizes[j], &mut positions);
+        ring(pts[j], r, h, u.cross(h), node_angles(j, h, u.cross(h)), &mut positions);
         normals.push(u);
         e1 = unit(rot(e1, theta));
         e1 = unit(e1 - b * e1.dot(b));
@@ -241,11 +282,11 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32]) -> Result<Body, usiz
     let d = dirs[m - 1];
     e1 = unit(e1 - d * e1.dot(d));
     let e2 = d.cross(e1);
-    ring(pts[m], r, e1, e2, sizes[m], &mut positions);
+    ring(pts[m], r, e1, e2, node_angles(m, e1, e2), &mut positions);
     normals.push(d);
     // End cap: its latitudes, then its pole.
     for &phi in &lat1 {
-        ring(pts[m] + d * (r * phi.sin()), r * phi.cos(), e1, e2, cap_size(sizes[m], phi), &mut positions);
+        ring(pts[m] + d * (r * phi.sin()), r * phi.cos(), e1, e2, uniform(cap_size(sizes[m], phi)), &mut positions);
     }
     positions.push(pts[m] + d * r);
     let nl = lat0.len();
@@ -267,12 +308,14 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32]) -> Result<Body, usiz
         let ((sa, na), (sb, nb)) = (rings[b], rings[b + 1]);
         let va = |i: usize| (sa + i % na) as u32;
         let vb = |i: usize| (sb + i % nb) as u32;
+        let (ta, tb) = (&turns[b], &turns[b + 1]);
+        let next = |t: &[f64], i: usize| if i + 1 < t.len() { t[i + 1] } else { t[0] + 1.0 };
         let (mut i, mut k) = (0, 0);
         while i < na || k < nb {
             // Advance the ring whose next vertex comes first in angle (ties: the lower ring
             // when its next quad diagonal is the shorter).
-            let next_a = (i + 1) as f64 / na as f64;
-            let next_b = (k + 1) as f64 / nb as f64;
+            let next_a = next(ta, i);
+            let next_b = next(tb, k);
             let step_a = if i == na {
                 false
             } else if k == nb || next_a < next_b {
@@ -405,7 +448,7 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32]) -> Result<Body, usiz
     }
     let extent = pts.iter().map(|p| p.max_abs()).fold(0.0, f64::max) + r;
     let sagitta = (r - big_r).max(0.0) + 16.0 * f64::EPSILON * extent;
-    let ring = sizes.iter().copied().max().unwrap_or(0);
+    let ring = rings[nl..nl + m + 1].iter().map(|r| r.1 as u32).max().unwrap_or(0);
     Ok(Body { positions, triangles, tags, ring, sagitta })
 }
 

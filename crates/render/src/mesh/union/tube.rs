@@ -47,6 +47,28 @@ pub(super) fn gradient(l: &RoundCone<f64>, x: P) -> P {
     }
 }
 
+/// The normal of the round cone's side at `x`'s angle about its axis, wherever `x` lies along
+/// it (the gradient where `x` faces the side; beyond an end, the side's normal rather than the
+/// end ball's). Near a joint of two links the end ball's normal tilts along the axis, and its
+/// tangent plane then rises above a long piece lying on the side; the side's does not. Falls
+/// back to the gradient where the cone has no side (one ball holds the other).
+pub(super) fn side(l: &RoundCone<f64>, x: P) -> P {
+    let v = l.b - l.a;
+    let len = v.length();
+    let dr = l.ra - l.rb;
+    if dr.abs() >= len {
+        return gradient(l, x);
+    }
+    let axis = v * (1.0 / len);
+    let s = dr / len;
+    let c = ((1.0 - s) * (1.0 + s)).sqrt();
+    let y = x - l.a;
+    let radial = y - axis * y.dot(axis);
+    let rho = radial.length();
+    let rdir = if rho > 0.0 { radial * (1.0 / rho) } else { unit(axis.cross(V3::new(0.3, 0.5, 0.8))) };
+    axis * s + rdir * c
+}
+
 /// The support function `h(n) = max {n·y : y in the cone}` for a unit `n`: the cone is the
 /// convex hull of its two end balls, so `h(n) = max(n·a + r_a, n·b + r_b)`, and the half-space
 /// `n·y ≥ h(n)` meets no interior point of the cone.
