@@ -119,13 +119,19 @@ fn bifurcations_and_crossings() {
 /// The union with the runs' bodies (`UnionOptions::runs`).
 const RUNS: UnionOptions = UnionOptions { memory_limit: None, runs: true };
 
+/// The union has fewer triangles than the per-chain shells (the kernel's
+/// `tessellate_chain_solid`, an independent construction) at the same ε.
+fn fewer_than_shells(s: &Scene, eps: f64, m: &SceneMesh, rep: &UnionReport) {
+    let shells = tubecast_render::mesh::tessellate(s, tubecast_render::scene::Model::Links, eps).unwrap();
+    let (union, shells) = (m.mesh.triangles.len(), shells.mesh.triangles.len());
+    assert!(union < shells, "union {union} triangles, shells {shells} ({rep:?})");
+}
+
 /// Streamlines of one radius (a tractogram's tubes): each becomes one body of mitred rings
 /// (`UnionReport::runs`), two of them cross, and the union is smaller than the per-chain
 /// shells (the kernel's `tessellate_chain_solid`, an independent construction) at the same ε.
 #[test]
 fn crossing_streamlines_are_runs_smaller_than_their_shells() {
-    use tubecast_render::mesh::tessellate;
-    use tubecast_render::scene::Model;
     let wave = |y: f64, z: f64, tilt: f64| {
         let pts: Vec<[f64; 3]> = (0..=24)
             .map(|k| k as f64 * 0.25)
@@ -139,13 +145,7 @@ fn crossing_streamlines_are_runs_smaller_than_their_shells() {
     let (m, rep) = check_with(&s, eps, true, &RUNS);
     assert_eq!(rep.runs, 3, "{rep:?}");
     assert_eq!(checks::components(&m), 2, "{rep:?}");
-    let shells = tessellate(&s, Model::Links, eps).unwrap();
-    assert!(
-        m.mesh.triangles.len() < shells.mesh.triangles.len(),
-        "union {} triangles, shells {} ({rep:?})",
-        m.mesh.triangles.len(),
-        shells.mesh.triangles.len()
-    );
+    fewer_than_shells(&s, eps, &m, &rep);
 }
 
 /// Two straight streamlines crossing at a grazing angle (`sin(β/2)` = 10⁻², radius 0.1, links
@@ -155,8 +155,6 @@ fn crossing_streamlines_are_runs_smaller_than_their_shells() {
 /// other tube the union meets ε, with fewer triangles than the shells.
 #[test]
 fn grazing_streamlines_meet_eps_with_runs() {
-    use tubecast_render::mesh::tessellate;
-    use tubecast_render::scene::Model;
     let beta = 2.0 * 1e-2f64.asin();
     // Long enough for the tubes (radius 0.1) to part within them: 2r/β ≈ 10.
     let straight = |angle: f64| {
@@ -170,13 +168,7 @@ fn grazing_streamlines_meet_eps_with_runs() {
     assert_eq!(rep.runs, 2, "{rep:?}");
     assert!(rep.min_sin_half < 0.05, "the grazing creases are measured: {rep:?}");
     assert_eq!(checks::components(&m), 1);
-    let shells = tessellate(&s, Model::Links, eps).unwrap();
-    assert!(
-        m.mesh.triangles.len() < shells.mesh.triangles.len(),
-        "union {} triangles, shells {} ({rep:?})",
-        m.mesh.triangles.len(),
-        shells.mesh.triangles.len()
-    );
+    fewer_than_shells(&s, eps, &m, &rep);
 }
 
 /// A streamline coiled tighter than its diameter (a helix of pitch 0.4 at radius 0.3, every
