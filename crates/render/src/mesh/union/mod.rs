@@ -157,10 +157,10 @@ pub fn tessellate_union_with(
     let most = if options.runs { RUN_TRIES } else { TRIES };
     for tries in 1..=most {
         let bodies = if options.runs { bodies(&chains, &centres, &radii, &target, &focus, eps) } else { Vec::new() };
-        // Per link: its run's body's sagitta and whether its rings may still grow (`None`: a hull).
+        // Per link: whether its run's rings may still grow (`None`: a hull).
         let mut body_of = vec![None; pairs.len()];
         for b in &bodies {
-            b.tags.iter().for_each(|&t| body_of[t as usize] = Some((b.sagitta, b.ring < piece::MAX_RING)));
+            b.tags.iter().for_each(|&t| body_of[t as usize] = Some(b.ring < piece::MAX_RING));
         }
         let hull_links: Vec<(u32, [usize; 2])> =
             pairs.iter().enumerate().filter(|(k, _)| body_of[*k].is_none()).map(|(k, &p)| (k as u32, p)).collect();
@@ -226,7 +226,7 @@ pub fn tessellate_union_with(
         // The depth bound is about the sagitta over sin(β/2): refine the spheres of the tubes
         // that set each excess by the factor that would meet ε (at most 1/16 per build).
         let mut changed = false;
-        // A run's links refine with their body's sagitta and ring, a hull's with its spheres.
+        // A run's links are graded (or their nodes' rings raised), a hull's spheres refined.
         let before = target.clone();
         let old: Vec<usize> = focus.iter().map(Vec::len).collect();
         // The deepest excess first: its focus directions are the ones kept.
@@ -235,10 +235,11 @@ pub fn tessellate_union_with(
         for certify::Over { d, tubes: set, at: x } in over {
             let (d, x) = (*d, *x);
             let f = if d.is_finite() { (0.9 * eps / d).clamp(1.0 / 16.0, 0.9) } else { 1.0 / 16.0 };
-            if set.iter().any(|&t| body_of[t as usize].is_some()) {
+            let run_links: Vec<u32> = set.iter().copied().filter(|&t| body_of[t as usize].is_some()).collect();
+            if !run_links.is_empty() {
                 let mut graded = false;
                 let mut nodes = Vec::new();
-                for &t in set.iter().filter(|&&t| body_of[t as usize].is_some()) {
+                for &t in &run_links {
                     // Two foci within the finest spacing are one; a crease's slit spans about
                     // the uniform spacing at ε (`piece::graded`).
                     let r = tubes[t as usize].ra;
@@ -246,28 +247,29 @@ pub fn tessellate_union_with(
                     for v in towards(&tubes, &pairs, t, set, x) {
                         graded |= add_focus(&mut focus, &old, pairs[t as usize], v, near, wide);
                     }
-                    nodes.extend(near_nodes(&tubes[t as usize], pairs[t as usize], x));
+                    if body_of[t as usize] == Some(true) {
+                        nodes.extend(near_nodes(&tubes[t as usize], pairs[t as usize], x));
+                    }
                 }
                 changed |= graded;
                 // Graded before and still over: the excess is at a node (a cap, a mitre's
                 // bend) or the grading falls short; the rings there grow all around, where
                 // one build can plausibly fix the crease (a finite bound within 4ε).
-                if graded || d.is_nan() || d > 4.0 * eps {
-                    continue;
-                }
-                for node in nodes {
-                    // A notch's depth goes as the square root of the sagitta.
-                    let s = before[node] * (f * f).max(1.0 / 16.0);
-                    if s < target[node] {
-                        target[node] = s;
-                        changed = true;
+                if !(graded || d.is_nan() || d > 4.0 * eps) {
+                    for node in nodes {
+                        // A notch's depth goes as the square root of the sagitta.
+                        let s = before[node] * (f * f).max(1.0 / 16.0);
+                        if s < target[node] {
+                            target[node] = s;
+                            changed = true;
+                        }
                     }
                 }
-                continue;
             }
-            for &t in set {
+            // The hulls beside them refine their spheres.
+            for &t in set.iter().filter(|&&t| body_of[t as usize].is_none()) {
                 for node in pairs[t as usize] {
-                    let (now, room) = body_of[t as usize].unwrap_or((sag[node], subdiv[node] < hull::MAX_SUBDIV));
+                    let (now, room) = (sag[node], subdiv[node] < hull::MAX_SUBDIV);
                     let s = (now.min(before[node]) * f).min(target[node]);
                     if s < target[node] && room {
                         target[node] = s;
@@ -335,6 +337,7 @@ fn add_focus(focus: &mut [Vec<P>], old: &[usize], nodes: [usize; 2], v: P, near:
     }
     fresh
 }
+
 /// The runs' bodies at the current sagitta targets: each run at its ring size, cut where its
 /// body would turn back onto itself (both parts then close with half-spheres).
 fn bodies(

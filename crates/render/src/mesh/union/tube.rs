@@ -42,9 +42,15 @@ pub(super) fn gradient(l: &RoundCone<f64>, x: P) -> P {
     } else if k > c * len {
         unit(x - l.b)
     } else {
-        let rdir = if rho > 0.0 { radial * (1.0 / rho) } else { unit(axis.cross(V3::new(0.3, 0.5, 0.8))) };
-        axis * s + rdir * c
+        side_normal(axis, s, c, radial, rho)
     }
+}
+
+/// The side's outward normal at the radial offset `radial` (length `rho`) from the axis: the
+/// axis tilted by the cone's half-angle (sine `s`, cosine `c`).
+fn side_normal(axis: P, s: f64, c: f64, radial: P, rho: f64) -> P {
+    let rdir = if rho > 0.0 { radial * (1.0 / rho) } else { unit(axis.cross(V3::new(0.3, 0.5, 0.8))) };
+    axis * s + rdir * c
 }
 
 /// The normal of the round cone's side at `x`'s angle about its axis, wherever `x` lies along
@@ -64,9 +70,7 @@ pub(super) fn side(l: &RoundCone<f64>, x: P) -> P {
     let c = ((1.0 - s) * (1.0 + s)).sqrt();
     let y = x - l.a;
     let radial = y - axis * y.dot(axis);
-    let rho = radial.length();
-    let rdir = if rho > 0.0 { radial * (1.0 / rho) } else { unit(axis.cross(V3::new(0.3, 0.5, 0.8))) };
-    axis * s + rdir * c
+    side_normal(axis, s, c, radial, radial.length())
 }
 
 /// The support function `h(n) = max {n·y : y in the cone}` for a unit `n`: the cone is the
