@@ -166,6 +166,9 @@ fn grazing_streamlines_meet_eps_with_runs() {
     let eps = 1e-3;
     let (m, rep) = check_with(&s, eps, true, &RUNS);
     assert_eq!(rep.runs, 2, "{rep:?}");
+    // The tubes cross at sin(β/2) = 10⁻², and where they part the notch closes further: the
+    // certificate's half-space pairs there must report that narrow (below 0.05; a generic
+    // crease of these tubes, a right angle or wider, reports 0.7 or more).
     assert!(rep.min_sin_half < 0.05, "the grazing creases are measured: {rep:?}");
     assert_eq!(checks::components(&m), 1);
     fewer_than_shells(&s, eps, &m, &rep);
