@@ -218,21 +218,32 @@ fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, margin: f64) -> (f64, f64, Ve
     };
     let hopeful = |best: f64| best - r < 0.9 * ctx.goal;
     // The centroid itself, its projections out of each tube holding it, and the crease points
-    // of the two tubes holding it deepest.
-    let mut inside: Vec<(f64, u32)> =
-        near.iter().map(|&k| (ctx.tubes[k as usize].sdf(c), k)).filter(|x| x.0 < 0.0).collect();
-    if inside.is_empty() {
+    // of the three tubes least at it, pairwise.
+    let mut by_depth: Vec<(f64, u32)> = near.iter().map(|&k| (ctx.tubes[k as usize].sdf(c), k)).collect();
+    by_depth.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let inside = by_depth.iter().take_while(|x| x.0 < 0.0).count();
+    if inside == 0 {
         take(c);
     }
-    inside.sort_by(|x, y| x.0.total_cmp(&y.0));
-    for &(f, k) in &inside {
+    for &(f, k) in &by_depth[..inside] {
         take(c + gradient(&ctx.tubes[k as usize], c) * (push - f));
     }
-    for i in 0..inside.len().min(3) {
-        for j in i + 1..inside.len().min(3) {
-            let (ta, tb) = (&ctx.tubes[inside[i].1 as usize], &ctx.tubes[inside[j].1 as usize]);
+    // A crease is the nearest exterior where the centroid lies in one tube and just outside
+    // the other (a notch's narrow slit: the push out of the one lands in the other), as well
+    // as where it lies inside both.
+    let nearest = by_depth.len().min(3);
+    for i in 0..nearest {
+        for j in i + 1..nearest {
+            let (ta, tb) = (&ctx.tubes[by_depth[i].1 as usize], &ctx.tubes[by_depth[j].1 as usize]);
             if let Some(x) = crease(ta, tb, c) {
-                take(x + unit(gradient(ta, x) + gradient(tb, x)) * push);
+                // Along the bisector of the two outward normals, each distance grows by
+                // `cos` of half their angle (`|g_a + g_b|/2`): small in a notch, where the
+                // two surfaces face each other.
+                let g = gradient(ta, x) + gradient(tb, x);
+                let h = 0.5 * g.length();
+                if h > 1e-9 {
+                    take(x + unit(g) * (push / h));
+                }
             }
         }
     }

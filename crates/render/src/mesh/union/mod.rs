@@ -18,6 +18,7 @@ mod tube;
 
 use super::{MeshError, SceneMesh};
 use crate::scene::Scene;
+use piece::Focus;
 use tube::P;
 use tubecast::{GeometryError, Mesh, Part, RoundCone, V3};
 
@@ -152,11 +153,19 @@ pub fn tessellate_union_with(
     // Sagitta targets per node (only the links' nodes matter).
     let mut target = vec![FIRST_SAGITTA * eps; n];
     // Directions about which a node's ring is graded finer (runs only: `piece::graded`).
-    let mut focus: Vec<Vec<P>> = vec![Vec::new(); n];
+    let mut focus: Vec<Vec<Focus>> = vec![Vec::new(); n];
+    // Per link, the points of its axis where a grazing tube parts from it (`piece::body`).
+    let mut stations: Vec<Vec<P>> = vec![Vec::new(); pairs.len()];
+    // The partner a focus points to: a tube's chain (one focus per chain a node's ring meets).
+    let mut partner: Vec<u32> = (0..pairs.len() as u32).map(|k| k + chains.len() as u32).collect();
+    for (c, chain) in chains.iter().enumerate() {
+        chain.links.iter().for_each(|&l| partner[l as usize] = c as u32);
+    }
     let mut best: Option<(hull::Built, UnionReport)> = None;
     let most = if options.runs { RUN_TRIES } else { TRIES };
     for tries in 1..=most {
-        let bodies = if options.runs { bodies(&chains, &centres, &radii, &target, &focus, eps) } else { Vec::new() };
+        let bodies =
+            if options.runs { bodies(&chains, &centres, &radii, &target, &focus, &stations, eps) } else { Vec::new() };
         // Per link: whether its run's rings may still grow (`None`: a hull).
         let mut body_of = vec![None; pairs.len()];
         for b in &bodies {
@@ -240,12 +249,12 @@ pub fn tessellate_union_with(
                 let mut graded = false;
                 let mut nodes = Vec::new();
                 for &t in &run_links {
-                    // Two foci within the finest spacing are one; a crease's slit spans about
-                    // the uniform spacing at ε (`piece::graded`).
-                    let r = tubes[t as usize].ra;
-                    let (near, wide) = ((eps / r).min(0.5).cos(), (2.0 * eps / r).sqrt().min(0.5).cos());
-                    for v in towards(&tubes, &pairs, t, set, x) {
-                        graded |= add_focus(&mut focus, &old, pairs[t as usize], v, near, wide);
+                    for (v, u, fork) in towards(&tubes, &pairs, t, set, x) {
+                        let fresh = add_focus(&mut focus, &old, pairs[t as usize], v, partner[u as usize], t);
+                        if let (true, Some(p)) = (fresh, fork) {
+                            stations[t as usize].push(p);
+                        }
+                        graded |= fresh;
                     }
                     if body_of[t as usize] == Some(true) {
                         nodes.extend(near_nodes(&tubes[t as usize], pairs[t as usize], x));
@@ -287,22 +296,69 @@ pub fn tessellate_union_with(
 }
 
 /// The directions, across link `t`'s axis, towards the other tubes of `set` (not its
-/// neighbours) at their axis points nearest `x`: where two tubes cross or graze, the crease's
-/// opening shrinks towards the other tube (to a notch where they graze).
-fn towards(tubes: &[RoundCone<f64>], pairs: &[[usize; 2]], t: u32, set: &[u32], x: P) -> Vec<P> {
+/// neighbours), with the other tube: where two tubes cross or graze, the crease's opening
+/// shrinks towards the other tube, to a notch where they part. The notch is where the axes
+/// are the two radii apart (the fork nearest `x`); where the axes stay nearer or farther
+/// along the whole link, the direction at `x` stands in.
+#[allow(clippy::type_complexity)]
+fn towards(tubes: &[RoundCone<f64>], pairs: &[[usize; 2]], t: u32, set: &[u32], x: P) -> Vec<(P, u32, Option<P>)> {
     let own = &tubes[t as usize];
-    let ax = tube::unit(own.b - own.a);
+    let w = own.b - own.a;
+    let ax = tube::unit(w);
     set.iter()
         .filter(|&&u| !pairs[u as usize].iter().any(|k| pairs[t as usize].contains(k)))
         .filter_map(|&u| {
             let o = &tubes[u as usize];
-            let w = o.b - o.a;
-            let k = ((x - o.a).dot(w) / w.length2()).clamp(0.0, 1.0);
-            let y = o.a + w * k - own.a;
+            let ow = o.b - o.a;
+            let on = |p: P| o.a + ow * ((p - o.a).dot(ow) / ow.length2()).clamp(0.0, 1.0);
+            // The gap between the two tubes' sides over the axis point at `s` (convex in s).
+            let at = |s: f64| own.a + w * s;
+            let gap = |s: f64| (on(at(s)) - at(s)).length() - own.ra - o.ra;
+            let sx = ((x - own.a).dot(w) / w.length2()).clamp(0.0, 1.0);
+            let f = fork(gap, sx);
+            let s = f.unwrap_or(sx);
+            let y = on(at(s)) - own.a;
             let v = y - ax * y.dot(ax);
-            (v.length() > 1e-3 * own.ra).then(|| tube::unit(v))
+            (v.length() > 1e-3 * own.ra).then(|| (tube::unit(v), u, f.map(at)))
         })
         .collect()
+}
+
+/// The root in `[0, 1]` of the convex `gap` nearest `sx`, if any: its least point by golden
+/// section, then bisection on each side where the sign changes.
+fn fork(gap: impl Fn(f64) -> f64, sx: f64) -> Option<f64> {
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..60 {
+        let (m1, m2) = (hi - g * (hi - lo), lo + g * (hi - lo));
+        if gap(m1) < gap(m2) {
+            hi = m2;
+        } else {
+            lo = m1;
+        }
+    }
+    let m = 0.5 * (lo + hi);
+    if gap(m) >= 0.0 {
+        return None;
+    }
+    let root = |mut inside: f64, mut outside: f64| {
+        if gap(outside) < 0.0 {
+            return None;
+        }
+        for _ in 0..60 {
+            let mid = 0.5 * (inside + outside);
+            if gap(mid) < 0.0 {
+                inside = mid;
+            } else {
+                outside = mid;
+            }
+        }
+        Some(0.5 * (inside + outside))
+    };
+    match (root(m, 0.0), root(m, 1.0)) {
+        (Some(a), Some(b)) => Some(if (a - sx).abs() <= (b - sx).abs() { a } else { b }),
+        (a, b) => a.or(b),
+    }
 }
 
 /// The nodes of a link whose rings set the mesh at `x`: the one within half a radius of `x`
@@ -320,19 +376,22 @@ fn near_nodes(own: &RoundCone<f64>, [a, b]: [usize; 2], x: P) -> Vec<usize> {
     }
 }
 
-/// Adds the focus direction `v` to both nodes of a link, unless a focus lies within the angle
-/// whose cosine is `near`; whether the rings change there. A node graded in an earlier build
-/// (its first `old[node]` foci) within the angle whose cosine is `wide` is left alone: the
-/// excess persists beside its grading, so grading more does not reach it.
-fn add_focus(focus: &mut [Vec<P>], old: &[usize], nodes: [usize; 2], v: P, near: f64, wide: f64) -> bool {
+/// Adds the focus direction `v`, from link `link` towards the tube or chain `key`, to both
+/// nodes of the link; whether the rings change there. One focus per link and partner: the
+/// notch where two tubes part lies in one direction of each ring, and the deepest excess
+/// (handled first) names it (a node shared by two links may carry one from each). A link
+/// graded towards `key` in an earlier build (its nodes' first `old[node]` foci) is left
+/// alone: the excess persists beside its grading, so grading more does not reach it.
+fn add_focus(focus: &mut [Vec<Focus>], old: &[usize], nodes: [usize; 2], v: P, key: u32, link: u32) -> bool {
     let mut fresh = false;
+    let same = |f: &Focus| f.key == key && f.link == link;
     for node in nodes {
-        if focus[node][..old[node]].iter().any(|u| u.dot(v) >= wide) {
+        if focus[node][..old[node]].iter().any(same) {
             continue;
         }
         fresh = true;
-        if focus[node].iter().all(|u| u.dot(v) < near) {
-            focus[node].push(v);
+        if !focus[node].iter().any(same) {
+            focus[node].push(Focus { dir: v, key, link });
         }
     }
     fresh
@@ -345,7 +404,8 @@ fn bodies(
     centres: &[P],
     radii: &[f64],
     target: &[f64],
-    focus: &[Vec<P>],
+    focus: &[Vec<Focus>],
+    stations: &[Vec<P>],
     eps: f64,
 ) -> Vec<piece::Body> {
     use rayon::prelude::*;
@@ -356,7 +416,7 @@ fn bodies(
             let mut out = Vec::new();
             while let Some(run) = todo.pop() {
                 let sizes = piece::ring_sizes(&run, centres, target);
-                match piece::body(&run, centres, &sizes, focus, eps) {
+                match piece::body(&run, centres, &sizes, focus, stations, eps) {
                     Ok(b) => out.push(b),
                     Err(j) => {
                         let r = run.r;

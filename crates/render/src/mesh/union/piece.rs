@@ -19,6 +19,15 @@ use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, PI};
 use tubecast::V3;
 
+/// A direction about which a node's ring is graded finer: across link `link`'s axis towards
+/// the tube or chain `key` it grazes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Focus {
+    pub dir: P,
+    pub key: u32,
+    pub link: u32,
+}
+
 /// Ring vertices at most (a ring's sagitta goes as `1/n²`: `r·1.2·10⁻⁶` at the cap).
 pub(super) const MAX_RING: u32 = 2048;
 
@@ -173,12 +182,12 @@ pub(super) fn ring_sizes(run: &Run, centres: &[P], target: &[f64]) -> Vec<u32> {
 /// spacing is `fine` at the notch (sagitta `r·fine²/8`, a slit `r·fine/2` deep) and grows as
 /// `2·√(tol·φ)` (sagitta `tol·φ/2`) until it reaches the uniform spacing (`fine` and `tol`
 /// relative to `r`). The body's sagitta is measured on its triangles whatever the angles.
-fn graded(n: u32, focus: &[P], f1: P, f2: P, fine: f64, tol: f64) -> Vec<f64> {
+fn graded(n: u32, focus: &[Focus], f1: P, f2: P, fine: f64, tol: f64) -> Vec<f64> {
     let base = 2.0 * PI / n as f64;
     let mut out = Vec::new();
     let mut spans: Vec<(f64, f64)> = Vec::new();
-    for v in focus {
-        let (x, y) = (v.dot(f1), v.dot(f2));
+    for f in focus {
+        let (x, y) = (f.dir.dot(f1), f.dir.dot(f2));
         // A direction mostly along the axis names no angle of this ring.
         if x.hypot(y) < 0.5 {
             continue;
@@ -219,7 +228,14 @@ fn latitudes(n: u32) -> u32 {
 
 /// Meshes a run with ring sizes `sizes` (per node). `Err(j)`: the bodies of two links that
 /// are not neighbours may overlap (the run turns back on itself); cut the run at its node `j`.
-pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], focus: &[Vec<P>], eps: f64) -> Result<Body, usize> {
+pub(super) fn body(
+    run: &Run,
+    centres: &[P],
+    sizes: &[u32],
+    focus: &[Vec<Focus>],
+    stations: &[Vec<P>],
+    eps: f64,
+) -> Result<Body, usize> {
     let r = run.r;
     let pts: Vec<P> = run.nodes.iter().map(|&i| centres[i]).collect();
     let m = pts.len() - 1;
@@ -228,17 +244,7 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], focus: &[Vec<P>], ep
     // Rings in order along the run: (first vertex, size). Ring vertex i of size n sits at
     // angle 2πi/n in a frame carried along the run by each joint's rotation (parallel
     // transport), so that rings of equal size line up.
-    let mut rings: Vec<(usize, usize)> = Vec::new();
-    // Per ring, its vertices' angles in turns, ascending in [0, 1).
-    let mut turns: Vec<Vec<f64>> = Vec::new();
-    let mut ring = |c: P, rad: f64, f1: P, f2: P, angles: Vec<f64>, positions: &mut Vec<P>| {
-        rings.push((positions.len(), angles.len()));
-        for &a in &angles {
-            let (sa, ca) = a.sin_cos();
-            positions.push(c + (f1 * ca + f2 * sa) * rad);
-        }
-        turns.push(angles.iter().map(|a| a / (2.0 * PI)).collect());
-    };
+    let mut rr = Rings::default();
     let uniform = |n: u32| (0..n).map(|i| 2.0 * PI * i as f64 / n as f64).collect::<Vec<f64>>();
     let node_angles = |j: usize, f1: P, f2: P| graded(sizes[j], &focus[run.nodes[j]], f1, f2, eps / r, eps / r);
     let d0 = dirs[0];
@@ -255,13 +261,45 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], focus: &[Vec<P>], ep
     // its vertices: n·cos φ vertices keep the equator's dip.
     let cap_size = |n: u32, phi: f64| ((n as f64 * phi.cos()).ceil() as u32).max(3);
     for &phi in lat0.iter().rev() {
-        ring(pts[0] - d0 * (r * phi.sin()), r * phi.cos(), e1, e2, uniform(cap_size(sizes[0], phi)), &mut positions);
+        rr.add(pts[0] - d0 * (r * phi.sin()), r * phi.cos(), e1, e2, uniform(cap_size(sizes[0], phi)), &mut positions);
     }
-    // The node rings: the equator at each end, the mitre (bisecting plane) in between.
+    // The node rings: the equator at each end, the mitre (bisecting plane) in between; and
+    // within a link, a ring across its axis at each of its stations (the link's forks with
+    // a grazing tube). A mitre ring lies inside the link's cylinder by up to
+    // `r·(1 − cos(θ/2))`; where two tubes part, any such gap opens a slit about
+    // `√(r·gap)` deep, so the fork's ring is exact: every vertex on the cylinder.
     let mut normals = vec![d0];
-    ring(pts[0], r, e1, e2, node_angles(0, e1, e2), &mut positions);
+    // Per ring from node 0's: the link of the band that ends at it.
+    let mut node_ring = Vec::with_capacity(m + 1);
+    let mut band_link: Vec<usize> = Vec::new();
+    node_ring.push(rr.at.len());
+    rr.add(pts[0], r, e1, e2, node_angles(0, e1, e2), &mut positions);
+    // Link l's station rings, in frame `f1` across its axis.
+    let station_rings = |l: usize, f1: P, rr: &mut Rings, positions: &mut Vec<P>, band_link: &mut Vec<usize>| {
+        let (a, d, len) = (pts[l], dirs[l], (pts[l + 1] - pts[l]).length());
+        // Stations nearer a node than a hundredth of the radius add only slivers.
+        let gap = (0.01 * r / len).min(0.25);
+        let mut at: Vec<f64> = stations[run.links[l] as usize]
+            .iter()
+            .map(|&x| (x - a).dot(d) / len)
+            .filter(|s| (gap..=1.0 - gap).contains(s))
+            .collect();
+        at.sort_by(f64::total_cmp);
+        at.dedup_by(|b, a| *b - *a < gap);
+        let f2 = d.cross(f1);
+        let n = sizes[l].max(sizes[l + 1]);
+        // The link's own foci (its two rings carry the same ones).
+        let link = run.links[l];
+        let here: Vec<Focus> = focus[run.nodes[l]].iter().filter(|f| f.link == link).copied().collect();
+        for s in at {
+            let angles = graded(n, &here, f1, f2, eps / r, eps / r);
+            rr.add(a + d * (len * s), r, f1, f2, angles, positions);
+            band_link.push(l);
+        }
+    };
     for j in 1..m {
         let (a, b) = (dirs[j - 1], dirs[j]);
+        station_rings(j - 1, e1, &mut rr, &mut positions, &mut band_link);
         let axis = a.cross(b);
         let theta = axis.length().atan2(a.dot(b));
         let rot = |v: P, t: f64| {
@@ -274,24 +312,30 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], focus: &[Vec<P>], ep
         let u = unit(a + b);
         let h = unit(rot(e1, theta / 2.0));
         let h = unit(h - u * h.dot(u));
-        ring(pts[j], r, h, u.cross(h), node_angles(j, h, u.cross(h)), &mut positions);
+        node_ring.push(rr.at.len());
+        band_link.push(j - 1);
+        rr.add(pts[j], r, h, u.cross(h), node_angles(j, h, u.cross(h)), &mut positions);
         normals.push(u);
         e1 = unit(rot(e1, theta));
         e1 = unit(e1 - b * e1.dot(b));
     }
     let d = dirs[m - 1];
     e1 = unit(e1 - d * e1.dot(d));
+    station_rings(m - 1, e1, &mut rr, &mut positions, &mut band_link);
     let e2 = d.cross(e1);
-    ring(pts[m], r, e1, e2, node_angles(m, e1, e2), &mut positions);
+    node_ring.push(rr.at.len());
+    band_link.push(m - 1);
+    rr.add(pts[m], r, e1, e2, node_angles(m, e1, e2), &mut positions);
     normals.push(d);
     // End cap: its latitudes, then its pole.
     for &phi in &lat1 {
-        ring(pts[m] + d * (r * phi.sin()), r * phi.cos(), e1, e2, uniform(cap_size(sizes[m], phi)), &mut positions);
+        rr.add(pts[m] + d * (r * phi.sin()), r * phi.cos(), e1, e2, uniform(cap_size(sizes[m], phi)), &mut positions);
     }
     positions.push(pts[m] + d * r);
+    let Rings { at: rings, turns } = rr;
     let nl = lat0.len();
-    // Ring index of node j's ring.
-    let node_ring = |j: usize| nl + j;
+    // The link of band b (ring b to b + 1), if it lies between node rings (not a cap's).
+    let link_band = |b: usize| (b >= nl && b < node_ring[m]).then(|| band_link[b - nl]);
 
     // Bands: band b joins ring b and b + 1; start cap bands come first, then one per link,
     // then the end cap's. Rings of different sizes are zipped by angle.
@@ -347,7 +391,8 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], focus: &[Vec<P>], ep
         match b {
             START_FAN => 0,
             END_FAN => m - 1,
-            b => b.saturating_sub(nl).min(m - 1),
+            b if b < nl => 0,
+            b => link_band(b).unwrap_or(m - 1),
         }
     };
     let tags: Vec<u32> = band_of.iter().map(|&b| run.links[link_of(b)]).collect();
@@ -366,8 +411,8 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], focus: &[Vec<P>], ep
     // Bodies of links that are not neighbours must be apart: a plane at a node ring between
     // them separates them, or the run is cut.
     let body_verts = |l: usize| -> Vec<usize> {
-        let lo = if l == 0 { 0 } else { node_ring(l) };
-        let hi = if l + 1 == m { rings.len() - 1 } else { node_ring(l + 1) };
+        let lo = if l == 0 { 0 } else { node_ring[l] };
+        let hi = if l + 1 == m { rings.len() - 1 } else { node_ring[l + 1] };
         let mut v: Vec<usize> = (rings[lo].0..rings[hi].0 + rings[hi].1).collect();
         if l == 0 {
             v.push(0);
@@ -434,8 +479,8 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], focus: &[Vec<P>], ep
     let mut big_r = f64::INFINITY;
     for (t, &b) in triangles.iter().zip(&band_of) {
         let corners = t.map(|i| positions[i as usize]);
-        let d = if b != START_FAN && b != END_FAN && b >= nl && b < nl + m {
-            let l = b - nl;
+        let band = if b == START_FAN || b == END_FAN { None } else { link_band(b) };
+        let d = if let Some(l) = band {
             let (o, d) = (pts[l], dirs[l]);
             let g1 = across(d);
             let g2 = d.cross(g1);
@@ -448,8 +493,29 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], focus: &[Vec<P>], ep
     }
     let extent = pts.iter().map(|p| p.max_abs()).fold(0.0, f64::max) + r;
     let sagitta = (r - big_r).max(0.0) + 16.0 * f64::EPSILON * extent;
-    let ring = rings[nl..nl + m + 1].iter().map(|r| r.1 as u32).max().unwrap_or(0);
+    let ring = rings[nl..=node_ring[m]].iter().map(|r| r.1 as u32).max().unwrap_or(0);
     Ok(Body { positions, triangles, tags, ring, sagitta })
+}
+
+/// A body's rings in order along the run: per ring its first vertex and size, and its
+/// vertices' angles in turns (ascending in `[0, 1)`). Angles are taken in a frame carried
+/// along the run by each joint's rotation (parallel transport), so that rings line up.
+#[derive(Default)]
+struct Rings {
+    at: Vec<(usize, usize)>,
+    turns: Vec<Vec<f64>>,
+}
+
+impl Rings {
+    /// A ring of radius `rad` about `c` in the plane of `f1`, `f2`, at `angles` (radians).
+    fn add(&mut self, c: P, rad: f64, f1: P, f2: P, angles: Vec<f64>, positions: &mut Vec<P>) {
+        self.at.push((positions.len(), angles.len()));
+        for &a in &angles {
+            let (sa, ca) = a.sin_cos();
+            positions.push(c + (f1 * ca + f2 * sa) * rad);
+        }
+        self.turns.push(angles.iter().map(|a| a / (2.0 * PI)).collect());
+    }
 }
 
 /// Distance from the origin to a filled 2-D triangle.
