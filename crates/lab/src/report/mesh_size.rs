@@ -2,7 +2,8 @@
 //! `mesh_real.md`: the links as they are (exact), the simplified link model (`scene::choice`),
 //! the per-chain shells (`mesh::tessellate`, Salm-style: overlapping closed shells composited
 //! through a depth buffer) and the surface of the union (`mesh::tessellate_union`, what
-//! `tubecast mesh` writes), at ε = k·r̄ (r̄ the mean node radius).
+//! `tubecast mesh` writes, and with `UnionOptions::runs`, what `tubecast mesh --runs` writes),
+//! at ε = k·r̄ (r̄ the mean node radius).
 //!
 //! A mesh is built where its estimated triangle count is within the run's cap; above it the
 //! row gives the estimate (marked `est.`), which is the answer on this machine for that size.
@@ -38,7 +39,7 @@ pub const QUICK_MAX_TRIANGLES: f64 = 4e5;
 pub const UNION_SAMPLE_LINKS: usize = 12;
 
 /// Representations, in chart order (colour index).
-pub const KINDS: [&str; 4] = ["exact links", "simplified links", "shells", "union"];
+pub const KINDS: [&str; 5] = ["exact links", "simplified links", "shells", "union", "union, runs"];
 
 /// One representation of one scene at one tolerance.
 #[derive(Clone, Debug, PartialEq)]
@@ -229,6 +230,18 @@ pub fn measure_sizes(
             None if est.is_finite() => rows.push(estimated_row(name, KINDS[3], k, r, est)),
             None => {}
         }
+        // The runs' union has no estimate of its own (its size depends on how many streamlines
+        // graze, which a sample does not show): it is built where the union's or the shells'
+        // estimate is within the union's cap, and has no row elsewhere.
+        let shells = rows.iter().rev().find(|x| x.kind == KINDS[2]).map_or(f64::INFINITY, |x| x.triangles);
+        if est.min(shells) <= union_cap {
+            let opts = UnionOptions { runs: true, ..opts };
+            match pool.install(|| tessellate_union_with(scene, eps, &opts)) {
+                Ok((m, _)) => rows.push(mesh_row(name, KINDS[4], k, r, &m)),
+                Err(MeshError::Memory { .. }) => {}
+                Err(e) => return Err(err(e)),
+            }
+        }
     }
     Ok(rows)
 }
@@ -331,7 +344,7 @@ pub fn run_mesh_size(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Re
     let _ = write!(
         md,
         "The scenes of [mesh_real.md](mesh_real.md) ({}), each at ε = k·r̄, k ∈ {{10⁻², 10⁻³}}, r̄ the scene's \
-         mean node radius, in four representations: the links as they are (`exact links`, no modelling error), the \
+         mean node radius, in five representations: the links as they are (`exact links`, no modelling error), the \
          simplified link model (`scene::choice`: merged links, spheres, cylinders, cones within ε), the per-chain \
          **shells** (`tubecast mesh --shells`: one closed shell per chain and split joint, overlapping where chains \
          meet, each certified against its own chain; Salm-style, for renderers that composite through a depth \
@@ -346,7 +359,10 @@ pub fn run_mesh_size(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Re
          than the sample (its end caps); PLY bytes for V = T/2) and is drawn at ε; a union whose sample itself \
          exceeds the memory limit has no row. The union is \
          manifold's union of the links' sphere hulls, certified against the exact union \
-         (`docs/design/union-mesh.md`). \
+         (`docs/design/union-mesh.md`); **union, runs** (`tubecast mesh --runs`) the same union with each \
+         equal-radius stretch of a chain meshed as one body of mitred rings, graded towards grazing tubes, \
+         built where the union's or the shells' estimate is within the union's cap (no estimate otherwise: \
+         its size depends on how many streamlines graze). \
          Chart: bytes against certified error / r̄, one colour per representation, one marker per scene.\n\n",
         names.join(", "),
         cap,
@@ -372,9 +388,19 @@ fn closing_note(rows: &[SizeRow], names: &[String]) -> String {
             let get = |kind: &str| rows.iter().find(|r| &r.scene == name && r.kind == kind && r.k == k);
             let (Some(c), Some(sh), Some(u)) = (get(KINDS[1]), get(KINDS[2]), get(KINDS[3])) else { continue };
             let est = |r: &SizeRow| if r.estimated { " (est.)" } else { "" };
+            let runs = match get(KINDS[4]) {
+                Some(x) => format!(
+                    " Union with runs: {} triangles, {} bytes, certified {}, {:.2}× the shells' bytes.",
+                    fmt_num(x.triangles),
+                    fmt_num(x.bytes),
+                    fmt_num(x.certified),
+                    x.bytes / sh.bytes
+                ),
+                None => String::new(),
+            };
             let _ = writeln!(
                 s,
-                "- {name}, ε = {k}·r̄: union {} triangles, {} bytes{}; shells {} triangles, {} bytes{}; simplified links {} primitives, {} bytes. Union / shells: {:.1}× the bytes.",
+                "- {name}, ε = {k}·r̄: union {} triangles, {} bytes{}; shells {} triangles, {} bytes{}; simplified links {} primitives, {} bytes. Union / shells: {:.1}× the bytes.{runs}",
                 fmt_num(u.triangles),
                 fmt_num(u.bytes),
                 est(u),

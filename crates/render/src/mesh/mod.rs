@@ -15,7 +15,8 @@ mod union;
 
 pub use tracer::MeshTracer;
 pub use union::{
-    tessellate_union, tessellate_union_with, UnionOptions, UnionReport, UNION_BASE_BYTES, UNION_BYTES_PER_HULL_TRIANGLE,
+    tessellate_union, tessellate_union_with, UnionOptions, UnionReport, UNION_BASE_BYTES,
+    UNION_BYTES_PER_BODY_TRIANGLE, UNION_BYTES_PER_HULL_TRIANGLE,
 };
 
 use crate::scene::{Model, Scene, SPLINE_MAX_DEPTH, SPLINE_TOLERANCE};

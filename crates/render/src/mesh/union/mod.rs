@@ -92,6 +92,13 @@ const FIRST_SAGITTA: f64 = 0.7;
 /// margin (`docs/design/union-mesh.md`, "Memory guard").
 pub const UNION_BYTES_PER_HULL_TRIANGLE: f64 = 650.0;
 
+/// Peak bytes per triangle of a run's body (manifold's input with `UnionOptions::runs`): the
+/// bodies' triangles are mostly kept (long streamlines overlap little), so the result and its
+/// certificate weigh more per input triangle than the hulls'. Calibrated on the 5,040-link
+/// Bundle with runs, whose peak resident memory was 1,290–1,820 bytes per body triangle of the
+/// last build (ε = 10⁻³ and 10⁻² of the radius), with margin.
+pub const UNION_BYTES_PER_BODY_TRIANGLE: f64 = 2000.0;
+
 /// The process's own memory beside the union (code, the scene, the thread pool).
 pub const UNION_BASE_BYTES: f64 = 64e6;
 
@@ -176,11 +183,14 @@ pub fn tessellate_union_with(
         let subdiv: Vec<u32> = (0..n).map(|i| spheres.subdivisions_for(radii[i], target[i])).collect();
         // Every hull has at most 2·(its points) − 4 triangles.
         let points = |k: u32| 4 * (k as usize) * (k as usize) + 2;
-        let input_tris: usize =
-            hull_links.iter().map(|&(_, [a, b])| 2 * (points(subdiv[a]) + points(subdiv[b]))).sum::<usize>()
-                + bodies.iter().map(|b| b.triangles.len()).sum::<usize>();
+        let hull_tris: usize =
+            hull_links.iter().map(|&(_, [a, b])| 2 * (points(subdiv[a]) + points(subdiv[b]))).sum::<usize>();
+        let body_tris: usize = bodies.iter().map(|b| b.triangles.len()).sum::<usize>();
+        let input_tris = hull_tris + body_tris;
         if let Some(limit) = options.memory_limit {
-            let estimate = (UNION_BASE_BYTES + input_tris as f64 * UNION_BYTES_PER_HULL_TRIANGLE) as u64;
+            let estimate = (UNION_BASE_BYTES
+                + hull_tris as f64 * UNION_BYTES_PER_HULL_TRIANGLE
+                + body_tris as f64 * UNION_BYTES_PER_BODY_TRIANGLE) as u64;
             if estimate > limit {
                 if let Some(b) = best.take() {
                     // A refinement that would not fit: keep the mesh already made.
