@@ -95,7 +95,7 @@ pub const UNION_BYTES_PER_HULL_TRIANGLE: f64 = 650.0;
 /// Peak bytes per triangle of a run's body (manifold's input with `UnionOptions::runs`): the
 /// bodies' triangles are mostly kept (long streamlines overlap little), so the result and its
 /// certificate weigh more per input triangle than the hulls'. Calibrated on the 5,040-link
-/// Bundle with runs, whose peak resident memory was 1,290–1,820 bytes per body triangle of the
+/// Bundle with runs, whose peak resident memory was 1,170–1,930 bytes per body triangle of the
 /// last build (ε = 10⁻³ and 10⁻² of the radius), with margin.
 pub const UNION_BYTES_PER_BODY_TRIANGLE: f64 = 2000.0;
 
@@ -260,8 +260,8 @@ pub fn tessellate_union_with(
                 let mut nodes = Vec::new();
                 for &t in &run_links {
                     for (v, u, fork) in towards(&tubes, &pairs, t, set, x) {
-                        let fresh = add_focus(&mut focus, &old, pairs[t as usize], v, partner[u as usize], t);
-                        if let (true, Some(p)) = (fresh, fork) {
+                        let (fresh, added) = add_focus(&mut focus, &old, pairs[t as usize], v, partner[u as usize], t);
+                        if let (true, Some(p)) = (added, fork) {
                             stations[t as usize].push(p);
                         }
                         graded |= fresh;
@@ -387,13 +387,15 @@ fn near_nodes(own: &RoundCone<f64>, [a, b]: [usize; 2], x: P) -> Vec<usize> {
 }
 
 /// Adds the focus direction `v`, from link `link` towards the tube or chain `key`, to both
-/// nodes of the link; whether the rings change there. One focus per link and partner: the
-/// notch where two tubes part lies in one direction of each ring, and the deepest excess
-/// (handled first) names it (a node shared by two links may carry one from each). A link
+/// nodes of the link; whether the rings change there, and whether it was added now (the
+/// first excess of the pair in this build; the others name the same fork). One focus per
+/// link and partner: the notch where two tubes part lies in one direction of each ring, and
+/// the deepest excess (handled first) names it (a node shared by two links may carry one from
+/// each). A link
 /// graded towards `key` in an earlier build (its nodes' first `old[node]` foci) is left
 /// alone: the excess persists beside its grading, so grading more does not reach it.
-fn add_focus(focus: &mut [Vec<Focus>], old: &[usize], nodes: [usize; 2], v: P, key: u32, link: u32) -> bool {
-    let mut fresh = false;
+fn add_focus(focus: &mut [Vec<Focus>], old: &[usize], nodes: [usize; 2], v: P, key: u32, link: u32) -> (bool, bool) {
+    let (mut fresh, mut added) = (false, false);
     let same = |f: &Focus| f.key == key && f.link == link;
     for node in nodes {
         if focus[node][..old[node]].iter().any(same) {
@@ -402,9 +404,10 @@ fn add_focus(focus: &mut [Vec<Focus>], old: &[usize], nodes: [usize; 2], v: P, k
         fresh = true;
         if !focus[node].iter().any(same) {
             focus[node].push(Focus { dir: v, key, link });
+            added = true;
         }
     }
-    fresh
+    (fresh, added)
 }
 
 /// The runs' bodies at the current sagitta targets: each run at its ring size, cut where its
