@@ -155,23 +155,7 @@ fn crossing_streamlines_are_runs_smaller_than_their_shells() {
 /// other tube the union meets ε, with fewer triangles than the shells.
 #[test]
 fn grazing_streamlines_meet_eps_with_runs() {
-    let beta = 2.0 * 1e-2f64.asin();
-    // Long enough for the tubes (radius 0.1) to part within them: 2r/β ≈ 10.
-    let straight = |angle: f64| {
-        let pts: Vec<[f64; 3]> =
-            (0..=60).map(|k| 0.5 * k as f64 - 15.0).map(|t| [t * angle.cos(), t * angle.sin(), 0.0]).collect();
-        line(&pts, &[])
-    };
-    let s = Scene::from_polylines(&[straight(0.0), straight(beta)], 0.1, "t").unwrap();
-    let eps = 1e-3;
-    let (m, rep) = check_with(&s, eps, true, &RUNS);
-    assert_eq!(rep.runs, 2, "{rep:?}");
-    // The tubes cross at sin(β/2) = 10⁻², and where they part the notch closes further: the
-    // certificate's half-space pairs there must report that narrow (below 0.05; a generic
-    // crease of these tubes, a right angle or wider, reports 0.7 or more).
-    assert!(rep.min_sin_half < 0.05, "the grazing creases are measured: {rep:?}");
-    assert_eq!(checks::components(&m), 1);
-    fewer_than_shells(&s, eps, &m, &rep);
+    grazing_pair_meets_eps(-15.0, 0.0, 1e-3);
 }
 
 /// Two bent streamlines that cross at sin(β/2) = 10⁻² and part, at ε = 10⁻³·r: every joint
@@ -181,23 +165,33 @@ fn grazing_streamlines_meet_eps_with_runs() {
 /// certified bound's own (≤ ε), checked by the independent true-depth witnesses.
 #[test]
 fn bent_grazing_streamlines_meet_a_thousandth_of_the_radius() {
+    // The tubes part at |t| ≈ 10, mid-link with nodes at 0.5·k − 15.25 (a fork at a mitre's
+    // node itself is left to the rings' refinement).
+    grazing_pair_meets_eps(-15.25, 1.0 / 80.0, 1e-4);
+}
+
+/// Two streamlines of radius 0.1 along `y = sag·t²` (nodes at `t = t0 + 0.5·k`, 61 of them),
+/// the second turned by β (sin(β/2) = 10⁻²) about the origin, where they cross; they part
+/// where they are 2r apart, `|t| ≈ 2r/β ≈ 10`. With runs the union meets ε, with fewer
+/// triangles than the shells.
+fn grazing_pair_meets_eps(t0: f64, sag: f64, eps: f64) {
     let beta = 2.0 * 1e-2f64.asin();
-    let arc = |angle: f64| {
-        // The tubes part where the arcs are 2r apart, |t| ≈ 2r/β = 10: mid-link (a fork at a
-        // mitre's node itself is left to the rings' refinement).
+    let curve = |angle: f64| {
         let pts: Vec<[f64; 3]> = (0..=60)
-            .map(|k| 0.5 * k as f64 - 15.25)
+            .map(|k| 0.5 * k as f64 + t0)
             .map(|t| {
-                let (x, y) = (t, t * t / 80.0);
+                let (x, y) = (t, sag * t * t);
                 [x * angle.cos() - y * angle.sin(), x * angle.sin() + y * angle.cos(), 0.0]
             })
             .collect();
         line(&pts, &[])
     };
-    let s = Scene::from_polylines(&[arc(0.0), arc(beta)], 0.1, "t").unwrap();
-    let eps = 1e-4;
+    let s = Scene::from_polylines(&[curve(0.0), curve(beta)], 0.1, "t").unwrap();
     let (m, rep) = check_with(&s, eps, true, &RUNS);
     assert_eq!(rep.runs, 2, "{rep:?}");
+    // The tubes cross at sin(β/2) = 10⁻², and where they part the notch closes further: the
+    // certificate's half-space pairs there must report that narrow (below 0.05; a generic
+    // crease of these tubes, a right angle or wider, reports 0.7 or more).
     assert!(rep.min_sin_half < 0.05, "the grazing creases are measured: {rep:?}");
     assert_eq!(checks::components(&m), 1);
     fewer_than_shells(&s, eps, &m, &rep);
