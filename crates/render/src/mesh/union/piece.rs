@@ -5,8 +5,8 @@
 //! where a hull of two sphere polyhedra per link (`hull.rs`) leaves every joint a crease of
 //! the sphere's facets.
 //!
-//! The body is inscribed (every vertex on a node sphere, every triangle in one link's round
-//! cone or one ball), and it contains every link's round cone shrunk by the run's sagitta
+//! The body is inscribed (every vertex on a node sphere or, at a fork ring, on its link's
+//! cylinder within the link; every triangle in one link's round cone or one ball), and it contains every link's round cone shrunk by the run's sagitta
 //! `s = r − R` (`R` measured on the triangles, below), which is all the union's certificate
 //! needs from a construction (`docs/design/union-mesh.md`, "Runs"). Joints that cannot be
 //! mitred within the budget, or whose neighbouring links are too short for the rings to stay
@@ -241,9 +241,8 @@ pub(super) fn body(
     let m = pts.len() - 1;
     let dirs: Vec<P> = pts.windows(2).map(|w| unit(w[1] - w[0])).collect();
     let mut positions: Vec<P> = Vec::new();
-    // Rings in order along the run: (first vertex, size). Ring vertex i of size n sits at
-    // angle 2πi/n in a frame carried along the run by each joint's rotation (parallel
-    // transport), so that rings of equal size line up.
+    // Rings in order along the run (`Rings`): ring vertex i of size n sits at angle 2πi/n in
+    // a frame carried along the run by each joint's rotation, so rings of equal size line up.
     let mut rr = Rings::default();
     let uniform = |n: u32| (0..n).map(|i| 2.0 * PI * i as f64 / n as f64).collect::<Vec<f64>>();
     let node_angles = |j: usize, f1: P, f2: P| graded(sizes[j], &focus[run.nodes[j]], f1, f2, eps / r, eps / r);
@@ -269,20 +268,26 @@ pub(super) fn body(
     // `r·(1 − cos(θ/2))`; where two tubes part, any such gap opens a slit about
     // `√(r·gap)` deep, so the fork's ring is exact: every vertex on the cylinder.
     let mut normals = vec![d0];
-    // Per ring from node 0's: the link of the band that ends at it.
+    // Per node, the index of its ring; per ring after node 0's, the link of the band that
+    // ends at it.
     let mut node_ring = Vec::with_capacity(m + 1);
     let mut band_link: Vec<usize> = Vec::new();
     node_ring.push(rr.at.len());
     rr.add(pts[0], r, e1, e2, node_angles(0, e1, e2), &mut positions);
+    // The sine of each node's half-bend: its mitre ring reaches `r·sin(θ/2)` along either link.
+    let half_sin: Vec<f64> =
+        (0..=m).map(|j| if j == 0 || j == m { 0.0 } else { half(dirs[j - 1], dirs[j]).1 }).collect();
     // Link l's station rings, in frame `f1` across its axis.
     let station_rings = |l: usize, f1: P, rr: &mut Rings, positions: &mut Vec<P>, band_link: &mut Vec<usize>| {
         let (a, d, len) = (pts[l], dirs[l], (pts[l + 1] - pts[l]).length());
-        // Stations nearer a node than a hundredth of the radius add only slivers.
-        let gap = (0.01 * r / len).min(0.25);
+        // A station stays clear of both node rings (a band between rings that cross would
+        // fold the body), by a hundredth of the radius more (nearer, it adds only slivers).
+        let gap = 0.01 * r / len;
+        let (lo, hi) = (gap + r * half_sin[l] / len, 1.0 - gap - r * half_sin[l + 1] / len);
         let mut at: Vec<f64> = stations[run.links[l] as usize]
             .iter()
             .map(|&x| (x - a).dot(d) / len)
-            .filter(|s| (gap..=1.0 - gap).contains(s))
+            .filter(|&s| lo <= s && s <= hi)
             .collect();
         at.sort_by(f64::total_cmp);
         at.dedup_by(|b, a| *b - *a < gap);
