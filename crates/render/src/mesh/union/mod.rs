@@ -391,9 +391,8 @@ fn near_nodes(own: &RoundCone<f64>, [a, b]: [usize; 2], x: P) -> Vec<usize> {
 /// first excess of the pair in this build; the others name the same fork). One focus per
 /// link and partner: the notch where two tubes part lies in one direction of each ring, and
 /// the deepest excess (handled first) names it (a node shared by two links may carry one from
-/// each). A link
-/// graded towards `key` in an earlier build (its nodes' first `old[node]` foci) is left
-/// alone: the excess persists beside its grading, so grading more does not reach it.
+/// each). A link graded towards `key` in an earlier build (its nodes' first `old[node]` foci)
+/// is left alone: the excess persists beside its grading, so grading more does not reach it.
 fn add_focus(focus: &mut [Vec<Focus>], old: &[usize], nodes: [usize; 2], v: P, key: u32, link: u32) -> (bool, bool) {
     let (mut fresh, mut added) = (false, false);
     let same = |f: &Focus| f.key == key && f.link == link;

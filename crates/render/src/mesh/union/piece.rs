@@ -289,6 +289,9 @@ pub(super) fn body(
             .map(|&x| (x - a).dot(d) / len)
             .filter(|&s| lo <= s && s <= hi)
             .collect();
+        if at.is_empty() {
+            return;
+        }
         at.sort_by(f64::total_cmp);
         at.dedup_by(|b, a| *b - *a < gap);
         let f2 = d.cross(f1);
@@ -296,9 +299,10 @@ pub(super) fn body(
         // The link's own foci (its two rings carry the same ones).
         let link = run.links[l];
         let here: Vec<Focus> = focus[run.nodes[l]].iter().filter(|f| f.link == link).copied().collect();
+        // Every station of the link is graded alike (its frame and foci are the link's).
+        let angles = graded(n, &here, f1, f2, eps / r, eps / r);
         for s in at {
-            let angles = graded(n, &here, f1, f2, eps / r, eps / r);
-            rr.add(a + d * (len * s), r, f1, f2, angles, positions);
+            rr.add(a + d * (len * s), r, f1, f2, angles.clone(), positions);
             band_link.push(l);
         }
     };
