@@ -169,8 +169,9 @@ fn piece(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, depth: u32, margin: f64, hot
     // large against its own bound.
     // Past the splits that fit tangent planes (`PLANE_DEPTH`), only a point witness near
     // enough the centroid still gains.
-    let deep = depth >= PLANE_DEPTH && !hopeful;
-    if d <= ctx.goal || depth == MAX_DEPTH || deep || (d.is_finite() && r < 0.25 * d) {
+    // A piece small against its bound gains nothing from the planes either.
+    let small = d.is_finite() && r < 0.25 * d;
+    if d <= ctx.goal || depth == MAX_DEPTH || (!hopeful && (depth >= PLANE_DEPTH || small)) {
         if d > ctx.goal {
             hot.tubes.extend(a);
             if hot.deepest.map_or(true, |s| d > s.1) {
@@ -191,13 +192,16 @@ fn piece(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, depth: u32, margin: f64, hot
 /// One piece, unsplit: `(d, least sin(β/2) among its half-spaces, the tubes of A)`; `d` the
 /// lesser of the half-spaces' bound and a point witness's: a point `q` outside every tube
 /// (checked on each tube near, and nearer the piece's centroid `c` than `margin`, so outside
-/// the others) bounds the depth of every point `p` of the piece by
-/// `|p − q| ≤ |p − c| + |c − q|` (the piece's radius plus `|c − q|`). The half-spaces need one
+/// the others) bounds the depth of every point `p` of the piece by `|p − q|`, at most
+/// `maxⱼ |vⱼ − q|` over the piece's corners (`|· − q|` is convex). The half-spaces need one
 /// tangent plane per tube to fit the piece; where two streamlines' joints nearly touch, none
 /// does, while the surface is a hair's breadth from the centroid.
 ///
 /// Also whether smaller pieces would meet the goal through the point witness: its distance
-/// from the centroid is below the goal.
+/// from the centroid (the bound's limit as the piece shrinks about it) is below the goal. A
+/// lens where two surfaces nearly touch (a ball against a node's sphere) keeps mesh points up
+/// to the lens's radius deep however fine the spheres, which may be just within the goal:
+/// only smaller pieces show it.
 fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, margin: f64) -> (f64, f64, Vec<u32>, bool) {
     let (d, sh, a) = planes(ctx, near, v, nt);
     // Below the goal nothing is gained; far above it (a crease to refine) the witness is
@@ -206,17 +210,18 @@ fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, margin: f64) -> (f64, f64, Ve
         return (d, sh, a, false);
     }
     let c = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
-    let r = v.iter().map(|&x| (x - c).length()).fold(0.0, f64::max);
     let outside = |q: P| near.iter().all(|&k| ctx.tubes[k as usize].sdf(q) >= ctx.tol);
     let push = 4.0 * ctx.tol;
-    let mut best = f64::INFINITY;
+    // The witnesses' least bound over the piece, and least distance from the centroid (a
+    // lower bound of the former: the centroid is a mean of the corners).
+    let (mut best, mut least) = (f64::INFINITY, f64::INFINITY);
     let mut take = |q: P| {
         let e = (q - c).length();
-        if e + r < best && e < margin && outside(q) {
-            best = e + r;
+        if e < margin && e < best && outside(q) {
+            best = best.min(v.iter().map(|&x| (x - q).length()).fold(0.0, f64::max));
+            least = least.min(e);
         }
     };
-    let hopeful = |best: f64| best - r < 0.9 * ctx.goal;
     // The centroid itself, its projections out of each tube holding it, and the crease points
     // of the three tubes least at it, pairwise.
     let mut by_depth: Vec<(f64, u32)> = near.iter().map(|&k| (ctx.tubes[k as usize].sdf(c), k)).collect();
@@ -247,7 +252,7 @@ fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, margin: f64) -> (f64, f64, Ve
             }
         }
     }
-    (best.min(d), sh, a, hopeful(best))
+    (best.min(d), sh, a, least < ctx.goal)
 }
 
 /// The half-spaces' bound of one piece (see [`leaf`]).
@@ -356,20 +361,36 @@ fn planes(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P) -> (f64, f64, Vec<u32>) {
     }
 }
 
-/// The point of the crease `f_a = f_b = 0` nearest `x` (Newton's least-norm steps on the two
-/// exact distances), or `None` where it does not converge. Only a choice of tangent planes
-/// rests on it: any point gives valid half-spaces.
-fn crease(a: &RoundCone<f64>, b: &RoundCone<f64>, mut x: P) -> Option<P> {
-    for _ in 0..20 {
+/// The point of the crease `f_a = f_b = 0` nearest `p`, or `None` where the steps fail (the
+/// two surfaces tangent on the way). Each step linearises both exact distances at the current
+/// point and moves to the point of that linear crease nearest `p` (Gauss–Newton on the least
+/// distance, linear convergence); then least-norm steps from the point reached settle it on
+/// the crease (quadratic convergence, little motion). A least-norm step from `p` alone lands
+/// on the crease, but not at its point nearest `p`: where two surfaces nearly face each other
+/// (a ball against a node's sphere), that landing is where their normals first part, much
+/// farther than the crease's nearest point. The tangent planes' choice and the point
+/// witnesses rest on it; any point of the crease gives valid half-spaces, and a witness is
+/// checked outside every tube.
+fn crease(a: &RoundCone<f64>, b: &RoundCone<f64>, p: P) -> Option<P> {
+    let mut x = p;
+    let mut anchored = true;
+    for k in 0..40 {
         let (fa, fb, ga, gb) = (a.sdf(x), b.sdf(x), gradient(a, x), gradient(b, x));
         let c = ga.dot(gb);
         let det = 1.0 - c * c;
         if det < 1e-12 {
             return None;
         }
-        let step = ga * ((fa - c * fb) / det) + gb * ((fb - c * fa) / det);
-        x -= step;
-        if step.length() <= 1e-13 * (1.0 + x.length()) {
+        // The point `o + ga·λa + gb·λb` where both linearised distances vanish, `o` the anchor.
+        let o = if anchored { p } else { x };
+        let (ra, rb) = (fa + ga.dot(o - x), fb + gb.dot(o - x));
+        let y = o - ga * ((ra - c * rb) / det) - gb * ((rb - c * ra) / det);
+        let moved = (y - x).length();
+        x = y;
+        let size = 1.0 + x.length();
+        if anchored && (moved <= 1e-9 * size || k == 29) {
+            anchored = false;
+        } else if !anchored && moved <= 1e-13 * size {
             break;
         }
     }

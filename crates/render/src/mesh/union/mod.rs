@@ -168,6 +168,8 @@ pub fn tessellate_union_with(
     for (c, chain) in chains.iter().enumerate() {
         chain.links.iter().for_each(|&l| partner[l as usize] = c as u32);
     }
+    // Per node, the largest excess at its hulls in the last build (0: none).
+    let mut last = vec![0.0f64; n];
     let mut best: Option<(hull::Built, UnionReport)> = None;
     let most = if options.runs { RUN_TRIES } else { TRIES };
     for tries in 1..=most {
@@ -247,6 +249,7 @@ pub fn tessellate_union_with(
         let mut changed = false;
         // A run's links are graded (or their nodes' rings raised), a hull's spheres refined.
         let before = target.clone();
+        let mut excess = vec![0.0f64; n];
         let old: Vec<usize> = focus.iter().map(Vec::len).collect();
         // The deepest excess first: its focus directions are the ones kept.
         let mut over: Vec<&certify::Over> = m.over.iter().collect();
@@ -285,10 +288,22 @@ pub fn tessellate_union_with(
                     }
                 }
             }
-            // The hulls beside them refine their spheres.
+            // The hulls beside them refine their spheres: by `f` where the depth goes as the
+            // sagitta (a crease). A node still over after that is at a notch or a tangency,
+            // where the depth goes as the sagitta's square root: `f²`. One whose excess the
+            // last refinement did not lower by a fifth is at a lens (a ball overlapping a
+            // tube's side by a hair), whose mesh points lie as deep as the lens's radius
+            // until the polyhedra overlap inside it, a sagitta below the overlap, whatever `d`
+            // says: the most a build may refine, 1/16.
             for &t in set.iter().filter(|&&t| body_of[t as usize].is_none()) {
                 for node in pairs[t as usize] {
                     let (now, room) = (sag[node], subdiv[node] < hull::MAX_SUBDIV);
+                    let f = match (before[node] < FIRST_SAGITTA * eps, d >= 0.8 * last[node]) {
+                        (false, _) => f,
+                        (true, false) => (f * f).max(1.0 / 16.0),
+                        (true, true) => 1.0 / 16.0,
+                    };
+                    excess[node] = excess[node].max(d);
                     let s = (now.min(before[node]) * f).min(target[node]);
                     if s < target[node] && room {
                         target[node] = s;
@@ -297,6 +312,7 @@ pub fn tessellate_union_with(
                 }
             }
         }
+        last = excess;
         if !changed {
             break;
         }
