@@ -60,6 +60,8 @@ pub(super) struct Over {
     pub tubes: Vec<u32>,
     /// The centroid of its deepest piece.
     pub at: P,
+    /// The least `sin(β/2)` among the half-spaces of its pieces (1 when none).
+    pub sin_half: f64,
 }
 
 /// What the pieces of a triangle over the goal leave: the tubes of their half-spaces, and the
@@ -146,14 +148,15 @@ fn triangle(ctx: &Ctx, v: [P; 3], margin: f64, near: &mut Vec<u32>) -> Measure {
                 tubes.sort_unstable();
                 tubes.dedup();
                 let at = deepest.map_or((v[0] + v[1] + v[2]) * (1.0 / 3.0), |x| x.0);
-                m.over.push(Over { d, tubes, at });
+                m.over.push(Over { d, tubes, at, sin_half: sh });
             }
             return m;
         }
         margin = 2.0 * d.min(1e6 * margin);
     }
     m.depth = f64::INFINITY;
-    m.over.push(Over { d: f64::INFINITY, tubes: near.clone(), at: (v[0] + v[1] + v[2]) * (1.0 / 3.0) });
+    let at = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
+    m.over.push(Over { d: f64::INFINITY, tubes: near.clone(), at, sin_half: m.min_sin_half });
     m
 }
 
@@ -169,9 +172,8 @@ fn piece(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, depth: u32, margin: f64, hot
     // large against its own bound.
     // Past the splits that fit tangent planes (`PLANE_DEPTH`), only a point witness near
     // enough the centroid still gains.
-    // A piece small against its bound gains nothing from the planes either.
-    let small = d.is_finite() && r < 0.25 * d;
-    if d <= ctx.goal || depth == MAX_DEPTH || (!hopeful && (depth >= PLANE_DEPTH || small)) {
+    let deep = depth >= PLANE_DEPTH && !hopeful;
+    if d <= ctx.goal || depth == MAX_DEPTH || deep || (d.is_finite() && r < 0.25 * d) {
         if d > ctx.goal {
             hot.tubes.extend(a);
             if hot.deepest.map_or(true, |s| d > s.1) {
@@ -198,10 +200,10 @@ fn piece(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, depth: u32, margin: f64, hot
 /// does, while the surface is a hair's breadth from the centroid.
 ///
 /// Also whether smaller pieces would meet the goal through the point witness: its distance
-/// from the centroid (the bound's limit as the piece shrinks about it) is below the goal. A
-/// lens where two surfaces nearly touch (a ball against a node's sphere) keeps mesh points up
-/// to the lens's radius deep however fine the spheres, which may be just within the goal:
-/// only smaller pieces show it.
+/// from the centroid (the bound's limit as the piece shrinks about it) is below 0.9 of the
+/// goal. A lens where two surfaces nearly touch (a ball against a node's sphere) keeps mesh
+/// points up to the lens's radius deep however fine the spheres, which may be just within
+/// the goal: only smaller pieces show it.
 fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, margin: f64) -> (f64, f64, Vec<u32>, bool) {
     let (d, sh, a) = planes(ctx, near, v, nt);
     // Below the goal nothing is gained; far above it (a crease to refine) the witness is
@@ -236,11 +238,11 @@ fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, margin: f64) -> (f64, f64, Ve
     // A crease is the nearest exterior where the centroid lies in one tube and just outside
     // the other (a notch's narrow slit: the push out of the one lands in the other), as well
     // as where it lies inside both.
-    let nearest = by_depth.len().min(3);
-    for i in 0..nearest {
-        for j in i + 1..nearest {
+    let three = by_depth.len().min(3);
+    for i in 0..three {
+        for j in i + 1..three {
             let (ta, tb) = (&ctx.tubes[by_depth[i].1 as usize], &ctx.tubes[by_depth[j].1 as usize]);
-            if let Some(x) = crease(ta, tb, c) {
+            if let Some(x) = crease(ta, tb, c, true) {
                 // Along the bisector of the two outward normals, each distance grows by
                 // `cos` of half their angle (`|g_a + g_b|/2`): small in a notch, where the
                 // two surfaces face each other.
@@ -252,7 +254,7 @@ fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, margin: f64) -> (f64, f64, Ve
             }
         }
     }
-    (best.min(d), sh, a, least < ctx.goal)
+    (best.min(d), sh, a, least < 0.9 * ctx.goal)
 }
 
 /// The half-spaces' bound of one piece (see [`leaf`]).
@@ -326,7 +328,7 @@ fn planes(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P) -> (f64, f64, Vec<u32>) {
                 }
             }
             for k in partners {
-                if let Some(x) = crease(first, &ctx.tubes[k as usize], c) {
+                if let Some(x) = crease(first, &ctx.tubes[k as usize], c, false) {
                     options
                         .push(active.iter().map(|&&(k, _, _)| plane(k, gradient(&ctx.tubes[k as usize], x))).collect());
                 }
@@ -361,20 +363,22 @@ fn planes(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P) -> (f64, f64, Vec<u32>) {
     }
 }
 
-/// The point of the crease `f_a = f_b = 0` nearest `p`, or `None` where the steps fail (the
-/// two surfaces tangent on the way). Each step linearises both exact distances at the current
-/// point and moves to the point of that linear crease nearest `p` (Gauss–Newton on the least
-/// distance, linear convergence); then least-norm steps from the point reached settle it on
-/// the crease (quadratic convergence, little motion). A least-norm step from `p` alone lands
-/// on the crease, but not at its point nearest `p`: where two surfaces nearly face each other
-/// (a ball against a node's sphere), that landing is where their normals first part, much
-/// farther than the crease's nearest point. The tangent planes' choice and the point
-/// witnesses rest on it; any point of the crease gives valid half-spaces, and a witness is
-/// checked outside every tube.
-fn crease(a: &RoundCone<f64>, b: &RoundCone<f64>, p: P) -> Option<P> {
+/// A point of the crease `f_a = f_b = 0` near `p` (with `nearest`, the nearest), or `None`
+/// where the steps fail (the two surfaces tangent on the way). Least-norm steps from `p` land
+/// on the crease (quadratic convergence), but not at its point nearest `p`: where two surfaces
+/// nearly face each other (a ball against a node's sphere), the landing is where their normals
+/// first part, much farther than the crease's nearest point. So with `nearest`, the steps first
+/// linearise both exact distances at the current point and move to the point of that linear
+/// crease nearest `p` (Gauss–Newton on the least distance, linear convergence; ten steps at
+/// most, to 10⁻⁶ of the coordinates: a witness needs no more), and the least-norm steps then
+/// settle the point reached on the crease. The point witnesses need the
+/// nearest point; the tangent planes' choice needs only normals near the crease (any point of
+/// it gives valid half-spaces), and is made on far more pieces. A witness is checked outside
+/// every tube.
+fn crease(a: &RoundCone<f64>, b: &RoundCone<f64>, p: P, nearest: bool) -> Option<P> {
     let mut x = p;
-    let mut anchored = true;
-    for k in 0..40 {
+    let mut anchored = nearest;
+    for k in 0..if nearest { 30 } else { 20 } {
         let (fa, fb, ga, gb) = (a.sdf(x), b.sdf(x), gradient(a, x), gradient(b, x));
         let c = ga.dot(gb);
         let det = 1.0 - c * c;
@@ -388,7 +392,7 @@ fn crease(a: &RoundCone<f64>, b: &RoundCone<f64>, p: P) -> Option<P> {
         let moved = (y - x).length();
         x = y;
         let size = 1.0 + x.length();
-        if anchored && (moved <= 1e-9 * size || k == 29) {
+        if anchored && (moved <= 1e-6 * size || k == 9) {
             anchored = false;
         } else if !anchored && moved <= 1e-13 * size {
             break;

@@ -168,8 +168,6 @@ pub fn tessellate_union_with(
     for (c, chain) in chains.iter().enumerate() {
         chain.links.iter().for_each(|&l| partner[l as usize] = c as u32);
     }
-    // Per node, the largest excess at its hulls in the last build (0: none).
-    let mut last = vec![0.0f64; n];
     let mut best: Option<(hull::Built, UnionReport)> = None;
     let most = if options.runs { RUN_TRIES } else { TRIES };
     for tries in 1..=most {
@@ -249,13 +247,12 @@ pub fn tessellate_union_with(
         let mut changed = false;
         // A run's links are graded (or their nodes' rings raised), a hull's spheres refined.
         let before = target.clone();
-        let mut excess = vec![0.0f64; n];
         let old: Vec<usize> = focus.iter().map(Vec::len).collect();
         // The deepest excess first: its focus directions are the ones kept.
         let mut over: Vec<&certify::Over> = m.over.iter().collect();
         over.sort_by(|a, b| b.d.total_cmp(&a.d));
-        for certify::Over { d, tubes: set, at: x } in over {
-            let (d, x) = (*d, *x);
+        for certify::Over { d, tubes: set, at: x, sin_half } in over {
+            let (d, x, sin_half) = (*d, *x, *sin_half);
             let f = if d.is_finite() { (0.9 * eps / d).clamp(1.0 / 16.0, 0.9) } else { 1.0 / 16.0 };
             let run_links: Vec<u32> = set.iter().copied().filter(|&t| body_of[t as usize].is_some()).collect();
             if !run_links.is_empty() {
@@ -288,23 +285,18 @@ pub fn tessellate_union_with(
                     }
                 }
             }
-            // The hulls beside them refine their spheres: by `f` where the depth goes as the
-            // sagitta (a crease). A node still over after that is at a notch or a tangency,
-            // where the depth goes as the sagitta's square root: `f²`. One whose excess the
-            // last refinement did not lower by a fifth is at a lens (a ball overlapping a
-            // tube's side by a hair), whose mesh points lie as deep as the lens's radius
-            // until the polyhedra overlap inside it, a sagitta below the overlap, whatever `d`
-            // says: the most a build may refine, 1/16.
+            // The hulls beside them refine their spheres: by `f` (the depth at a crease goes
+            // as the sagitta), and at least to the sagitta at which a crease of the opening
+            // measured there meets ε (at most 1/16 per build). Where two surfaces nearly face
+            // each other (a ball overlapping a tube's side by a hair, in a lens), the mesh
+            // points in the lens lie as deep as the lens's radius whatever the sagitta until
+            // the polyhedra overlap inside it: `d` then says nothing of the sagitta needed,
+            // the opening does.
             for &t in set.iter().filter(|&&t| body_of[t as usize].is_none()) {
                 for node in pairs[t as usize] {
-                    let (now, room) = (sag[node], subdiv[node] < hull::MAX_SUBDIV);
-                    let f = match (before[node] < FIRST_SAGITTA * eps, d >= 0.8 * last[node]) {
-                        (false, _) => f,
-                        (true, false) => (f * f).max(1.0 / 16.0),
-                        (true, true) => 1.0 / 16.0,
-                    };
-                    excess[node] = excess[node].max(d);
-                    let s = (now.min(before[node]) * f).min(target[node]);
+                    let (now, room) = (sag[node].min(before[node]), subdiv[node] < hull::MAX_SUBDIV);
+                    let crease = (0.9 * eps * sin_half).max(now / 16.0);
+                    let s = (now * f).min(crease).min(target[node]);
                     if s < target[node] && room {
                         target[node] = s;
                         changed = true;
@@ -312,7 +304,6 @@ pub fn tessellate_union_with(
                 }
             }
         }
-        last = excess;
         if !changed {
             break;
         }
