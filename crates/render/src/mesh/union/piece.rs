@@ -1,12 +1,14 @@
 //! Runs of equal-radius links meshed as one closed body each, before the union: a ring of `n`
-//! vertices on the node sphere at every node (in the plane that bisects the joint, a *mitre*),
+//! vertices at every node (in the plane that bisects the joint, a *mitre*: on the node sphere,
+//! and on the bend's inner side on the ellipse where the two links' cylinders meet),
 //! bands of triangles between consecutive rings, and a polyhedral half-sphere at each end of
 //! the run. A streamline of a tractogram becomes one body of about `2n` triangles per link,
 //! where a hull of two sphere polyhedra per link (`hull.rs`) leaves every joint a crease of
 //! the sphere's facets.
 //!
-//! The body is inscribed (every vertex on a node sphere or, at a fork ring, on its link's
-//! cylinder within the link; every triangle in one link's round cone or one ball), and it contains every link's round cone shrunk by the run's sagitta
+//! The body is inscribed (every vertex on a node sphere or, at a fork ring or a mitre's inner
+//! side, on its links' cylinders within the links; every triangle in one link's round cone or
+//! one ball), and it contains every link's round cone shrunk by the run's sagitta
 //! `s = r − R` (`R` measured on the triangles, below), which is all the union's certificate
 //! needs from a construction (`docs/design/union-mesh.md`, "Runs"). Joints that cannot be
 //! mitred within the budget, or whose neighbouring links are too short for the rings to stay
@@ -110,7 +112,8 @@ pub(super) fn runs(chains: &[Chain], centres: &[P], radii: &[f64], target: &[f64
 /// Whether interior node `j` of a stretch may be a mitre: the bend costs at most half the
 /// sagitta target (`r·(1 − cos(θ/2))`, which also keeps `θ` below a right angle), and each of
 /// its two links is long enough for the conditions of `docs/design/union-mesh.md` ("Runs"):
-/// each end ring lies strictly on its link's side of the other end's plane, a shrunk round
+/// each end ring (reaching `r/cos(θ/2)` from its node) lies strictly on its link's side of
+/// the other end's plane, a shrunk round
 /// cone's part beyond a mitre stays within the next link's cylinder (`L ≥ r·sin θ` for the
 /// bends at both ends), and the outer wedge of a joint's ball stays behind the next plane
 /// (`L·cos(θ/2) > r·sin(θ/2)`). The neighbours' bends are taken as mitred: a cut there (a
@@ -125,10 +128,12 @@ fn mitre(j: usize, bend: &[(f64, f64)], lens: &[f64], r: f64, target: f64) -> bo
     // of the half-bends, or 1 past a right angle.
     let tilt =
         |(c1, s1): (f64, f64), (c2, s2): (f64, f64)| if c1 * c2 - s1 * s2 >= 0.0 { s1 * c2 + c1 * s2 } else { 1.0 };
+    // A mitre ring reaches `r/cos(θ/2)` from its node in its plane (the inner side's
+    // ellipse): each end ring stays on its side of the other's plane when
+    // `L·cos(θ₁/2)·cos(θ₂/2) > r·sin∠(u₁, u₂)`.
     let ok = |len: f64, (co, so): (f64, f64)| {
         let t = tilt((co, so), (c, s));
-        len * c > r * t
-            && len * co > r * t
+        len * c * co > r * t
             && len >= r * 2.0 * s * c
             && len >= r * 2.0 * so * co
             && len * c > r * s
@@ -274,16 +279,24 @@ pub(super) fn body(
     let mut band_link: Vec<usize> = Vec::new();
     node_ring.push(rr.at.len());
     rr.add(pts[0], r, e1, e2, node_angles(0, e1, e2), &mut positions);
-    // The sine of each node's half-bend: its mitre ring reaches `r·sin(θ/2)` along either link.
-    let half_sin: Vec<f64> =
-        (0..=m).map(|j| if j == 0 || j == m { 0.0 } else { half(dirs[j - 1], dirs[j]).1 }).collect();
+    // The tangent of each node's half-bend: its mitre ring reaches `r·tan(θ/2)` along either
+    // link (the inner side's ellipse).
+    let half_tan: Vec<f64> = (0..=m)
+        .map(|j| {
+            if j == 0 || j == m {
+                return 0.0;
+            }
+            let (c, s) = half(dirs[j - 1], dirs[j]);
+            s / c
+        })
+        .collect();
     // Link l's station rings, in frame `f1` across its axis.
     let station_rings = |l: usize, f1: P, rr: &mut Rings, positions: &mut Vec<P>, band_link: &mut Vec<usize>| {
         let (a, d, len) = (pts[l], dirs[l], (pts[l + 1] - pts[l]).length());
         // A station stays clear of both node rings (a band between rings that cross would
         // fold the body), by a hundredth of the radius more (nearer, it adds only slivers).
         let gap = 0.01 * r / len;
-        let (lo, hi) = (gap + r * half_sin[l] / len, 1.0 - gap - r * half_sin[l + 1] / len);
+        let (lo, hi) = (gap + r * half_tan[l] / len, 1.0 - gap - r * half_tan[l + 1] / len);
         let mut at: Vec<f64> = stations[run.links[l] as usize]
             .iter()
             .map(|&x| (x - a).dot(d) / len)
@@ -323,7 +336,19 @@ pub(super) fn body(
         let h = unit(h - u * h.dot(u));
         node_ring.push(rr.at.len());
         band_link.push(j - 1);
-        rr.add(pts[j], r, h, u.cross(h), node_angles(j, h, u.cross(h)), &mut positions);
+        // On the inner side of the bend (`v·a < 0`) the two links' cylinders meet in the
+        // bisecting plane on an ellipse, `r/√(1 − (v·a)²)` from the node, within both links:
+        // the ring lies there, on both cylinders, with no gap where a tube parts. On the outer
+        // side the cylinders end before the plane, and the ring lies on the node's ball.
+        let mitre = |v: P| {
+            let k = v.dot(a);
+            if k < 0.0 {
+                r / (1.0 - k * k).sqrt()
+            } else {
+                r
+            }
+        };
+        rr.add_with(pts[j], mitre, h, u.cross(h), node_angles(j, h, u.cross(h)), &mut positions);
         normals.push(u);
         e1 = unit(rot(e1, theta));
         e1 = unit(e1 - b * e1.dot(b));
@@ -518,10 +543,17 @@ struct Rings {
 impl Rings {
     /// A ring of radius `rad` about `c` in the plane of `f1`, `f2`, at `angles` (radians).
     fn add(&mut self, c: P, rad: f64, f1: P, f2: P, angles: Vec<f64>, positions: &mut Vec<P>) {
+        self.add_with(c, |_| rad, f1, f2, angles, positions);
+    }
+
+    /// A ring about `c` in the plane of `f1`, `f2`, at `angles`, each vertex at the distance
+    /// `rad(v)` along its unit direction `v`.
+    fn add_with(&mut self, c: P, rad: impl Fn(P) -> f64, f1: P, f2: P, angles: Vec<f64>, positions: &mut Vec<P>) {
         self.at.push((positions.len(), angles.len()));
         for &a in &angles {
             let (sa, ca) = a.sin_cos();
-            positions.push(c + (f1 * ca + f2 * sa) * rad);
+            let v = f1 * ca + f2 * sa;
+            positions.push(c + v * rad(v));
         }
         self.turns.push(angles.iter().map(|a| a / (2.0 * PI)).collect());
     }
