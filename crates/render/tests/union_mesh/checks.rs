@@ -331,8 +331,9 @@ fn onto_crease(a: &RoundCone<f64>, b: &RoundCone<f64>, mut x: P, steps: usize, d
 /// are: `p` moved out of each tube along its gradient (the nearest point of that tube's
 /// surface), the nearest crease point of each pair of tubes near `p` (Newton on both SDFs,
 /// then a push of `push` along the bisector of the two normals), and 4,000 directions at
-/// distance `d` (the bound to check), then 400,000 where those miss. Returns the least
-/// witness distance, or infinity when none within `d` is found.
+/// distance `d` (the bound to check), the eight least inside of them climbed over the sphere
+/// where all are inside. Returns the least witness distance, or infinity when none within `d` is
+/// found.
 pub fn depth_witness(tubes: &[RoundCone<f64>], p: P, d: f64) -> f64 {
     let f = sdf(tubes, p);
     if f >= 0.0 {
@@ -363,17 +364,54 @@ pub fn depth_witness(tubes: &[RoundCone<f64>], p: P, d: f64) -> f64 {
             }
         }
     }
-    // Where the bound is within a hair of the true depth, the exterior at distance `d` is a
-    // small cap of the sphere: a finer set of directions finds it.
-    for k in [4000, 400_000] {
-        if best.get() <= d {
-            break;
-        }
-        for i in 0..k {
-            let z = 1.0 - 2.0 * (i as f64 + 0.5) / k as f64;
-            let phi = i as f64 * std::f64::consts::PI * (3.0 - 5f64.sqrt());
-            let s = (1.0 - z * z).sqrt();
-            take(p + V3::new(s * phi.cos(), s * phi.sin(), z) * d);
+    // The directions at distance `d`; where the bound is within a hair of the true depth, the
+    // exterior there is a small cap of the sphere, which the samples may straddle: the eight
+    // directions whose points are least inside the union are then climbed (rotations of
+    // shrinking angle towards whichever of eight neighbours is less inside: a crease's ridge
+    // runs diagonally) until a point is outside.
+    if best.get() > d {
+        let k = 4000;
+        let mut tops: Vec<(f64, P)> = (0..k)
+            .map(|i| {
+                let z = 1.0 - 2.0 * (i as f64 + 0.5) / k as f64;
+                let phi = i as f64 * std::f64::consts::PI * (3.0 - 5f64.sqrt());
+                let s = (1.0 - z * z).sqrt();
+                let u = V3::new(s * phi.cos(), s * phi.sin(), z);
+                take(p + u * d);
+                (sdf(tubes, p + u * d), u)
+            })
+            .collect();
+        tops.sort_by(|a, b| b.0.total_cmp(&a.0));
+        for &(mut f, mut u) in tops.iter().take(8) {
+            let mut step = 0.05;
+            while best.get() > d && step > 1e-9 {
+                let e1 = if u.x.abs() < 0.9 { V3::new(1.0, 0.0, 0.0) } else { V3::new(0.0, 1.0, 0.0) };
+                let t1 = e1 - u * e1.dot(u);
+                let t1 = t1 * (1.0 / t1.length());
+                let t2 = u.cross(t1);
+                let mut moved = false;
+                for (a, b) in [
+                    (1.0, 0.0),
+                    (-1.0, 0.0),
+                    (0.0, 1.0),
+                    (0.0, -1.0),
+                    (1.0, 1.0),
+                    (1.0, -1.0),
+                    (-1.0, 1.0),
+                    (-1.0, -1.0),
+                ] {
+                    let v = u + (t1 * a + t2 * b) * step;
+                    let v = v * (1.0 / v.length());
+                    let g = sdf(tubes, p + v * d);
+                    if g > f {
+                        (f, u, moved) = (g, v, true);
+                        take(p + v * d);
+                    }
+                }
+                if !moved {
+                    step *= 0.5;
+                }
+            }
         }
     }
     best.get()

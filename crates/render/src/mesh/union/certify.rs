@@ -62,6 +62,9 @@ pub(super) struct Over {
     pub at: P,
     /// The least `sin(β/2)` among the half-spaces of its pieces (1 when none).
     pub sin_half: f64,
+    /// Whether a point witness, not the half-spaces, bounds its deepest piece: the bound is
+    /// then a distance to the exterior that the sagitta does not set (a lens, a notch).
+    pub witness: bool,
 }
 
 /// What the pieces of a triangle over the goal leave: the tubes of their half-spaces, and the
@@ -69,7 +72,8 @@ pub(super) struct Over {
 #[derive(Default)]
 struct Hot {
     tubes: Vec<u32>,
-    deepest: Option<(P, f64)>,
+    /// The deepest piece: centroid, bound, and whether a point witness set it.
+    deepest: Option<(P, f64, bool)>,
 }
 
 struct Ctx<'a> {
@@ -147,8 +151,8 @@ fn triangle(ctx: &Ctx, v: [P; 3], margin: f64, near: &mut Vec<u32>) -> Measure {
                 let Hot { mut tubes, deepest } = hot;
                 tubes.sort_unstable();
                 tubes.dedup();
-                let at = deepest.map_or((v[0] + v[1] + v[2]) * (1.0 / 3.0), |x| x.0);
-                m.over.push(Over { d, tubes, at, sin_half: sh });
+                let (at, witness) = deepest.map_or(((v[0] + v[1] + v[2]) * (1.0 / 3.0), false), |x| (x.0, x.2));
+                m.over.push(Over { d, tubes, at, sin_half: sh, witness });
             }
             return m;
         }
@@ -156,7 +160,7 @@ fn triangle(ctx: &Ctx, v: [P; 3], margin: f64, near: &mut Vec<u32>) -> Measure {
     }
     m.depth = f64::INFINITY;
     let at = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
-    m.over.push(Over { d: f64::INFINITY, tubes: near.clone(), at, sin_half: m.min_sin_half });
+    m.over.push(Over { d: f64::INFINITY, tubes: near.clone(), at, sin_half: m.min_sin_half, witness: false });
     m
 }
 
@@ -165,7 +169,7 @@ fn triangle(ctx: &Ctx, v: [P; 3], margin: f64, near: &mut Vec<u32>) -> Measure {
 /// the tubes whose half-spaces bound it and keeps the deepest piece. Returns
 /// `(d, least sin(β/2))`.
 fn piece(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, depth: u32, margin: f64, hot: &mut Hot) -> (f64, f64) {
-    let (d, sh, a, hopeful) = leaf(ctx, near, v, nt, margin);
+    let (d, sh, a, hopeful, witness) = leaf(ctx, near, v, nt, margin);
     let c = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
     let r = v.iter().map(|&x| (x - c).length()).fold(0.0, f64::max);
     // Splitting helps where one tangent plane per tube cannot fit the piece: the piece is
@@ -177,7 +181,7 @@ fn piece(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, depth: u32, margin: f64, hot
         if d > ctx.goal {
             hot.tubes.extend(a);
             if hot.deepest.map_or(true, |s| d > s.1) {
-                hot.deepest = Some((c, d));
+                hot.deepest = Some((c, d, witness));
             }
         }
         return (d, sh);
@@ -199,17 +203,17 @@ fn piece(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, depth: u32, margin: f64, hot
 /// tangent plane per tube to fit the piece; where two streamlines' joints nearly touch, none
 /// does, while the surface is a hair's breadth from the centroid.
 ///
-/// Also whether smaller pieces would meet the goal through the point witness: its distance
-/// from the centroid (the bound's limit as the piece shrinks about it) is below 0.9 of the
-/// goal. A lens where two surfaces nearly touch (a ball against a node's sphere) keeps mesh
-/// points up to the lens's radius deep however fine the spheres, which may be just within
-/// the goal: only smaller pieces show it.
-fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, margin: f64) -> (f64, f64, Vec<u32>, bool) {
+/// Also whether smaller pieces would meet the goal through the point witness (its distance
+/// from the centroid, the bound's limit as the piece shrinks about it, is below 0.9 of the
+/// goal), and whether the witness set `d`. A lens where two surfaces nearly touch (a ball
+/// against a node's sphere) keeps mesh points up to the lens's radius deep however fine the
+/// spheres, which may be just within the goal: only smaller pieces show it.
+fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, margin: f64) -> (f64, f64, Vec<u32>, bool, bool) {
     let (d, sh, a) = planes(ctx, near, v, nt);
     // Below the goal nothing is gained; far above it (a crease to refine) the witness is
     // rarely nearer.
     if d <= ctx.goal || d > 4.0 * ctx.goal {
-        return (d, sh, a, false);
+        return (d, sh, a, false, false);
     }
     let c = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
     let outside = |q: P| near.iter().all(|&k| ctx.tubes[k as usize].sdf(q) >= ctx.tol);
@@ -242,7 +246,8 @@ fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, margin: f64) -> (f64, f64, Ve
     for i in 0..three {
         for j in i + 1..three {
             let (ta, tb) = (&ctx.tubes[by_depth[i].1 as usize], &ctx.tubes[by_depth[j].1 as usize]);
-            if let Some(x) = crease(ta, tb, c, true) {
+            // The landing and the nearest point: either may lie in a third tube.
+            for x in [crease(ta, tb, c, false), crease(ta, tb, c, true)].into_iter().flatten() {
                 // Along the bisector of the two outward normals, each distance grows by
                 // `cos` of half their angle (`|g_a + g_b|/2`): small in a notch, where the
                 // two surfaces face each other.
@@ -254,7 +259,7 @@ fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, margin: f64) -> (f64, f64, Ve
             }
         }
     }
-    (best.min(d), sh, a, least < 0.9 * ctx.goal)
+    (best.min(d), sh, a, least < 0.9 * ctx.goal, best < d)
 }
 
 /// The half-spaces' bound of one piece (see [`leaf`]).

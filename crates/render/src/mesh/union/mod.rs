@@ -251,7 +251,7 @@ pub fn tessellate_union_with(
         // The deepest excess first: its focus directions are the ones kept.
         let mut over: Vec<&certify::Over> = m.over.iter().collect();
         over.sort_by(|a, b| b.d.total_cmp(&a.d));
-        for certify::Over { d, tubes: set, at: x, sin_half } in over {
+        for certify::Over { d, tubes: set, at: x, sin_half, witness } in over {
             let (d, x, sin_half) = (*d, *x, *sin_half);
             let f = if d.is_finite() { (0.9 * eps / d).clamp(1.0 / 16.0, 0.9) } else { 1.0 / 16.0 };
             let run_links: Vec<u32> = set.iter().copied().filter(|&t| body_of[t as usize].is_some()).collect();
@@ -285,17 +285,19 @@ pub fn tessellate_union_with(
                     }
                 }
             }
-            // The hulls beside them refine their spheres: by `f` (the depth at a crease goes
-            // as the sagitta), and at least to the sagitta at which a crease of the opening
-            // measured there meets ε (at most 1/16 per build). Where two surfaces nearly face
-            // each other (a ball overlapping a tube's side by a hair, in a lens), the mesh
+            // The hulls beside them refine their spheres by `f`: the depth at a crease goes as
+            // the sagitta, `d ≈ s/sin(β/2)`. Where the bound is far below that, or a point
+            // witness's, the polyhedra do not cross there yet: two surfaces nearly face each
+            // other (a ball overlapping a tube's side by a hair, in a lens), and the mesh
             // points in the lens lie as deep as the lens's radius whatever the sagitta until
-            // the polyhedra overlap inside it: `d` then says nothing of the sagitta needed,
-            // the opening does.
+            // the polyhedra overlap inside it. `d` then says nothing of the sagitta needed, and
+            // the opening does: at least to the sagitta at which a crease of that opening
+            // meets ε (at most 1/16 per build).
             for &t in set.iter().filter(|&&t| body_of[t as usize].is_none()) {
                 for node in pairs[t as usize] {
                     let (now, room) = (sag[node].min(before[node]), subdiv[node] < hull::MAX_SUBDIV);
-                    let crease = (0.9 * eps * sin_half).max(now / 16.0);
+                    let lens = *witness || d * sin_half < 0.25 * now;
+                    let crease = if lens { (0.9 * eps * sin_half).max(now / 16.0) } else { f64::INFINITY };
                     let s = (now * f).min(crease).min(target[node]);
                     if s < target[node] && room {
                         target[node] = s;
