@@ -151,10 +151,12 @@ fn sharp_notch_trees_meet_eps() {
 /// radius step of 10⁻⁴), against ε = 0.02. The certificate must find the crease's nearest
 /// point, and the spheres must be refined to the sagitta at which the lens's opening meets ε
 /// (the excess does not fall with the sagitta until then). They certified 2.38·10⁻²,
-/// 3.36·10⁻², 2.31·10⁻², 3.42·10⁻² and 2.52·10⁻² (random-tree counterexamples).
+/// 3.36·10⁻², 2.31·10⁻², 2.95·10⁻², 3.42·10⁻² and 2.52·10⁻² (random-tree counterexamples).
 #[test]
 fn lens_trees_meet_eps() {
-    for (n, seed, twist) in [(3, 102947, 4), (5, 39941, 4), (3, 75593, 4), (4, 518123, 5), (3, 710947, 5)] {
+    for (n, seed, twist) in
+        [(3, 102947, 4), (5, 39941, 4), (3, 75593, 4), (4, 315086, 4), (4, 518123, 5), (3, 710947, 5)]
+    {
         let (_, rep) = check(&tree(n, seed, twist), 2e-2, true);
         assert_eq!(rep.outside, 0, "n {n} seed {seed} twist {twist}: {rep:?}");
     }
