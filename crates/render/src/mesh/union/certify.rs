@@ -34,6 +34,9 @@ use tubecast::{Primitive, RoundCone};
 /// Splits of a triangle into four at most.
 const MAX_DEPTH: u32 = 10;
 
+/// How far the tubes' query margin may grow for one triangle whose bound exceeds it.
+const MARGIN_GROWTH: f64 = 16.0;
+
 /// Splits of a triangle into four where its bound is far above the goal.
 const PLANE_DEPTH: u32 = 6;
 
@@ -132,10 +135,18 @@ fn triangle(ctx: &Ctx, v: [P; 3], margin: f64, near: &mut Vec<u32>) -> Measure {
     let lo = P::new(v[0].x.min(v[1].x).min(v[2].x), v[0].y.min(v[1].y).min(v[2].y), v[0].z.min(v[1].z).min(v[2].z));
     let hi = P::new(v[0].x.max(v[1].x).max(v[2].x), v[0].y.max(v[1].y).max(v[2].y), v[0].z.max(v[1].z).max(v[2].z));
     let nt = unit((v[1] - v[0]).cross(v[2] - v[0]));
+    let first = margin;
     let mut margin = margin;
     let mut m = Measure { min_sin_half: 1.0, ..Default::default() };
+    let c = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
+    let r = v.iter().map(|&x| (x - c).length()).fold(0.0, f64::max);
     for _ in 0..3 {
         ctx.index.near(lo, hi, margin, near);
+        // The index answers by bounding boxes (a long link's box holds much that is far from
+        // it): keep the tubes that may come within `margin` of the triangle, where
+        // `fₘ ≥ fₘ(c) − r` on it (a distance is 1-Lipschitz). The others stay farther than
+        // `margin` from every point of it, as the bound needs.
+        near.retain(|&k| ctx.tubes[k as usize].sdf(c) - r <= margin);
         // Outside: bₜ against the tubes near (a tube holding the three corners is among them).
         let b = near
             .iter()
@@ -156,7 +167,15 @@ fn triangle(ctx: &Ctx, v: [P; 3], margin: f64, near: &mut Vec<u32>) -> Measure {
             }
             return m;
         }
-        margin = 2.0 * d.min(1e6 * margin);
+        // A bound past the margin needs the tubes within it listed. Past `MARGIN_GROWTH` times
+        // the first margin it is reported infinite instead: the refinement takes its largest
+        // step either way, and in a dense bundle such a margin lists hundreds of tubes per
+        // triangle (most of the certificate's time); where no point is outside them all
+        // (`d` infinite), listing more cannot help.
+        if d.is_nan() || d >= MARGIN_GROWTH * first {
+            break;
+        }
+        margin = 2.0 * d;
     }
     m.depth = f64::INFINITY;
     let at = (v[0] + v[1] + v[2]) * (1.0 / 3.0);

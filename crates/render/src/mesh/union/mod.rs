@@ -19,6 +19,7 @@ mod tube;
 use super::{MeshError, SceneMesh};
 use crate::scene::Scene;
 use piece::Focus;
+use std::collections::HashMap;
 use tube::P;
 use tubecast::{GeometryError, Mesh, Part, RoundCone, V3};
 
@@ -161,6 +162,11 @@ pub fn tessellate_union_with(
     let mut target = vec![FIRST_SAGITTA * eps; n];
     // Directions about which a node's ring is graded finer (runs only: `piece::graded`).
     let mut focus: Vec<Vec<Focus>> = vec![Vec::new(); n];
+    // The build in which each (node, partner, link) focus was added: one focus per link and
+    // partner at each of the link's nodes (the notch where two tubes part lies in one
+    // direction of each ring, and the deepest excess, handled first, names it; a node shared
+    // by two links may carry one from each).
+    let mut graded_in: HashMap<(usize, u32, u32), usize> = HashMap::new();
     // Per link, the points of its axis where a grazing tube parts from it (`piece::body`).
     let mut stations: Vec<Vec<P>> = vec![Vec::new(); pairs.len()];
     // The partner a focus points to: a tube's chain (one focus per chain a node's ring meets).
@@ -247,7 +253,6 @@ pub fn tessellate_union_with(
         let mut changed = false;
         // A run's links are graded (or their nodes' rings raised), a hull's spheres refined.
         let before = target.clone();
-        let old: Vec<usize> = focus.iter().map(Vec::len).collect();
         // The deepest excess first: its focus directions are the ones kept.
         let mut over: Vec<&certify::Over> = m.over.iter().collect();
         over.sort_by(|a, b| b.d.total_cmp(&a.d));
@@ -259,12 +264,33 @@ pub fn tessellate_union_with(
                 let mut graded = false;
                 let mut nodes = Vec::new();
                 for &t in &run_links {
-                    for (v, u, fork) in towards(&tubes, &pairs, t, set, x) {
-                        let (fresh, added) = add_focus(&mut focus, &old, pairs[t as usize], v, partner[u as usize], t);
-                        if let (true, Some(p)) = (added, fork) {
-                            stations[t as usize].push(p);
+                    let ends = pairs[t as usize];
+                    // Not its neighbours: they meet it at a joint, not at a crease.
+                    for &u in set.iter().filter(|&&u| !pairs[u as usize].iter().any(|k| ends.contains(k))) {
+                        let key = partner[u as usize];
+                        let when = ends.map(|node| graded_in.get(&(node, key, t)).copied());
+                        // Graded towards `key` in an earlier build at both ends: the excess
+                        // persists beside its grading, so grading more does not reach it.
+                        if when.iter().all(|w| w.is_some_and(|b| b < tries)) {
+                            continue;
                         }
-                        graded |= fresh;
+                        // Graded in this build by a deeper excess: it names the same fork.
+                        if when.iter().all(Option::is_some) {
+                            graded = true;
+                            continue;
+                        }
+                        if let Some((v, fork)) = toward(&tubes[t as usize], &tubes[u as usize], x) {
+                            for (node, w) in ends.into_iter().zip(when) {
+                                if w.is_none() {
+                                    focus[node].push(Focus { dir: v, key, link: t });
+                                    graded_in.insert((node, key, t), tries);
+                                }
+                            }
+                            if let Some(p) = fork {
+                                stations[t as usize].push(p);
+                            }
+                            graded = true;
+                        }
                     }
                     if body_of[t as usize] == Some(true) {
                         nodes.extend(near_nodes(&tubes[t as usize], pairs[t as usize], x));
@@ -314,33 +340,26 @@ pub fn tessellate_union_with(
     Ok((assemble(scene, built, &links, report.certified()), report))
 }
 
-/// The directions, across link `t`'s axis, towards the other tubes of `set` (not its
-/// neighbours), with the other tube: where two tubes cross or graze, the crease's opening
+/// The direction, across link `own`'s axis, towards the tube `o` (not its neighbour), with
+/// the fork where they part, if any: where two tubes cross or graze, the crease's opening
 /// shrinks towards the other tube, to a notch where they part. The notch is where the axes
 /// are the two radii apart (the fork nearest `x`); where the axes stay nearer or farther
-/// along the whole link, the direction at `x` stands in.
-#[allow(clippy::type_complexity)]
-fn towards(tubes: &[RoundCone<f64>], pairs: &[[usize; 2]], t: u32, set: &[u32], x: P) -> Vec<(P, u32, Option<P>)> {
-    let own = &tubes[t as usize];
+/// along the whole link, the direction at `x` stands in. `None` where the other axis passes
+/// through this one there (no direction).
+fn toward(own: &RoundCone<f64>, o: &RoundCone<f64>, x: P) -> Option<(P, Option<P>)> {
     let w = own.b - own.a;
     let ax = tube::unit(w);
-    set.iter()
-        .filter(|&&u| !pairs[u as usize].iter().any(|k| pairs[t as usize].contains(k)))
-        .filter_map(|&u| {
-            let o = &tubes[u as usize];
-            let ow = o.b - o.a;
-            let on = |p: P| o.a + ow * ((p - o.a).dot(ow) / ow.length2()).clamp(0.0, 1.0);
-            // The gap between the two tubes' sides over the axis point at `s` (convex in s).
-            let at = |s: f64| own.a + w * s;
-            let gap = |s: f64| (on(at(s)) - at(s)).length() - own.ra - o.ra;
-            let sx = ((x - own.a).dot(w) / w.length2()).clamp(0.0, 1.0);
-            let f = fork(gap, sx);
-            let s = f.unwrap_or(sx);
-            let y = on(at(s)) - own.a;
-            let v = y - ax * y.dot(ax);
-            (v.length() > 1e-3 * own.ra).then(|| (tube::unit(v), u, f.map(at)))
-        })
-        .collect()
+    let ow = o.b - o.a;
+    let on = |p: P| o.a + ow * ((p - o.a).dot(ow) / ow.length2()).clamp(0.0, 1.0);
+    // The gap between the two tubes' sides over the axis point at `s` (convex in s).
+    let at = |s: f64| own.a + w * s;
+    let gap = |s: f64| (on(at(s)) - at(s)).length() - own.ra - o.ra;
+    let sx = ((x - own.a).dot(w) / w.length2()).clamp(0.0, 1.0);
+    let f = fork(gap, sx);
+    let s = f.unwrap_or(sx);
+    let y = on(at(s)) - own.a;
+    let v = y - ax * y.dot(ax);
+    (v.length() > 1e-3 * own.ra).then(|| (tube::unit(v), f.map(at)))
 }
 
 /// The root in `[0, 1]` of the convex `gap` nearest `sx`, if any: its least point by golden
@@ -393,29 +412,6 @@ fn near_nodes(own: &RoundCone<f64>, [a, b]: [usize; 2], x: P) -> Vec<usize> {
     } else {
         vec![a, b]
     }
-}
-
-/// Adds the focus direction `v`, from link `link` towards the tube or chain `key`, to both
-/// nodes of the link; whether the rings change there, and whether it was added now (the
-/// first excess of the pair in this build; the others name the same fork). One focus per
-/// link and partner: the notch where two tubes part lies in one direction of each ring, and
-/// the deepest excess (handled first) names it (a node shared by two links may carry one from
-/// each). A link graded towards `key` in an earlier build (its nodes' first `old[node]` foci)
-/// is left alone: the excess persists beside its grading, so grading more does not reach it.
-fn add_focus(focus: &mut [Vec<Focus>], old: &[usize], nodes: [usize; 2], v: P, key: u32, link: u32) -> (bool, bool) {
-    let (mut fresh, mut added) = (false, false);
-    let same = |f: &Focus| f.key == key && f.link == link;
-    for node in nodes {
-        if focus[node][..old[node]].iter().any(same) {
-            continue;
-        }
-        fresh = true;
-        if !focus[node].iter().any(same) {
-            focus[node].push(Focus { dir: v, key, link });
-            added = true;
-        }
-    }
-    (fresh, added)
 }
 
 /// The runs' bodies at the current sagitta targets: each run at its ring size, cut where its
