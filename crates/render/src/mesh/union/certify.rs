@@ -162,7 +162,7 @@ fn triangle(ctx: &Ctx, v: [P; 3], margin: f64, near: &mut Vec<u32>) -> Measure {
                 let Hot { mut tubes, deepest } = hot;
                 tubes.sort_unstable();
                 tubes.dedup();
-                let (at, witness) = deepest.map_or(((v[0] + v[1] + v[2]) * (1.0 / 3.0), false), |x| (x.0, x.2));
+                let (at, witness) = deepest.map_or((c, false), |x| (x.0, x.2));
                 m.over.push(Over { d, tubes, at, sin_half: sh, witness });
             }
             return m;
@@ -178,8 +178,7 @@ fn triangle(ctx: &Ctx, v: [P; 3], margin: f64, near: &mut Vec<u32>) -> Measure {
         margin = 2.0 * d;
     }
     m.depth = f64::INFINITY;
-    let at = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
-    m.over.push(Over { d: f64::INFINITY, tubes: near.clone(), at, sin_half: m.min_sin_half, witness: false });
+    m.over.push(Over { d: f64::INFINITY, tubes: near.clone(), at: c, sin_half: m.min_sin_half, witness: false });
     m
 }
 
