@@ -64,7 +64,7 @@ pub fn mesh(a: &MeshArgs) -> Result<(), CliError> {
     if m.mesh.certified > a.tolerance {
         let why = match &report {
             Some(r) => format!(
-                "{} triangles at creases too narrow for the sphere resolution tried (least sin(β/2) {:.3}: tubes overlapping at a narrow angle, where the bound is the sagitta over sin(β/2); see docs/design/union-mesh.md)",
+                "{} triangles at creases too narrow for the resolution tried (least sin(β/2) {:.2e}: tubes overlapping at a narrow angle, where the bound is the sagitta over sin(β/2); see docs/design/union-mesh.md)",
                 r.outside, r.min_sin_half
             ),
             None => "see docs/design/union-mesh.md".to_string(),
