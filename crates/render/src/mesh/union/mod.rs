@@ -312,9 +312,11 @@ pub fn tessellate_union_with(
                 }
                 changed |= graded;
                 // Graded before and still over: the excess is at a node (a cap, a mitre's
-                // bend) or the grading falls short; the rings there grow all around, where
-                // one build can plausibly fix the crease (a finite bound within 4ε).
-                if !(graded || d.is_nan() || d > 4.0 * eps) {
+                // bend) or the grading falls short (where three tubes meet); the rings there
+                // grow all around, where one build can plausibly fix the crease (a finite
+                // bound within 8ε: a triple junction 4.2·ε deep stayed through every build
+                // of a 20,000-link Bundle at 4ε).
+                if !(graded || d.is_nan() || d > 8.0 * eps) {
                     for node in nodes {
                         // A notch's depth goes as the square root of the sagitta.
                         let s = before[node] * (f * f).max(1.0 / 16.0);
