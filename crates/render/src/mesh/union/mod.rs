@@ -436,18 +436,8 @@ fn pregrade(
                 if (g[i] < 0.0) == (g[i + 1] < 0.0) {
                     continue;
                 }
-                // `lo` inside the other chain's tubes, `hi` outside.
                 let (inside, outside) = if g[i] < 0.0 { (i, i + 1) } else { (i + 1, i) };
-                let (mut lo, mut hi) = (inside as f64 / SAMPLES as f64, outside as f64 / SAMPLES as f64);
-                for _ in 0..50 {
-                    let mid = 0.5 * (lo + hi);
-                    if gap(mid) < 0.0 {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                let s = 0.5 * (lo + hi);
+                let s = bisect(gap, inside as f64 / SAMPLES as f64, outside as f64 / SAMPLES as f64);
                 let (_, y, u) = nearest(at(s));
                 let ou = &tubes[u as usize];
                 if ou.b != ou.a && ax.cross(tube::unit(ou.b - ou.a)).length() >= GRAZING_SIN {
@@ -486,24 +476,25 @@ fn fork(gap: impl Fn(f64) -> f64, sx: f64) -> Option<f64> {
     if gap(m) >= 0.0 {
         return None;
     }
-    let root = |mut inside: f64, mut outside: f64| {
-        if gap(outside) < 0.0 {
-            return None;
-        }
-        for _ in 0..60 {
-            let mid = 0.5 * (inside + outside);
-            if gap(mid) < 0.0 {
-                inside = mid;
-            } else {
-                outside = mid;
-            }
-        }
-        Some(0.5 * (inside + outside))
-    };
+    let root = |inside: f64, outside: f64| (gap(outside) >= 0.0).then(|| bisect(&gap, inside, outside));
     match (root(m, 0.0), root(m, 1.0)) {
         (Some(a), Some(b)) => Some(if (a - sx).abs() <= (b - sx).abs() { a } else { b }),
         (a, b) => a.or(b),
     }
+}
+
+/// The root of `gap` between `inside` (`gap < 0`) and `outside` (`gap ≥ 0`), by bisection to
+/// 2⁻⁶⁰ of their distance.
+fn bisect(gap: impl Fn(f64) -> f64, mut inside: f64, mut outside: f64) -> f64 {
+    for _ in 0..60 {
+        let mid = 0.5 * (inside + outside);
+        if gap(mid) < 0.0 {
+            inside = mid;
+        } else {
+            outside = mid;
+        }
+    }
+    0.5 * (inside + outside)
 }
 
 /// The nodes of a link whose rings set the mesh at `x`: the one within half a radius of `x`
