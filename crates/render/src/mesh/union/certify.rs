@@ -187,9 +187,9 @@ fn triangle(ctx: &Ctx, v: [P; 3], margin: f64, near: &mut Vec<u32>) -> Measure {
 /// the tubes whose half-spaces bound it and keeps the deepest piece. Returns
 /// `(d, least sin(β/2))`.
 fn piece(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, depth: u32, margin: f64, hot: &mut Hot) -> (f64, f64) {
-    let (d, sh, a, hopeful, witness) = leaf(ctx, near, v, nt, depth, margin);
     let c = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
     let r = v.iter().map(|&x| (x - c).length()).fold(0.0, f64::max);
+    let (d, sh, a, hopeful, witness) = leaf(ctx, near, v, nt, depth, r, margin);
     // Splitting helps where one tangent plane per tube cannot fit the piece: the piece is
     // large against its own bound.
     // Past the splits that fit tangent planes (`PLANE_DEPTH`), only a point witness near
@@ -226,7 +226,17 @@ fn piece(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, depth: u32, margin: f64, hot
 /// goal), and whether the witness set `d`. A lens where two surfaces nearly touch (a ball
 /// against a node's sphere) keeps mesh points up to the lens's radius deep however fine the
 /// spheres, which may be just within the goal: only smaller pieces show it.
-fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, depth: u32, margin: f64) -> (f64, f64, Vec<u32>, bool, bool) {
+///
+/// `depth` and `r` (its largest corner distance from the centroid) are the piece's in `piece`.
+fn leaf(
+    ctx: &Ctx,
+    near: &[u32],
+    v: [P; 3],
+    nt: P,
+    depth: u32,
+    r: f64,
+    margin: f64,
+) -> (f64, f64, Vec<u32>, bool, bool) {
     let (d, sh, a) = planes(ctx, near, v, nt);
     let c = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
     // Below the goal nothing is gained; far above it (a crease to refine) the witness is
@@ -234,7 +244,7 @@ fn leaf(ctx: &Ctx, near: &[u32], v: [P; 3], nt: P, depth: u32, margin: f64) -> (
     // (`piece`): there the planes may just not fit (two tubes all but tangent where they
     // part at a joint; measured: a bound of 6.2·ε, 300 times the true depth, kept through
     // four builds).
-    let last = depth >= PLANE_DEPTH || v.iter().all(|&x| (x - c).length() < 0.25 * d);
+    let last = depth >= PLANE_DEPTH || r < 0.25 * d;
     if d <= ctx.goal || (d > 4.0 * ctx.goal && !last) {
         return (d, sh, a, false, false);
     }

@@ -678,7 +678,9 @@ mod tests {
                 stations[60 * chain..60 * chain + 60].iter().flatten().map(|p| p.dot(along)).collect();
             found.sort_by(f64::total_cmp);
             assert_eq!(found.len(), 2, "chain {chain}: forks at {found:?}");
-            // Bisection to 2⁻⁵⁰ of a link.
+            // The bisection ends 2⁻⁶⁰ of a sample apart; the gap, about 10 from the origin,
+            // rounds to ~10⁻¹⁵ and rises at sin β = 0.02 per unit along the axis, so the root
+            // is found to ~10⁻¹³: 10⁻⁹ is slack for that, far below a link (0.5).
             assert!((found[0] + fork).abs() < 1e-9 && (found[1] - fork).abs() < 1e-9, "{found:?} against ±{fork}");
         }
         // Each fork's link grades both its rings towards the other chain, across its axis.
