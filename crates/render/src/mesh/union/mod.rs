@@ -445,7 +445,8 @@ fn pregrade(
                 }
                 let y = y - own.a;
                 let v = y - ax * y.dot(ax);
-                if v.length() <= 1e-3 * own.ra {
+                // No direction where the other axis passes through this one (nor a NaN one).
+                if v.length().is_nan() || v.length() <= 1e-3 * own.ra {
                     continue;
                 }
                 for node in ends {
@@ -693,7 +694,10 @@ mod tests {
             let at = stations[f.link as usize][0];
             let other = if f.key == 1 { V3::new(beta.cos(), beta.sin(), 0.0) } else { V3::new(1.0, 0.0, 0.0) };
             let to = other * at.dot(other) - at;
+            // `to` is perpendicular to the other line, `dir` to this one: they differ by at
+            // most β = 0.02 rad, cos β = 0.9998.
             assert!(f.dir.dot(tube::unit(to)) > 0.999, "{f:?} from {at:?}");
+            // `dir` is the unit of a vector with its axial part removed: a few ulps of 1.
             assert!(f.dir.dot(tube::unit(own.b - own.a)).abs() < 1e-12, "{f:?}");
             assert!((f.dir.length() - 1.0).abs() < 1e-12, "{f:?}");
         }
