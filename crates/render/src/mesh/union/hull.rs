@@ -1,8 +1,7 @@
 //! The union built with manifold (the pure-Rust port `manifold-rust`): every node sphere an
 //! inscribed polyhedron (manifold's subdivided octahedron, vertices on the sphere), every link
-//! the convex hull of its two end polyhedra, all links united by manifold's batch boolean
-//! (its CSG tree, which unites disjoint pieces by composition and the rest pairwise in order
-//! of size).
+//! the convex hull of its two end polyhedra, all links united by halves in space (`tree_union`),
+//! with manifold's batch union (disjoint pieces composed, the rest pairwise) for the last few.
 
 use super::piece::Body;
 use super::tube::P;
@@ -141,12 +140,12 @@ pub(super) fn union(
     for (&(k, _), h) in links.iter().zip(hulls) {
         let (id, m) = h?;
         ids.insert(id as u32, k);
-        leaves.push(CsgNode::leaf(m.into_impl()));
+        leaves.push(m);
     }
     for m in runs {
-        leaves.push(CsgNode::leaf(m?.into_impl()));
+        leaves.push(m?);
     }
-    let solid = Manifold::from_impl(CsgNode::op_n(OpType::Add, leaves).evaluate());
+    let solid = tree_union(leaves);
     if solid.status() != Error::NoError {
         return Err(BuildError(format!("manifold's union failed: {:?}", solid.status())));
     }
@@ -170,4 +169,38 @@ pub(super) fn union(
         }
     }
     Ok(Built { positions, triangles, link })
+}
+
+/// At most this many pieces are united by one call of manifold's batch union.
+const TREE_LEAF: usize = 16;
+
+/// The union of `pieces`, by halves: split at the median of their boxes' centres along the
+/// widest axis, each half united (the two side by side), then the two halves.
+///
+/// Manifold's batch union composes pieces whose boxes are disjoint, then unites the rest
+/// largest first, so the growing result is carried through nearly every boolean: the work
+/// goes as the number of pieces times the result. Halving keeps each boolean's operands
+/// near each other and about equal, so every piece takes part in about log₂(n/16) booleans.
+fn tree_union(mut pieces: Vec<Manifold>) -> Manifold {
+    if pieces.len() <= TREE_LEAF {
+        let nodes = pieces.into_iter().map(|m| CsgNode::leaf(m.into_impl())).collect();
+        return Manifold::from_impl(CsgNode::op_n(OpType::Add, nodes).evaluate());
+    }
+    let centre = |m: &Manifold| {
+        let b = m.bounding_box();
+        [0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y), 0.5 * (b.min.z + b.max.z)]
+    };
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for c in pieces.iter().map(centre) {
+        for i in 0..3 {
+            lo[i] = lo[i].min(c[i]);
+            hi[i] = hi[i].max(c[i]);
+        }
+    }
+    let axis = (0..3).max_by(|&a, &b| (hi[a] - lo[a]).total_cmp(&(hi[b] - lo[b]))).unwrap_or(0);
+    let mid = pieces.len() / 2;
+    pieces.select_nth_unstable_by(mid, |a, b| centre(a)[axis].total_cmp(&centre(b)[axis]));
+    let right = pieces.split_off(mid);
+    let (a, b) = rayon::join(|| tree_union(pieces), || tree_union(right));
+    a.boolean(&b, OpType::Add)
 }

@@ -1,10 +1,10 @@
 //! The surface of the union of a scene's links, built with manifold (the pure-Rust port
 //! `manifold-rust`): every node sphere an inscribed polyhedron, every link the convex hull of
-//! its two end polyhedra, all links united by manifold's batch boolean (`hull.rs`); the result
-//! is one closed, oriented 2-manifold per component (manifold's guarantee, checked by the
-//! tests), measured triangle by triangle against the exact round cones (`certify.rs`), with
-//! a certified two-sided Hausdorff bound to the union's exact surface (derivation in
-//! `docs/design/union-mesh.md`).
+//! its two end polyhedra, all links united by manifold's booleans, by halves in space
+//! (`hull.rs`); the result is one closed, oriented 2-manifold per component (manifold's
+//! guarantee, checked by the tests), measured triangle by triangle against the exact round
+//! cones (`certify.rs`), with a certified two-sided Hausdorff bound to the union's exact
+//! surface (derivation in `docs/design/union-mesh.md`).
 //!
 //! The polyhedra's resolution is set per node by its sagitta (a thin branch needs fewer
 //! segments than the soma); where the measured bound exceeds the tolerance (sharp notches,
@@ -96,16 +96,16 @@ const GRAZING_SIN: f64 = 0.5;
 
 /// Peak bytes per hull triangle (manifold's input): the hulls, the boolean's working set, the
 /// result and its certificate. Calibrated on the generator's 900-link neuron at ε = 10⁻²·r̄,
-/// whose peak resident memory was 535–570 bytes per hull triangle (one and two threads), with
+/// whose peak resident memory was 164 bytes per counted hull triangle above the base, with
 /// margin (`docs/design/union-mesh.md`, "Memory guard").
-pub const UNION_BYTES_PER_HULL_TRIANGLE: f64 = 650.0;
+pub const UNION_BYTES_PER_HULL_TRIANGLE: f64 = 250.0;
 
 /// Peak bytes per triangle of a run's body (manifold's input with `UnionOptions::runs`): the
 /// bodies' triangles are mostly kept (long streamlines overlap little), so the result and its
-/// certificate weigh more per input triangle than the hulls'. Calibrated on the 5,040-link
-/// Bundle with runs, whose peak resident memory was 1,170–1,930 bytes per body triangle of the
-/// last build (ε = 10⁻³ and 10⁻² of the radius), with margin.
-pub const UNION_BYTES_PER_BODY_TRIANGLE: f64 = 2000.0;
+/// certificate weigh more per input triangle than the hulls'. Calibrated on the Bundles with
+/// runs, whose peak resident memory was 890–1,160 bytes per body triangle of the last build
+/// (5,040 links at ε = 10⁻³ and 10⁻² of the radius, 20,000 links at 10⁻²), with margin.
+pub const UNION_BYTES_PER_BODY_TRIANGLE: f64 = 1400.0;
 
 /// The process's own memory beside the union (code, the scene, the thread pool).
 pub const UNION_BASE_BYTES: f64 = 64e6;
