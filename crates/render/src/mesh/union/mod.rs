@@ -9,7 +9,7 @@
 //! The polyhedra's resolution is set per node by its sagitta (a thin branch needs fewer
 //! segments than the soma); where the measured bound exceeds the tolerance (sharp notches,
 //! where the bound is the sagitta over `sin(β/2)`), the spheres of the tubes that set it are
-//! refined by the measured factor and the union rebuilt, twice at most.
+//! refined by the measured factor and the union rebuilt, three times at most.
 
 mod certify;
 mod hull;
@@ -75,8 +75,9 @@ pub struct UnionOptions {
     pub runs: bool,
 }
 
-/// Builds made at most (the first, then refinements where the bound exceeds ε).
-const TRIES: usize = 3;
+/// Builds made at most (the first, then refinements where the bound exceeds ε; the larger
+/// neuron assemblies need a fourth, `docs/design/union-mesh.md`, "Size and cost").
+const TRIES: usize = 4;
 
 /// Builds made at most with runs: a crease's grading, then a node's rings where the grading
 /// fell short, then once more.
