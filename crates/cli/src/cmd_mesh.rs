@@ -53,15 +53,17 @@ pub fn mesh(a: &MeshArgs) -> Result<(), CliError> {
             j["union"] = union_json(r);
         }
         println!("{j}");
-        return Ok(());
+    } else {
+        println!(
+            "{}: {surface}, {vertices} vertices, {triangles} triangles, {parts} closed parts, certified Hausdorff bound {:e} (asked {:e})",
+            a.out.display(),
+            m.mesh.certified,
+            a.tolerance
+        );
     }
-    println!(
-        "{}: {surface}, {vertices} vertices, {triangles} triangles, {parts} closed parts, certified Hausdorff bound {:e} (asked {:e})",
-        a.out.display(),
-        m.mesh.certified,
-        a.tolerance
-    );
-    if m.mesh.certified > a.tolerance {
+    // Warnings go to stderr with `--json` too: the summary holds the numbers, not the why.
+    // A bound that is not a number is over the tolerance as well.
+    if m.mesh.certified > a.tolerance || m.mesh.certified.is_nan() {
         let why = match &report {
             Some(r) => format!(
                 "{} triangles at creases too narrow for the resolution tried (least sin(β/2) {:.2e}: tubes overlapping at a narrow angle, where the bound is the sagitta over sin(β/2); see docs/design/union-mesh.md)",
@@ -70,6 +72,13 @@ pub fn mesh(a: &MeshArgs) -> Result<(), CliError> {
             None => "see docs/design/union-mesh.md".to_string(),
         };
         eprintln!("warning: the certified bound {:e} exceeds the tolerance: {why}", m.mesh.certified);
+    }
+    if let Some(e) = report.as_ref().and_then(|r| r.refused_estimate) {
+        let limit = memory_limit.map_or_else(String::new, |l| format!(", {}", bytes(l)));
+        eprintln!(
+            "warning: the refinement stopped: the next build's estimated peak, {}, exceeds the memory limit{limit} (raise --memory-limit, or the tolerance)",
+            bytes(e)
+        );
     }
     Ok(())
 }
@@ -80,6 +89,15 @@ fn union_json(r: &UnionReport) -> serde_json::Value {
         "tries": r.tries, "sagitta": r.sagitta, "depth": r.depth, "out": r.out,
         "over_tolerance": r.outside, "min_sin_half": r.min_sin_half,
         "subdivisions": [r.subdiv.0, r.subdiv.1], "runs": r.runs, "ring": [r.ring.0, r.ring.1],
-        "input_triangles": r.hull_triangles,
+        "input_triangles": r.hull_triangles, "refused_estimate": r.refused_estimate,
     })
+}
+
+/// A byte count for a message: GB from 1 GB, MB below.
+fn bytes(b: u64) -> String {
+    if b >= 1_000_000_000 {
+        format!("{:.1} GB", b as f64 / 1e9)
+    } else {
+        format!("{:.0} MB", b as f64 / 1e6)
+    }
 }

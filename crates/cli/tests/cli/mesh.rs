@@ -170,10 +170,11 @@ fn mesh_refuses_a_union_above_the_memory_limit() {
 /// Two cylinders (r = 0.5) whose axes are 10⁻³ closer than touching meet in a crease of
 /// `sin(β/2) ≈ 0.045`, where the first build's bound is over ε = 10⁻². The refinement that
 /// meets ε (about 33,000 hull triangles, 72 MB by the union's estimate) does not fit a
-/// 66 MiB (69.2 MB) limit, while the first build (about 2,000, 64.5 MB) does: the mesh made is still
-/// written and the CLI warns with the bound reached (2.65·10⁻²). At that resolution the two
-/// polyhedra do not meet (their overlap, 10⁻³, is below the sagitta, 6.6·10⁻³): two closed
-/// parts, each watertight, the gap between them within the bound.
+/// 66 MiB (69.2 MB) limit, while the first build (about 2,000, 64.5 MB) does: the mesh made
+/// is still written, and the CLI warns with the bound reached (2.65·10⁻²) and with the
+/// estimate that stopped the refinement. At that resolution the two polyhedra do not meet
+/// (their overlap, 10⁻³, is below the sagitta, 6.6·10⁻³): two closed parts, each watertight,
+/// the gap between them within the bound.
 #[test]
 fn mesh_warns_where_the_refinement_cannot_reach_the_tolerance() {
     let swc = tmp("union_narrow.swc");
@@ -195,6 +196,7 @@ fn mesh_warns_where_the_refinement_cannot_reach_the_tolerance() {
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     let err = String::from_utf8_lossy(&run.stderr);
     assert!(err.contains("warning: the certified bound") && err.contains("sin(β/2)"), "{err}");
+    assert!(err.contains("refinement stopped") && err.contains("72 MB") && err.contains("--memory-limit"), "{err}");
     assert!(String::from_utf8_lossy(&run.stdout).contains("2 closed parts"));
     ply_is_watertight(&std::fs::read(&ply).unwrap());
 }

@@ -53,6 +53,9 @@ pub struct UnionReport {
     /// Manifold's input triangles: the runs' bodies and the other links' hulls (counted at
     /// their bound `2·(points) − 4`).
     pub hull_triangles: usize,
+    /// The estimated peak (bytes) of the refinement that `UnionOptions::memory_limit` refused,
+    /// where one was: the mesh returned is the best build made before it.
+    pub refused_estimate: Option<u64>,
 }
 
 impl UnionReport {
@@ -213,9 +216,10 @@ pub fn tessellate_union_with(
                 + hull_tris as f64 * UNION_BYTES_PER_HULL_TRIANGLE
                 + body_tris as f64 * UNION_BYTES_PER_BODY_TRIANGLE) as u64;
             if estimate > limit {
-                if let Some(b) = best.take() {
+                if let Some((b, mut r)) = best.take() {
                     // A refinement that would not fit: keep the mesh already made.
-                    best = Some(b);
+                    r.refused_estimate = Some(estimate);
+                    best = Some((b, r));
                     break;
                 }
                 return Err(MeshError::Memory { eps, estimate, limit, hull_triangles: input_tris });
@@ -252,6 +256,7 @@ pub fn tessellate_union_with(
             ring: (bodies.iter().map(|b| b.ring).min().unwrap_or(0), bodies.iter().map(|b| b.ring).max().unwrap_or(0)),
             runs: bodies.len(),
             hull_triangles: input_tris,
+            refused_estimate: None,
         };
         if !report.certified().is_finite() {
             report.depth = f64::INFINITY;
