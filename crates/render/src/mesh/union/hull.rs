@@ -160,9 +160,9 @@ pub(super) fn union(
     let triangles: Vec<[u32; 3]> =
         gl.tri_verts.chunks(3).map(|t| [to[t[0] as usize], to[t[1] as usize], to[t[2] as usize]]).collect();
     let mut link = vec![0u32; triangles.len()];
-    // Each run (the triangles of one input piece) keyed by its piece: the hull's link, or a
-    // body's first tube (a tube lies in one piece only).
-    let mut runs: Vec<(u32, usize, usize)> = Vec::with_capacity(gl.run_original_id.len());
+    // Each of manifold's runs (the triangles of one input piece) keyed by its piece: the
+    // hull's link, or a body's first tube (a tube lies in one piece only).
+    let mut spans: Vec<(u32, usize, usize)> = Vec::with_capacity(gl.run_original_id.len());
     for r in 0..gl.run_original_id.len() {
         let (s, e) = (gl.run_index[r] as usize / 3, gl.run_index[r + 1] as usize / 3);
         match ids.get(&gl.run_original_id[r]) {
@@ -171,18 +171,18 @@ pub(super) fn union(
             None => (s..e).for_each(|t| link[t] = gl.face_id.get(t).map_or(0, |&f| f as u32)),
         }
         if s < e {
-            runs.push((link[s], s, e));
+            spans.push((link[s], s, e));
         }
     }
     // Manifold orders the runs by the pieces' IDs, which the threads reserve in the order
     // they happen to make the pieces: ordered by piece instead, the triangles come out in the
     // same order on every run.
-    if runs.iter().map(|&(_, s, e)| e - s).sum::<usize>() != triangles.len() {
+    if spans.iter().map(|&(_, s, e)| e - s).sum::<usize>() != triangles.len() {
         // The runs do not cover the triangles once each (never seen): keep manifold's order.
         return Ok(Built { positions, triangles, link });
     }
-    runs.sort_unstable_by_key(|&(key, s, _)| (key, s));
-    let order = runs.iter().flat_map(|&(_, s, e)| s..e);
+    spans.sort_unstable_by_key(|&(key, s, _)| (key, s));
+    let order = spans.iter().flat_map(|&(_, s, e)| s..e);
     let (triangles, link) = order.map(|t| (triangles[t], link[t])).unzip();
     Ok(Built { positions, triangles, link })
 }
