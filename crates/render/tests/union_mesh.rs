@@ -314,6 +314,34 @@ fn three_streamlines_meeting_meet_eps() {
     assert_eq!(checks::components(&m), 1, "{rep:?}");
 }
 
+/// Three streamlines of the 10⁵-link Bundle (`generate bundle --segments 80`, radius 0.12),
+/// pairwise overlapping within 8° of parallel: between them the exterior is a channel whose
+/// walls' normals are nearly coplanar, so it closes at a point off each partner's direction,
+/// where the grading about the partners has coarsened. Graded about the partners only, the
+/// mesh there stayed 4.5·ε deep (the rings were then raised all round); graded about the
+/// excess itself it meets ε. Checked by the independent true-depth witnesses.
+#[test]
+fn three_streamlines_closing_a_channel_meet_eps() {
+    let a: &[[f64; 3]] = &[
+        [-42.5, -0.6394488215446472, 0.1741485446691513],
+        [-41.25, -0.16398805379867554, 0.03866150602698326],
+        [-40.0, 0.3071710765361786, -0.09515191614627838],
+    ];
+    let b: &[[f64; 3]] = &[
+        [-42.5, -0.8810111284255981, 0.15012045204639435],
+        [-41.25, -0.40592578053474426, 0.005403375253081322],
+        [-40.0, 0.06342566013336182, -0.1378195583820343],
+    ];
+    let c: &[[f64; 3]] = &[
+        [-42.5, -0.7692084908485413, 0.30181798338890076],
+        [-41.25, -0.3537110984325409, 0.1628194898366928],
+        [-40.0, 0.06005258113145828, 0.021121127530932426],
+    ];
+    let s = Scene::from_polylines(&[line(a, &[]), line(b, &[]), line(c, &[])], 0.12, "t").unwrap();
+    let (m, rep) = check_with(&s, 1.2e-3, true, &RUNS);
+    assert_eq!(checks::components(&m), 1, "{rep:?}");
+}
+
 /// A streamline coiled tighter than its diameter (a helix of pitch 0.4 at radius 0.3, every
 /// bend mitred): the bodies of links a turn apart would overlap, so the run is cut (both parts
 /// closed with half-spheres) and the union joins the parts; the surface stays embedded and

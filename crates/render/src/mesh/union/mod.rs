@@ -82,9 +82,11 @@ pub struct UnionOptions {
 /// neuron assemblies need a fourth, `docs/design/union-mesh.md`, "Size and cost").
 const TRIES: usize = 4;
 
-/// Builds made at most with runs: a crease's grading, then a node's rings where the grading
-/// fell short, then once more.
-const RUN_TRIES: usize = 4;
+/// Builds made at most with runs: a crease's grading; where it falls short, the grading about
+/// the excess itself, then a node's rings; each may take a build or two more in a dense bundle
+/// (the 10⁵-link Bundle's bound: infinite, infinite, 5.8·ε, 4.6·ε, then 1.67·ε in the fifth
+/// and sixth builds, `docs/design/union-mesh.md`).
+const RUN_TRIES: usize = 6;
 
 /// The first sagitta target, as a fraction of ε: a crease of exterior opening β multiplies
 /// the sagitta by `1/sin(β/2)`, and most of a tree's creases (bends, branches) are wider than
@@ -97,6 +99,14 @@ const FIRST_SAGITTA: f64 = 0.7;
 /// triangles at ε = 10⁻²·r, against 228,078 with this limit and 220,078 with none graded
 /// before); the Bundle's forks are all within 8°.
 const GRAZING_SIN: f64 = 0.5;
+
+/// The focus key of a direction graded about an excess itself, not about a partner tube
+/// (partners' keys are chains and links, far below it).
+const POINT: u32 = u32::MAX;
+
+/// Directions graded about excesses per link at most (a link meets few junctions; a cost
+/// limit).
+const MAX_POINTS: usize = 4;
 
 /// Peak bytes per hull triangle (manifold's input): the hulls, the boolean's working set, the
 /// result and its certificate. Calibrated on the generator's 900-link neuron at ε = 10⁻²·r̄,
@@ -178,6 +188,8 @@ pub fn tessellate_union_with(
     // direction of each ring, and the deepest excess, handled first, names it; a node shared
     // by two links may carry one from each).
     let mut graded_in: HashMap<(usize, u32, u32), usize> = HashMap::new();
+    // Per link, the directions graded about an excess (`POINT`), with the build of each.
+    let mut excess_dirs: HashMap<u32, Vec<(P, usize)>> = HashMap::new();
     // Per link, the points of its axis where a grazing tube parts from it (`piece::body`).
     let mut stations: Vec<Vec<P>> = vec![Vec::new(); pairs.len()];
     // The partner a focus points to: a tube's chain (one focus per chain a node's ring meets).
@@ -285,6 +297,8 @@ pub fn tessellate_union_with(
                 let mut nodes = Vec::new();
                 for &t in &run_links {
                     let ends = pairs[t as usize];
+                    let graded_before = graded;
+                    graded = false;
                     // Not its neighbours: they meet it at a joint, not at a crease.
                     for &u in set.iter().filter(|&&u| !pairs[u as usize].iter().any(|k| ends.contains(k))) {
                         let key = partner[u as usize];
@@ -312,6 +326,30 @@ pub fn tessellate_union_with(
                             graded = true;
                         }
                     }
+                    // Graded towards every tube here and still over: where three tubes meet, the
+                    // exterior is a channel between them that closes at a point, off the
+                    // direction of each partner (about halfway between two), where the
+                    // grading about the partners has coarsened. Grade about the excess itself:
+                    // a direction of the ring graded `fine` (`piece::graded`) within twice that
+                    // of one already graded is not graded again (the rings grow instead).
+                    if !graded {
+                        if let Some(v) = across(&tubes[t as usize], x) {
+                            let fine = eps / tubes[t as usize].ra;
+                            let list = excess_dirs.entry(t).or_default();
+                            match list.iter().find(|(u, _)| u.dot(v) >= (2.0 * fine).cos()) {
+                                Some(&(_, when)) => graded = when == tries,
+                                None if list.len() < MAX_POINTS => {
+                                    list.push((v, tries));
+                                    for node in ends {
+                                        focus[node].push(Focus { dir: v, key: POINT, link: t });
+                                    }
+                                    graded = true;
+                                }
+                                None => {}
+                            }
+                        }
+                    }
+                    graded |= graded_before;
                     if body_of[t as usize] == Some(true) {
                         nodes.extend(near_nodes(&tubes[t as usize], pairs[t as usize], x));
                     }
@@ -360,6 +398,14 @@ pub fn tessellate_union_with(
     }
     let (built, report) = best.expect("at least one build");
     Ok((assemble(scene, built, &links, report.certified()), report))
+}
+
+/// The unit direction across `own`'s axis towards `x`, or `None` where `x` lies on the axis.
+fn across(own: &RoundCone<f64>, x: P) -> Option<P> {
+    let ax = tube::unit(own.b - own.a);
+    let y = x - own.a;
+    let v = y - ax * y.dot(ax);
+    (v.length() > 1e-3 * own.ra).then(|| tube::unit(v))
 }
 
 /// The direction, across link `own`'s axis, towards the tube `o` (not its neighbour), with
