@@ -59,7 +59,10 @@ fn check_with(scene: &Scene, eps: f64, bound_holds: bool, opts: &UnionOptions) -
     // Surface → mesh.
     let samples = checks::surface_samples(&ts, 1500, 7);
     assert!(samples.len() > 100, "too few surface samples");
-    let far = checks::farthest_from_mesh(&m, &samples, (4.0 * cert).max(0.05));
+    // The search radius: the mesh lies within `cert` of each sample, and a grid of cells
+    // finer than a fraction of the radius puts a body's long bands in hundreds of cells.
+    let r_max = ts.iter().fold(0.0f64, |m, t| m.max(t.ra).max(t.rb));
+    let far = checks::farthest_from_mesh(&m, &samples, (4.0 * cert).max(0.05).max(0.4 * r_max));
     assert!(far <= cert * (1.0 + 1e-6), "a surface point is {far:e} from the mesh, certified {cert:e}");
     (m, rep)
 }
@@ -322,24 +325,45 @@ fn three_streamlines_meeting_meet_eps() {
 /// excess itself it meets ε. Checked by the independent true-depth witnesses.
 #[test]
 fn three_streamlines_closing_a_channel_meet_eps() {
-    let a: &[[f64; 3]] = &[
-        [-42.5, -0.6394488215446472, 0.1741485446691513],
-        [-41.25, -0.16398805379867554, 0.03866150602698326],
-        [-40.0, 0.3071710765361786, -0.09515191614627838],
-    ];
-    let b: &[[f64; 3]] = &[
-        [-42.5, -0.8810111284255981, 0.15012045204639435],
-        [-41.25, -0.40592578053474426, 0.005403375253081322],
-        [-40.0, 0.06342566013336182, -0.1378195583820343],
-    ];
-    let c: &[[f64; 3]] = &[
-        [-42.5, -0.7692084908485413, 0.30181798338890076],
-        [-41.25, -0.3537110984325409, 0.1628194898366928],
-        [-40.0, 0.06005258113145828, 0.021121127530932426],
-    ];
-    let s = Scene::from_polylines(&[line(a, &[]), line(b, &[]), line(c, &[])], 0.12, "t").unwrap();
-    let (m, rep) = check_with(&s, 1.2e-3, true, &RUNS);
+    let (m, rep) = check_with(&channel(1.0, [0.0; 3]), 1.2e-3, true, &RUNS);
     assert_eq!(checks::components(&m), 1, "{rep:?}");
+}
+
+/// The same three streamlines scaled by `k` about the origin and moved by `o`, radius
+/// `0.12·k`.
+fn channel(k: f64, o: [f64; 3]) -> Scene {
+    let lines: [[[f64; 3]; 3]; 3] = [
+        [
+            [-42.5, -0.6394488215446472, 0.1741485446691513],
+            [-41.25, -0.16398805379867554, 0.03866150602698326],
+            [-40.0, 0.3071710765361786, -0.09515191614627838],
+        ],
+        [
+            [-42.5, -0.8810111284255981, 0.15012045204639435],
+            [-41.25, -0.40592578053474426, 0.005403375253081322],
+            [-40.0, 0.06342566013336182, -0.1378195583820343],
+        ],
+        [
+            [-42.5, -0.7692084908485413, 0.30181798338890076],
+            [-41.25, -0.3537110984325409, 0.1628194898366928],
+            [-40.0, 0.06005258113145828, 0.021121127530932426],
+        ],
+    ];
+    let moved: Vec<Polyline> =
+        lines.iter().map(|l| line(&l.map(|p| [0, 1, 2].map(|i| p[i] * k + o[i])), &[])).collect();
+    Scene::from_polylines(&moved, 0.12 * k, "t").unwrap()
+}
+
+/// Runs where rounding is largest against ε: the triple channel 10⁶ radii from the origin (a
+/// coordinate's rounding there, 2.7·10⁻¹¹, is 2·10⁻⁸·ε; manifold's and the certificate's
+/// allowances follow the coordinates), and scaled by 10⁻³ and 10³ with ε. Each meets ε·k,
+/// checked by the independent witnesses.
+#[test]
+fn runs_meet_eps_far_from_the_origin_and_at_other_scales() {
+    for (k, o) in [(1.0, [1.2e5, -1.2e5, 6e4]), (1e-3, [0.0; 3]), (1e3, [0.0; 3])] {
+        let (m, rep) = check_with(&channel(k, o), 1.2e-3 * k, true, &RUNS);
+        assert_eq!(checks::components(&m), 1, "k {k}, o {o:?}: {rep:?}");
+    }
 }
 
 /// A streamline coiled tighter than its diameter (a helix of pitch 0.4 at radius 0.3, every
