@@ -297,8 +297,9 @@ pub fn tessellate_union_with(
                 let mut nodes = Vec::new();
                 for &t in &run_links {
                     let ends = pairs[t as usize];
-                    let graded_before = graded;
-                    graded = false;
+                    // Whether this link was graded for the excess (towards a partner or
+                    // about the excess itself).
+                    let mut here = false;
                     // Not its neighbours: they meet it at a joint, not at a crease.
                     for &u in set.iter().filter(|&&u| !pairs[u as usize].iter().any(|k| ends.contains(k))) {
                         let key = partner[u as usize];
@@ -310,7 +311,7 @@ pub fn tessellate_union_with(
                         }
                         // Graded in this build by a deeper excess: it names the same fork.
                         if when.iter().all(Option::is_some) {
-                            graded = true;
+                            here = true;
                             continue;
                         }
                         if let Some((v, fork)) = toward(&tubes[t as usize], &tubes[u as usize], x) {
@@ -323,7 +324,7 @@ pub fn tessellate_union_with(
                             if let Some(p) = fork {
                                 stations[t as usize].push(p);
                             }
-                            graded = true;
+                            here = true;
                         }
                     }
                     // Graded towards every tube here and still over: where three tubes meet, the
@@ -332,24 +333,24 @@ pub fn tessellate_union_with(
                     // grading about the partners has coarsened. Grade about the excess itself:
                     // a direction of the ring graded `fine` (`piece::graded`) within twice that
                     // of one already graded is not graded again (the rings grow instead).
-                    if !graded {
+                    if !here {
                         if let Some(v) = across(&tubes[t as usize], x) {
                             let fine = eps / tubes[t as usize].ra;
                             let list = excess_dirs.entry(t).or_default();
                             match list.iter().find(|(u, _)| u.dot(v) >= (2.0 * fine).cos()) {
-                                Some(&(_, when)) => graded = when == tries,
+                                Some(&(_, when)) => here = when == tries,
                                 None if list.len() < MAX_POINTS => {
                                     list.push((v, tries));
                                     for node in ends {
                                         focus[node].push(Focus { dir: v, key: POINT, link: t });
                                     }
-                                    graded = true;
+                                    here = true;
                                 }
                                 None => {}
                             }
                         }
                     }
-                    graded |= graded_before;
+                    graded |= here;
                     if body_of[t as usize] == Some(true) {
                         nodes.extend(near_nodes(&tubes[t as usize], pairs[t as usize], x));
                     }
@@ -416,7 +417,6 @@ fn across(own: &RoundCone<f64>, x: P) -> Option<P> {
 /// through this one there (no direction).
 fn toward(own: &RoundCone<f64>, o: &RoundCone<f64>, x: P) -> Option<(P, Option<P>)> {
     let w = own.b - own.a;
-    let ax = tube::unit(w);
     let ow = o.b - o.a;
     let on = |p: P| o.a + ow * ((p - o.a).dot(ow) / ow.length2()).clamp(0.0, 1.0);
     // The gap between the two tubes' sides over the axis point at `s` (convex in s).
@@ -425,9 +425,7 @@ fn toward(own: &RoundCone<f64>, o: &RoundCone<f64>, x: P) -> Option<(P, Option<P
     let sx = ((x - own.a).dot(w) / w.length2()).clamp(0.0, 1.0);
     let f = fork(gap, sx);
     let s = f.unwrap_or(sx);
-    let y = on(at(s)) - own.a;
-    let v = y - ax * y.dot(ax);
-    (v.length() > 1e-3 * own.ra).then(|| (tube::unit(v), f.map(at)))
+    across(own, on(at(s))).map(|v| (v, f.map(at)))
 }
 
 /// Where two tubes part at a grazing angle their crease ends in a notch, which a uniform ring
@@ -495,14 +493,12 @@ fn pregrade(
                 if ou.b != ou.a && ax.cross(tube::unit(ou.b - ou.a)).length() >= GRAZING_SIN {
                     continue;
                 }
-                let y = y - own.a;
-                let v = y - ax * y.dot(ax);
                 // No direction where the other axis passes through this one (nor a NaN one).
-                if v.length().is_nan() || v.length() <= 1e-3 * own.ra {
+                let Some(v) = across(own, y) else {
                     continue;
-                }
+                };
                 for node in ends {
-                    focus[node].push(Focus { dir: tube::unit(v), key, link: t as u32 });
+                    focus[node].push(Focus { dir: v, key, link: t as u32 });
                     // Graded before the first build: an excess there raises the rings.
                     graded_in.entry((node, key, t as u32)).or_insert(0);
                 }
