@@ -329,6 +329,45 @@ fn three_streamlines_closing_a_channel_meet_eps() {
     assert_eq!(checks::components(&m), 1, "{rep:?}");
 }
 
+/// Three streamlines of the 10⁵-link Bundle (radius 0.12) whose channel closes beside a
+/// gentle bend of one of them (its node at x = 13.75): there a mitre's one ring lies on the
+/// node's ball on the bend's outer side, so its bands cut inside the link's cylinder by up to
+/// `r·(1 − cos(θ/2))`, about 2·10⁻⁶, which the channel's nearly coplanar walls magnify to
+/// 1.7·ε; raising the rings does not move it (the bound stayed at 2.0·10⁻³ through every
+/// build). A wedge of rings on the ball there meets ε. Checked by the independent witnesses.
+#[test]
+fn three_streamlines_meeting_beside_a_bend_meet_eps() {
+    let lines: [[[f64; 3]; 6]; 3] = [
+        [
+            [10.0, 17.607471466064453, -0.8971238732337952],
+            [11.25, 17.50446891784668, -0.6554225087165833],
+            [12.5, 17.385080337524414, -0.41174864768981934],
+            [13.75, 17.24775505065918, -0.16519811749458313],
+            [15.0, 17.09040641784668, 0.08484985679388046],
+            [16.25, 16.91056251525879, 0.3386392593383789],
+        ],
+        [
+            [10.0, 17.47823715209961, -0.9304156303405762],
+            [11.25, 17.372482299804688, -0.6934682726860046],
+            [12.5, 17.251161575317383, -0.45495161414146423],
+            [13.75, 17.112953186035156, -0.2138705998659134],
+            [15.0, 16.95594024658203, 0.030522648245096207],
+            [16.25, 16.777753829956055, 0.2786243259906769],
+        ],
+        [
+            [10.0, 17.629613876342773, -1.1074036359786987],
+            [11.25, 17.53803253173828, -0.8657992482185364],
+            [12.5, 17.42733383178711, -0.621717631816864],
+            [13.75, 17.295928955078125, -0.3745196461677551],
+            [15.0, 17.14185905456543, -0.12384092807769775],
+            [16.25, 16.962940216064453, 0.1303413361310959],
+        ],
+    ];
+    let lines: Vec<Polyline> = lines.iter().map(|l| line(l, &[])).collect();
+    let s = Scene::from_polylines(&lines, 0.12, "t").unwrap();
+    check_with(&s, 1.2e-3, true, &RUNS);
+}
+
 /// The same three streamlines scaled by `k` about the origin and moved by `o`, radius
 /// `0.12·k`.
 fn channel(k: f64, o: [f64; 3]) -> Scene {

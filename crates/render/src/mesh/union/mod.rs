@@ -192,6 +192,9 @@ pub fn tessellate_union_with(
     let mut excess_dirs: HashMap<u32, Vec<(P, usize)>> = HashMap::new();
     // Per link, the points of its axis where a grazing tube parts from it (`piece::body`).
     let mut stations: Vec<Vec<P>> = vec![Vec::new(); pairs.len()];
+    // Per node, whether its mitre spans the outer half of its ball by a wedge of rings
+    // (`piece::body`).
+    let mut wedge = vec![false; n];
     // The partner a focus points to: a tube's chain (one focus per chain a node's ring meets).
     let mut partner: Vec<u32> = (0..pairs.len() as u32).map(|k| k + chains.len() as u32).collect();
     for (c, chain) in chains.iter().enumerate() {
@@ -207,12 +210,24 @@ pub fn tessellate_union_with(
     let mut best: Option<(hull::Built, UnionReport)> = None;
     let most = if options.runs { RUN_TRIES } else { TRIES };
     for tries in 1..=most {
-        let bodies =
-            if options.runs { bodies(&chains, &centres, &radii, &target, &focus, &stations, eps) } else { Vec::new() };
+        let bodies = if options.runs {
+            bodies(
+                &chains,
+                &centres,
+                &radii,
+                &target,
+                piece::Grading { focus: &focus, stations: &stations, wedge: &wedge },
+                eps,
+            )
+        } else {
+            Vec::new()
+        };
         // Per link: whether its run's rings may still grow (`None`: a hull).
         let mut body_of = vec![None; pairs.len()];
+        let mut mitre = vec![false; n];
         for b in &bodies {
             b.tags.iter().for_each(|&t| body_of[t as usize] = Some(b.ring < piece::MAX_RING));
+            b.mitres.iter().for_each(|&j| mitre[j] = true);
         }
         let hull_links: Vec<(u32, [usize; 2])> =
             pairs.iter().enumerate().filter(|(k, _)| body_of[*k].is_none()).map(|(k, &p)| (k as u32, p)).collect();
@@ -362,7 +377,18 @@ pub fn tessellate_union_with(
                 // bound within 8ε: a triple junction 4.2·ε deep stayed through every build
                 // of a 20,000-link Bundle at 4ε).
                 if !(graded || d.is_nan() || d > 8.0 * eps) {
-                    for node in nodes {
+                    // A mitre's one ring lies inside its links' cylinders on the bend's outer
+                    // half, by up to `r·(1 − cos(θ/2))`, and its bands with it: a wedge of
+                    // rings there first (raising the rings does not move them).
+                    let mut wedged = false;
+                    for &node in &nodes {
+                        if mitre[node] && !wedge[node] {
+                            wedge[node] = true;
+                            wedged = true;
+                        }
+                    }
+                    changed |= wedged;
+                    for node in nodes.into_iter().filter(|_| !wedged) {
                         // A notch's depth goes as the square root of the sagitta.
                         let s = before[node] * (f * f).max(1.0 / 16.0);
                         if s < target[node] {
@@ -568,8 +594,7 @@ fn bodies(
     centres: &[P],
     radii: &[f64],
     target: &[f64],
-    focus: &[Vec<Focus>],
-    stations: &[Vec<P>],
+    grading: piece::Grading,
     eps: f64,
 ) -> Vec<piece::Body> {
     use rayon::prelude::*;
@@ -580,7 +605,7 @@ fn bodies(
             let mut out = Vec::new();
             while let Some(run) = todo.pop() {
                 let sizes = piece::ring_sizes(&run, centres, target);
-                match piece::body(&run, centres, &sizes, focus, stations, eps) {
+                match piece::body(&run, centres, &sizes, grading, eps) {
                     Ok(b) => out.push(b),
                     Err(j) => {
                         let r = run.r;

@@ -1,6 +1,7 @@
 //! Runs of equal-radius links meshed as one closed body each, before the union: a ring of `n`
 //! vertices at every node (in the plane that bisects the joint, a *mitre*: on the node sphere,
-//! and on the bend's inner side on the ellipse where the two links' cylinders meet),
+//! and on the bend's inner side on the ellipse where the two links' cylinders meet; where the
+//! refinement asks, a *wedge* of rings on the ball across the bend's outer side),
 //! bands of triangles between consecutive rings, and a polyhedral half-sphere at each end of
 //! the run. A streamline of a tractogram becomes one body of about `2n` triangles per link,
 //! where a hull of two sphere polyhedra per link (`hull.rs`) leaves every joint a crease of
@@ -30,8 +31,22 @@ pub(super) struct Focus {
     pub link: u32,
 }
 
+/// Where a run's body is made finer than its ring sizes: per node, the directions its rings
+/// are graded about and whether its mitre spans its ball by a wedge of rings; per link, the
+/// stations where a ring is put across its axis.
+#[derive(Clone, Copy)]
+pub(super) struct Grading<'a> {
+    pub focus: &'a [Vec<Focus>],
+    pub stations: &'a [Vec<P>],
+    pub wedge: &'a [bool],
+}
+
 /// Ring vertices at most (a ring's sagitta goes as `1/n²`: `r·1.2·10⁻⁶` at the cap).
 pub(super) const MAX_RING: u32 = 2048;
+
+/// Rings on either side of a wedged mitre at most (a cost limit: each adds about `n`
+/// triangles on the bend's outer half).
+const MAX_WEDGE: usize = 64;
 
 /// A run of links to mesh as one body: nodes in chain order, the links between them, one
 /// radius.
@@ -51,6 +66,8 @@ pub(super) struct Body {
     pub tags: Vec<u32>,
     pub ring: u32,
     pub sagitta: f64,
+    /// The run's mitres: its interior nodes (scene indices) where the run bends.
+    pub mitres: Vec<usize>,
 }
 
 /// A unit vector perpendicular to the unit vector `d`.
@@ -233,14 +250,8 @@ fn latitudes(n: u32) -> u32 {
 
 /// Meshes a run with ring sizes `sizes` (per node). `Err(j)`: the bodies of two links that
 /// are not neighbours may overlap (the run turns back on itself); cut the run at its node `j`.
-pub(super) fn body(
-    run: &Run,
-    centres: &[P],
-    sizes: &[u32],
-    focus: &[Vec<Focus>],
-    stations: &[Vec<P>],
-    eps: f64,
-) -> Result<Body, usize> {
+pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], grading: Grading, eps: f64) -> Result<Body, usize> {
+    let Grading { focus, stations, wedge } = grading;
     let r = run.r;
     let pts: Vec<P> = run.nodes.iter().map(|&i| centres[i]).collect();
     let m = pts.len() - 1;
@@ -273,11 +284,13 @@ pub(super) fn body(
     // `r·(1 − cos(θ/2))`; where two tubes part, any such gap opens a slit about
     // `√(r·gap)` deep, so the fork's ring is exact: every vertex on the cylinder.
     let mut normals = vec![d0];
+    // The run's mitres (scene nodes where it bends).
+    let mut mitres: Vec<usize> = Vec::new();
     // Per node, the index of its ring; per ring after node 0's, the link of the band that
     // ends at it.
     let mut node_ring = Vec::with_capacity(m + 1);
     let mut band_link: Vec<usize> = Vec::new();
-    node_ring.push(rr.at.len());
+    node_ring.push(rr.idx.len());
     rr.add(pts[0], r, e1, e2, node_angles(0, e1, e2), &mut positions);
     // The tangent of each node's half-bend: its mitre ring reaches `r·tan(θ/2)` along either
     // link (the inner side's ellipse).
@@ -334,8 +347,6 @@ pub(super) fn body(
         let u = unit(a + b);
         let h = unit(rot(e1, theta / 2.0));
         let h = unit(h - u * h.dot(u));
-        node_ring.push(rr.at.len());
-        band_link.push(j - 1);
         // On the inner side of the bend (`v·a < 0`) the two links' cylinders meet in the
         // bisecting plane on an ellipse, `r/√(1 − (v·a)²)` from the node, within both links:
         // the ring lies there, on both cylinders, with no gap where a tube parts. On the outer
@@ -348,7 +359,52 @@ pub(super) fn body(
                 r
             }
         };
-        rr.add_with(pts[j], mitre, h, u.cross(h), node_angles(j, h, u.cross(h)), &mut positions);
+        let angles = node_angles(j, h, u.cross(h));
+        // A flagged mitre's outer half spans its ball's wedge by `steps` rings on either side
+        // (below), each within `fine/2` of the next in angle: the wedge's chords then dip
+        // `r·fine²/32` below the ball, where the mitre's one ring leaves `r·(1 − cos(θ/2))`.
+        let fine = eps / r;
+        let steps =
+            if wedge[run.nodes[j]] && theta > 0.0 { ((theta / fine).ceil() as usize).min(MAX_WEDGE) } else { 0 };
+        if steps == 0 {
+            node_ring.push(rr.idx.len());
+            band_link.push(j - 1);
+            rr.add_with(pts[j], mitre, h, u.cross(h), angles, &mut positions);
+        } else {
+            // The mitre ring first; the wedge's rings share its inner half (where the two
+            // cylinders meet, the rings coincide: their bands there have no triangles) and
+            // put its outer half on the ball, in planes through the node turning from the
+            // first link's normal `a` to the second's `b`: exact on the ball, and at `a` and
+            // `b` exact on each link's cylinder.
+            let first = positions.len() as u32;
+            let dirs_v: Vec<P> = angles.iter().map(|t| h * t.cos() + u.cross(h) * t.sin()).collect();
+            positions.extend(dirs_v.iter().map(|&v| pts[j] + v * mitre(v)));
+            let mid: Vec<u32> = (first..first + angles.len() as u32).collect();
+            for i in 0..=2 * steps {
+                band_link.push(if i <= steps { j - 1 } else { j });
+                if i == steps {
+                    node_ring.push(rr.idx.len());
+                    rr.add_shared(mid.clone(), &angles);
+                    continue;
+                }
+                let n = rot(a, theta * i as f64 / (2 * steps) as f64);
+                let verts = dirs_v
+                    .iter()
+                    .zip(&mid)
+                    .map(|(&v, &k)| {
+                        if v.dot(a) <= 0.0 {
+                            return k;
+                        }
+                        positions.push(pts[j] + unit(v - n * v.dot(n)) * r);
+                        positions.len() as u32 - 1
+                    })
+                    .collect();
+                rr.add_shared(verts, &angles);
+            }
+        }
+        if theta > 0.0 {
+            mitres.push(run.nodes[j]);
+        }
         normals.push(u);
         e1 = unit(rot(e1, theta));
         e1 = unit(e1 - b * e1.dot(b));
@@ -357,7 +413,7 @@ pub(super) fn body(
     e1 = unit(e1 - d * e1.dot(d));
     station_rings(m - 1, e1, &mut rr, &mut positions, &mut band_link);
     let e2 = d.cross(e1);
-    node_ring.push(rr.at.len());
+    node_ring.push(rr.idx.len());
     band_link.push(m - 1);
     rr.add(pts[m], r, e1, e2, node_angles(m, e1, e2), &mut positions);
     normals.push(d);
@@ -366,7 +422,7 @@ pub(super) fn body(
         rr.add(pts[m] + d * (r * phi.sin()), r * phi.cos(), e1, e2, uniform(cap_size(sizes[m], phi)), &mut positions);
     }
     positions.push(pts[m] + d * r);
-    let Rings { at: rings, turns } = rr;
+    let Rings { idx: rings, turns } = rr;
     let nl = lat0.len();
     // The link of band b (ring b to b + 1), if it lies between node rings (not a cap's).
     let link_band = |b: usize| (b >= nl && b < node_ring[m]).then(|| band_link[b - nl]);
@@ -377,15 +433,16 @@ pub(super) fn body(
     let mut band_of: Vec<usize> = Vec::new();
     const START_FAN: usize = usize::MAX;
     const END_FAN: usize = usize::MAX - 1;
-    let (s0, n0) = rings[0];
-    for i in 0..n0 {
-        triangles.push([0, (s0 + (i + 1) % n0) as u32, (s0 + i) as u32]);
+    let r0 = &rings[0];
+    for i in 0..r0.len() {
+        triangles.push([0, r0[(i + 1) % r0.len()], r0[i]]);
         band_of.push(START_FAN);
     }
     for b in 0..rings.len() - 1 {
-        let ((sa, na), (sb, nb)) = (rings[b], rings[b + 1]);
-        let va = |i: usize| (sa + i % na) as u32;
-        let vb = |i: usize| (sb + i % nb) as u32;
+        let (ra, rb) = (&rings[b], &rings[b + 1]);
+        let (na, nb) = (ra.len(), rb.len());
+        let va = |i: usize| ra[i % na];
+        let vb = |i: usize| rb[i % nb];
         let (ta, tb) = (&turns[b], &turns[b + 1]);
         let next = |t: &[f64], i: usize| if i + 1 < t.len() { t[i + 1] } else { t[0] + 1.0 };
         let (mut i, mut k) = (0, 0);
@@ -404,20 +461,24 @@ pub(super) fn body(
                 let dist = |x: u32, y: u32| (positions[x as usize] - positions[y as usize]).length2();
                 dist(va(i + 1), vb(k)) <= dist(va(i), vb(k + 1))
             };
-            if step_a {
-                triangles.push([va(i), va(i + 1), vb(k)]);
+            let t = if step_a {
                 i += 1;
+                [va(i - 1), va(i), vb(k)]
             } else {
-                triangles.push([va(i), vb(k + 1), vb(k)]);
                 k += 1;
+                [va(i), vb(k), vb(k - 1)]
+            };
+            // Rings that share a vertex (a wedge's, on the inner half) leave no triangle there.
+            if t[0] != t[1] && t[1] != t[2] && t[2] != t[0] {
+                triangles.push(t);
+                band_of.push(b);
             }
-            band_of.push(b);
         }
     }
     let last = positions.len() as u32 - 1;
-    let (sl, nl_last) = *rings.last().expect("a run has rings");
-    for i in 0..nl_last {
-        triangles.push([last, (sl + i) as u32, (sl + (i + 1) % nl_last) as u32]);
+    let rl = rings.last().expect("a run has rings");
+    for i in 0..rl.len() {
+        triangles.push([last, rl[i], rl[(i + 1) % rl.len()]]);
         band_of.push(END_FAN);
     }
     // Which link each triangle stands for.
@@ -447,7 +508,7 @@ pub(super) fn body(
     let body_verts = |l: usize| -> Vec<usize> {
         let lo = if l == 0 { 0 } else { node_ring[l] };
         let hi = if l + 1 == m { rings.len() - 1 } else { node_ring[l + 1] };
-        let mut v: Vec<usize> = (rings[lo].0..rings[hi].0 + rings[hi].1).collect();
+        let mut v: Vec<usize> = rings[lo..=hi].iter().flatten().map(|&k| k as usize).collect();
         if l == 0 {
             v.push(0);
         }
@@ -527,16 +588,16 @@ pub(super) fn body(
     }
     let extent = pts.iter().map(|p| p.max_abs()).fold(0.0, f64::max) + r;
     let sagitta = (r - big_r).max(0.0) + 16.0 * f64::EPSILON * extent;
-    let ring = rings[nl..=node_ring[m]].iter().map(|r| r.1 as u32).max().unwrap_or(0);
-    Ok(Body { positions, triangles, tags, ring, sagitta })
+    let ring = rings[nl..=node_ring[m]].iter().map(|r| r.len() as u32).max().unwrap_or(0);
+    Ok(Body { positions, triangles, tags, ring, sagitta, mitres })
 }
 
-/// A body's rings in order along the run: per ring its first vertex and size, and its
-/// vertices' angles in turns (ascending in `[0, 1)`). Angles are taken in a frame carried
-/// along the run by each joint's rotation (parallel transport), so that rings line up.
+/// A body's rings in order along the run: per ring its vertices, and their angles in turns
+/// (ascending in `[0, 1)`). Angles are taken in a frame carried along the run by each
+/// joint's rotation (parallel transport), so that rings line up.
 #[derive(Default)]
 struct Rings {
-    at: Vec<(usize, usize)>,
+    idx: Vec<Vec<u32>>,
     turns: Vec<Vec<f64>>,
 }
 
@@ -549,12 +610,18 @@ impl Rings {
     /// A ring about `c` in the plane of `f1`, `f2`, at `angles`, each vertex at the distance
     /// `rad(v)` along its unit direction `v`.
     fn add_with(&mut self, c: P, rad: impl Fn(P) -> f64, f1: P, f2: P, angles: Vec<f64>, positions: &mut Vec<P>) {
-        self.at.push((positions.len(), angles.len()));
+        let first = positions.len() as u32;
         for &a in &angles {
             let (sa, ca) = a.sin_cos();
             let v = f1 * ca + f2 * sa;
             positions.push(c + v * rad(v));
         }
+        self.add_shared((first..positions.len() as u32).collect(), &angles);
+    }
+
+    /// A ring of existing vertices `verts` at `angles` (radians).
+    fn add_shared(&mut self, verts: Vec<u32>, angles: &[f64]) {
+        self.idx.push(verts);
         self.turns.push(angles.iter().map(|a| a / (2.0 * PI)).collect());
     }
 }
@@ -597,5 +664,122 @@ fn dist_point_triangle(p: P, a: P, b: P, c: P) -> f64 {
         (p - a).dot(n).abs() / nn.sqrt()
     } else {
         edges
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The exit distance from `o` along the unit `d` through the body's triangles (the
+    /// farthest crossing, inclusive of edges to rounding), or `None` where no triangle is met.
+    fn exit(b: &Body, o: P, d: P) -> Option<f64> {
+        let mut far: Option<f64> = None;
+        for t in &b.triangles {
+            let [p, q, s] = t.map(|i| b.positions[i as usize]);
+            let (e1, e2) = (q - p, s - p);
+            let h = d.cross(e2);
+            let det = e1.dot(h);
+            if det.abs() < 1e-300 {
+                continue;
+            }
+            let w = o - p;
+            let u = w.dot(h) / det;
+            let k = w.cross(e1);
+            let v = d.dot(k) / det;
+            let tol = 1e-9;
+            if u < -tol || v < -tol || u + v > 1.0 + tol {
+                continue;
+            }
+            let t = e2.dot(k) / det;
+            if t > 0.0 {
+                far = Some(far.map_or(t, |f: f64| f.max(t)));
+            }
+        }
+        far
+    }
+
+    /// Each undirected edge in exactly two triangles, once each way (closed, oriented), and no
+    /// triangle with a repeated vertex.
+    fn closed(b: &Body) -> bool {
+        let mut edges: HashMap<(u32, u32), i32> = HashMap::new();
+        for t in &b.triangles {
+            if t[0] == t[1] || t[1] == t[2] || t[2] == t[0] {
+                return false;
+            }
+            for e in 0..3 {
+                let (x, y) = (t[e], t[(e + 1) % 3]);
+                *edges.entry((x.min(y), x.max(y))).or_default() += if x < y { 1 } else { -1 };
+            }
+        }
+        let mut count: HashMap<(u32, u32), usize> = HashMap::new();
+        for t in &b.triangles {
+            for e in 0..3 {
+                let (x, y) = (t[e], t[(e + 1) % 3]);
+                *count.entry((x.min(y), x.max(y))).or_default() += 1;
+            }
+        }
+        edges.values().all(|&s| s == 0) && count.values().all(|&c| c == 2)
+    }
+
+    /// A run of two links of length 2 and radius `r` bending by `θ` at its middle node, in the
+    /// xy-plane, its rings graded about the bend's outer side (so that a ring vertex lies in
+    /// the bend's plane there), with or without the wedge at the bend.
+    fn bent(theta: f64, r: f64, eps: f64, wedge: bool) -> Body {
+        let centres =
+            [V3::new(-2.0, 0.0, 0.0), V3::new(0.0, 0.0, 0.0), V3::new(2.0 * theta.cos(), 2.0 * theta.sin(), 0.0)];
+        let run = Run { nodes: vec![0, 1, 2], links: vec![0, 1], r };
+        let target = [0.7 * eps; 3];
+        let sizes = ring_sizes(&run, &centres, &target);
+        // The outer side is -y: across both links' axes, in the bend's plane.
+        let outer = [V3::new(0.0, -1.0, 0.0), V3::new(theta.sin(), -theta.cos(), 0.0)];
+        let focus: Vec<Vec<Focus>> = (0..3)
+            .map(|j: usize| {
+                let links: &[u32] = [&[0u32][..], &[0, 1], &[1]][j];
+                links.iter().map(|&l| Focus { dir: outer[l as usize], key: 9, link: l }).collect()
+            })
+            .collect();
+        let grading = Grading { focus: &focus, stations: &[vec![], vec![]], wedge: &[false, wedge, false] };
+        body(&run, &centres, &sizes, grading, eps).expect("a body")
+    }
+
+    /// A mitre's one ring lies on the node's ball on the bend's outer side, so its bands
+    /// there cut inside the links' cylinders by up to `r·(1 − cos(θ/2))`; the wedge's rings
+    /// follow the ball. Along the bend's plane on its outer side, between the two links'
+    /// normal planes through the node, the union's surface is the ball: the exit distance
+    /// from the node is `r`. The wedge's rings lie in planes at most `fine/2` apart in angle
+    /// (`fine = ε/r`), and each has a vertex in the bend's plane, so its section there is a
+    /// polygon inscribed in the circle with chords of at most that angle: it dips at most
+    /// `r·(1 − cos(fine/4))` (plus rounding, 10⁻¹²·r here), for bends of up to
+    /// `MAX_WEDGE·fine` (these: 12, 2 and 30 rings a side). The mitre alone has, in the
+    /// bend's plane, the chord from the first node's ring at `(−L, −r)` to its own vertex
+    /// on the ball at `(r·sin(θ/2), −r·cos(θ/2))`: at the first link's normal plane
+    /// (`ψ = 0`) it dips `r·(1 − cos(θ/2))·L/(L + r·sin(θ/2))`.
+    #[test]
+    fn a_wedge_follows_the_ball_on_the_bend_outer_side() {
+        for (theta, r, eps) in [(0.1f64, 0.12, 1e-3), (0.0115, 0.12, 1.2e-3), (0.3, 1.0, 1e-2)] {
+            let fine = eps / r;
+            let plain = bent(theta, r, eps, false);
+            let wedged = bent(theta, r, eps, true);
+            assert!(closed(&plain) && closed(&wedged), "θ {theta}");
+            let depth =
+                |b: &Body, psi: f64| r - exit(b, V3::new(0.0, 0.0, 0.0), V3::new(psi.sin(), -psi.cos(), 0.0)).unwrap();
+            let limit = r * (1.0 - (fine / 4.0).cos()) + 1e-12 * r;
+            let mut worst = f64::NEG_INFINITY;
+            for i in 0..=400 {
+                let psi = theta * i as f64 / 400.0;
+                let d = depth(&wedged, psi);
+                // Inscribed: never outside the ball (rounding aside).
+                assert!(d >= -1e-12 * r && d <= limit, "θ {theta}, ψ {psi}: depth {d} against {limit}");
+                worst = worst.max(d);
+            }
+            let mitre = depth(&plain, 0.0);
+            let expect = r * (1.0 - (theta / 2.0).cos()) * 2.0 / (2.0 + r * (theta / 2.0).sin());
+            // Rounding: a few ulps of r in each coordinate, 10⁻⁹ of the dip at the least.
+            assert!((mitre - expect).abs() <= 1e-9 * expect + 1e-13 * r, "θ {theta}: {mitre} against {expect}");
+            assert!(worst < 0.1 * mitre, "θ {theta}: {worst} against the mitre's {mitre}");
+            // The wedge adds triangles on the outer half only: about n per ring pair.
+            assert!(wedged.triangles.len() > plain.triangles.len());
+        }
     }
 }
