@@ -66,7 +66,9 @@ pub(super) struct Body {
     pub tags: Vec<u32>,
     pub ring: u32,
     pub sagitta: f64,
-    /// The run's mitres: its interior nodes (scene indices) where the run bends.
+    /// The run's mitres that a wedge would change (scene node indices): its interior nodes
+    /// where the run bends by more than half the wedge's step (`ε/(2r)`; below it the
+    /// mitre's outer gap is already within the wedge's).
     pub mitres: Vec<usize>,
 }
 
@@ -284,7 +286,7 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], grading: Grading, ep
     // `r·(1 − cos(θ/2))`; where two tubes part, any such gap opens a slit about
     // `√(r·gap)` deep, so the fork's ring is exact: every vertex on the cylinder.
     let mut normals = vec![d0];
-    // The run's mitres (scene nodes where it bends).
+    // The run's mitres that a wedge would change.
     let mut mitres: Vec<usize> = Vec::new();
     // Per node, the index of its ring; per ring after node 0's, the link of the band that
     // ends at it.
@@ -364,8 +366,8 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], grading: Grading, ep
         // (below), each within `fine/2` of the next in angle: the wedge's chords then dip
         // `r·fine²/32` below the ball, where the mitre's one ring leaves `r·(1 − cos(θ/2))`.
         let fine = eps / r;
-        let steps =
-            if wedge[run.nodes[j]] && theta > 0.0 { ((theta / fine).ceil() as usize).min(MAX_WEDGE) } else { 0 };
+        let wedged = theta > 0.5 * fine;
+        let steps = if wedge[run.nodes[j]] && wedged { ((theta / fine).ceil() as usize).min(MAX_WEDGE) } else { 0 };
         if steps == 0 {
             node_ring.push(rr.idx.len());
             band_link.push(j - 1);
@@ -402,7 +404,7 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], grading: Grading, ep
                 rr.add_shared(verts, &angles);
             }
         }
-        if theta > 0.0 {
+        if wedged {
             mitres.push(run.nodes[j]);
         }
         normals.push(u);
