@@ -337,6 +337,12 @@ fn three_streamlines_closing_a_channel_meet_eps() {
 /// build). A wedge of rings on the ball there meets ε. Checked by the independent witnesses.
 #[test]
 fn three_streamlines_meeting_beside_a_bend_meet_eps() {
+    check_with(&beside_a_bend(1.0, [0.0; 3]), 1.2e-3, true, &RUNS);
+}
+
+/// The three streamlines of `three_streamlines_meeting_beside_a_bend_meet_eps`, scaled by `k`
+/// about the origin and moved by `o`, radius `0.12·k`.
+fn beside_a_bend(k: f64, o: [f64; 3]) -> Scene {
     let lines: [[[f64; 3]; 6]; 3] = [
         [
             [10.0, 17.607471466064453, -0.8971238732337952],
@@ -363,9 +369,9 @@ fn three_streamlines_meeting_beside_a_bend_meet_eps() {
             [16.25, 16.962940216064453, 0.1303413361310959],
         ],
     ];
-    let lines: Vec<Polyline> = lines.iter().map(|l| line(l, &[])).collect();
-    let s = Scene::from_polylines(&lines, 0.12, "t").unwrap();
-    check_with(&s, 1.2e-3, true, &RUNS);
+    let moved: Vec<Polyline> =
+        lines.iter().map(|l| line(&l.map(|p| [0, 1, 2].map(|i| p[i] * k + o[i])), &[])).collect();
+    Scene::from_polylines(&moved, 0.12 * k, "t").unwrap()
 }
 
 /// The same three streamlines scaled by `k` about the origin and moved by `o`, radius
@@ -393,15 +399,17 @@ fn channel(k: f64, o: [f64; 3]) -> Scene {
     Scene::from_polylines(&moved, 0.12 * k, "t").unwrap()
 }
 
-/// Runs where rounding is largest against ε: the triple channel 10⁶ radii from the origin (a
-/// coordinate's rounding there, 2.7·10⁻¹¹, is 2·10⁻⁸·ε; manifold's and the certificate's
-/// allowances follow the coordinates), and scaled by 10⁻³ and 10³ with ε. Each meets ε·k,
-/// checked by the independent witnesses.
+/// Runs where rounding is largest against ε: the triple channel, and the three streamlines
+/// meeting beside a bend (a wedge), 10⁶ radii from the origin (a coordinate's rounding there,
+/// 2.7·10⁻¹¹, is 2·10⁻⁸·ε; manifold's and the certificate's allowances follow the
+/// coordinates), and scaled by 10⁻³ and 10³ with ε. Each meets ε·k, checked by the
+/// independent witnesses.
 #[test]
 fn runs_meet_eps_far_from_the_origin_and_at_other_scales() {
     for (k, o) in [(1.0, [1.2e5, -1.2e5, 6e4]), (1e-3, [0.0; 3]), (1e3, [0.0; 3])] {
         let (m, rep) = check_with(&channel(k, o), 1.2e-3 * k, true, &RUNS);
         assert_eq!(checks::components(&m), 1, "k {k}, o {o:?}: {rep:?}");
+        check_with(&beside_a_bend(k, o), 1.2e-3 * k, true, &RUNS);
     }
 }
 
