@@ -388,12 +388,14 @@ pub fn tessellate_union_with(
                         }
                     }
                     changed |= wedged;
-                    for node in nodes.into_iter().filter(|_| !wedged) {
-                        // A notch's depth goes as the square root of the sagitta.
-                        let s = before[node] * (f * f).max(1.0 / 16.0);
-                        if s < target[node] {
-                            target[node] = s;
-                            changed = true;
+                    if !wedged {
+                        for node in nodes {
+                            // A notch's depth goes as the square root of the sagitta.
+                            let s = before[node] * (f * f).max(1.0 / 16.0);
+                            if s < target[node] {
+                                target[node] = s;
+                                changed = true;
+                            }
                         }
                     }
                 }

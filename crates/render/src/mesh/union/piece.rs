@@ -363,8 +363,9 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], grading: Grading, ep
         };
         let angles = node_angles(j, h, u.cross(h));
         // A flagged mitre's outer half spans its ball's wedge by `steps` rings on either side
-        // (below), each within `fine/2` of the next in angle: the wedge's chords then dip
-        // `r·fine²/32` below the ball, where the mitre's one ring leaves `r·(1 − cos(θ/2))`.
+        // (below), each within `fine/2` of the next in angle (up to `MAX_WEDGE` a side): the
+        // wedge's chords then dip `r·fine²/32` below the ball, where the mitre's one ring
+        // leaves `r·(1 − cos(θ/2))`.
         let fine = eps / r;
         let wedged = theta > 0.5 * fine;
         let steps = if wedge[run.nodes[j]] && wedged { ((theta / fine).ceil() as usize).min(MAX_WEDGE) } else { 0 };
