@@ -83,9 +83,9 @@ pub struct UnionOptions {
 const TRIES: usize = 4;
 
 /// Builds made at most with runs: a crease's grading; where it falls short, the grading about
-/// the excess itself, then a node's rings; each may take a build or two more in a dense bundle
-/// (the 10⁵-link Bundle's bound: infinite, infinite, 5.8·ε, 4.6·ε, then 1.67·ε in the fifth
-/// and sixth builds, `docs/design/union-mesh.md`).
+/// the excess itself, then a mitre's wedge, then a node's rings; each may take a build or two
+/// more in a dense bundle (the 10⁵-link Bundle's bound is infinite in the first two builds and
+/// falls in every later one, `docs/design/union-mesh.md`).
 const RUN_TRIES: usize = 6;
 
 /// The first sagitta target, as a fraction of ε: a crease of exterior opening β multiplies
