@@ -85,7 +85,7 @@ const TRIES: usize = 4;
 /// Builds made at most with runs: a crease's grading; where it falls short, the grading about
 /// the excess itself, then a mitre's wedge, then a node's rings; each may take a build or two
 /// more in a dense bundle (the 10⁵-link Bundle's bound is infinite in the first two builds and
-/// falls in every later one, `docs/design/union-mesh.md`).
+/// never rises over the later ones, `docs/design/union-mesh.md`).
 const RUN_TRIES: usize = 6;
 
 /// The first sagitta target, as a fraction of ε: a crease of exterior opening β multiplies
