@@ -367,45 +367,37 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], grading: Grading, ep
         // wedge's chords then dip `r·fine²/32` below the ball, where the mitre's one ring
         // leaves `r·(1 − cos(θ/2))`.
         let fine = eps / r;
-        let wedged = theta > 0.5 * fine;
-        let steps = if wedge[run.nodes[j]] && wedged { ((theta / fine).ceil() as usize).min(MAX_WEDGE) } else { 0 };
-        if steps == 0 {
-            node_ring.push(rr.idx.len());
-            band_link.push(j - 1);
-            rr.add_with(pts[j], mitre, h, u.cross(h), angles, &mut positions);
-        } else {
-            // The mitre ring first; the wedge's rings share its inner half (where the two
-            // cylinders meet, the rings coincide: their bands there have no triangles) and
-            // put its outer half on the ball, in planes through the node turning from the
-            // first link's normal `a` to the second's `b`: exact on the ball, and at `a` and
-            // `b` exact on each link's cylinder.
-            let first = positions.len() as u32;
-            let dirs_v: Vec<P> = angles.iter().map(|t| h * t.cos() + u.cross(h) * t.sin()).collect();
-            positions.extend(dirs_v.iter().map(|&v| pts[j] + v * mitre(v)));
-            let mid: Vec<u32> = (first..first + angles.len() as u32).collect();
-            for i in 0..=2 * steps {
-                band_link.push(if i <= steps { j - 1 } else { j });
-                if i == steps {
-                    node_ring.push(rr.idx.len());
-                    rr.add_shared(mid.clone(), &angles);
-                    continue;
-                }
-                let n = rot(a, theta * i as f64 / (2 * steps) as f64);
-                let verts = dirs_v
-                    .iter()
-                    .zip(&mid)
-                    .map(|(&v, &k)| {
-                        if v.dot(a) <= 0.0 {
-                            return k;
-                        }
-                        positions.push(pts[j] + unit(v - n * v.dot(n)) * r);
-                        positions.len() as u32 - 1
-                    })
-                    .collect();
-                rr.add_shared(verts, &angles);
+        let wedgeable = theta > 0.5 * fine;
+        let steps = if wedge[run.nodes[j]] && wedgeable { ((theta / fine).ceil() as usize).min(MAX_WEDGE) } else { 0 };
+        // The mitre ring, and a wedge's `steps` rings on either side of it (none unless
+        // flagged): they share its inner half (where the two cylinders meet, the rings
+        // coincide: their bands there have no triangles) and put its outer half on the ball,
+        // in planes through the node turning from the first link's normal `a` to the
+        // second's `b`: exact on the ball, and at `a` and `b` exact on each link's cylinder.
+        let dirs = directions(h, u.cross(h), &angles);
+        let mid = Rings::place(pts[j], mitre, &dirs, &mut positions);
+        for i in 0..=2 * steps {
+            band_link.push(if i <= steps { j - 1 } else { j });
+            if i == steps {
+                node_ring.push(rr.idx.len());
+                rr.add_shared(mid.clone(), &angles);
+                continue;
             }
+            let n = rot(a, theta * i as f64 / (2 * steps) as f64);
+            let verts = dirs
+                .iter()
+                .zip(&mid)
+                .map(|(&v, &k)| {
+                    if v.dot(a) <= 0.0 {
+                        return k;
+                    }
+                    positions.push(pts[j] + unit(v - n * v.dot(n)) * r);
+                    positions.len() as u32 - 1
+                })
+                .collect();
+            rr.add_shared(verts, &angles);
         }
-        if wedged {
+        if wedgeable {
             mitres.push(run.nodes[j]);
         }
         normals.push(u);
@@ -613,13 +605,16 @@ impl Rings {
     /// A ring about `c` in the plane of `f1`, `f2`, at `angles`, each vertex at the distance
     /// `rad(v)` along its unit direction `v`.
     fn add_with(&mut self, c: P, rad: impl Fn(P) -> f64, f1: P, f2: P, angles: Vec<f64>, positions: &mut Vec<P>) {
+        let verts = Self::place(c, rad, &directions(f1, f2, &angles), positions);
+        self.add_shared(verts, &angles);
+    }
+
+    /// New vertices about `c`, one along each unit direction `v` of `dirs` at the distance
+    /// `rad(v)`: their indices.
+    fn place(c: P, rad: impl Fn(P) -> f64, dirs: &[P], positions: &mut Vec<P>) -> Vec<u32> {
         let first = positions.len() as u32;
-        for &a in &angles {
-            let (sa, ca) = a.sin_cos();
-            let v = f1 * ca + f2 * sa;
-            positions.push(c + v * rad(v));
-        }
-        self.add_shared((first..positions.len() as u32).collect(), &angles);
+        positions.extend(dirs.iter().map(|&v| c + v * rad(v)));
+        (first..positions.len() as u32).collect()
     }
 
     /// A ring of existing vertices `verts` at `angles` (radians).
@@ -627,6 +622,17 @@ impl Rings {
         self.idx.push(verts);
         self.turns.push(angles.iter().map(|a| a / (2.0 * PI)).collect());
     }
+}
+
+/// The unit directions at `angles` (radians) in the plane of the orthonormal `f1`, `f2`.
+fn directions(f1: P, f2: P, angles: &[f64]) -> Vec<P> {
+    angles
+        .iter()
+        .map(|a| {
+            let (sa, ca) = a.sin_cos();
+            f1 * ca + f2 * sa
+        })
+        .collect()
 }
 
 /// Distance from the origin to a filled 2-D triangle.
