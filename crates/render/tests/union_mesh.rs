@@ -369,6 +369,12 @@ fn beside_a_bend(k: f64, o: [f64; 3]) -> Scene {
             [16.25, 16.962940216064453, 0.1303413361310959],
         ],
     ];
+    moved(&lines, k, o)
+}
+
+/// Streamlines of radius 0.12 (points from the 10⁵-link Bundle) scaled by `k` about the
+/// origin and moved by `o`, radius `0.12·k`.
+fn moved<const N: usize>(lines: &[[[f64; 3]; N]], k: f64, o: [f64; 3]) -> Scene {
     let moved: Vec<Polyline> =
         lines.iter().map(|l| line(&l.map(|p| [0, 1, 2].map(|i| p[i] * k + o[i])), &[])).collect();
     Scene::from_polylines(&moved, 0.12 * k, "t").unwrap()
@@ -394,9 +400,7 @@ fn channel(k: f64, o: [f64; 3]) -> Scene {
             [-40.0, 0.06005258113145828, 0.021121127530932426],
         ],
     ];
-    let moved: Vec<Polyline> =
-        lines.iter().map(|l| line(&l.map(|p| [0, 1, 2].map(|i| p[i] * k + o[i])), &[])).collect();
-    Scene::from_polylines(&moved, 0.12 * k, "t").unwrap()
+    moved(&lines, k, o)
 }
 
 /// Runs where rounding is largest against ε: the triple channel, and the three streamlines
