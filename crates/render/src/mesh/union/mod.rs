@@ -346,13 +346,17 @@ pub fn tessellate_union_with(
                     // exterior is a channel between them that closes at a point, off the
                     // direction of each partner (about halfway between two), where the
                     // grading about the partners has coarsened. Grade about the excess itself:
-                    // a direction of the ring graded `fine` (`piece::graded`) within twice that
-                    // of one already graded is not graded again (the rings grow instead).
+                    // a direction within half of `fine` of one already graded is not graded
+                    // again (the rings grow instead): `piece::graded` spaces a focus's first
+                    // steps by `fine` either side, so such a direction lies on a chord of the
+                    // finest spacing, with a half step's margin for a ring's tilt at a mitre.
+                    // Any farther, its chord may be twice as long, its sagitta four times as
+                    // deep, and a channel closing there stays over.
                     if !here {
                         if let Some(v) = across(&tubes[t as usize], x) {
                             let fine = eps / tubes[t as usize].ra;
                             let list = excess_dirs.entry(t).or_default();
-                            match list.iter().find(|(u, _)| u.dot(v) >= (2.0 * fine).cos()) {
+                            match list.iter().find(|(u, _)| u.dot(v) >= (0.5 * fine).cos()) {
                                 Some(&(_, when)) => here = when == tries,
                                 None if list.len() < MAX_POINTS => {
                                     list.push((v, tries));
