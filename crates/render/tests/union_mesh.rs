@@ -340,6 +340,58 @@ fn three_streamlines_meeting_beside_a_bend_meet_eps() {
     check_with(&beside_a_bend(1.0, [0.0; 3]), 1.2e-3, true, &RUNS);
 }
 
+/// Five streamlines of the 10⁵-link Bundle (radius 0.12) around its deepest junction left
+/// after the wedges, at (−43.71, 6.86, −0.67): there a triple channel closes 0.5–2 of the
+/// finest ring spacing (`ε/r`) off a direction its links were already graded about, where
+/// that grading's second step is twice the first. With such directions not graded again the
+/// mesh stayed 1.48·ε deep through six builds; graded, it meets ε. Checked by the independent
+/// witnesses.
+#[test]
+fn five_streamlines_closing_a_channel_beside_a_graded_direction_meet_eps() {
+    check_with(&beside_a_graded_direction(), 1.2e-3, true, &RUNS);
+}
+
+fn beside_a_graded_direction() -> Scene {
+    let lines: [[[f64; 3]; 5]; 5] = [
+        [
+            [-46.25, 5.820005893707275, -1.1640170812606812],
+            [-45.0, 6.300438404083252, -0.9836341142654419],
+            [-43.75, 6.772516250610352, -0.8043202757835388],
+            [-42.5, 7.237141132354736, -0.626362681388855],
+            [-41.25, 7.695054054260254, -0.4497853219509125],
+        ],
+        [
+            [-46.25, 5.8730878829956055, -1.1217660903930664],
+            [-45.0, 6.3970465660095215, -0.9491836428642273],
+            [-43.75, 6.915853023529053, -0.7745861411094666],
+            [-42.5, 7.427565097808838, -0.597557783126831],
+            [-41.25, 7.9300127029418945, -0.41785234212875366],
+        ],
+        [
+            [-46.25, 6.240304470062256, -1.1625694036483765],
+            [-45.0, 6.70394229888916, -0.9630659818649292],
+            [-43.75, 7.156001567840576, -0.7655293345451355],
+            [-42.5, 7.5984649658203125, -0.5706556439399719],
+            [-41.25, 8.033267974853516, -0.3787221610546112],
+        ],
+        [
+            [-46.25, 5.744942665100098, -0.926629364490509],
+            [-45.0, 6.25486421585083, -0.7574945688247681],
+            [-43.75, 6.762184143066406, -0.5873144865036011],
+            [-42.5, 7.265242576599121, -0.4154444932937622],
+            [-41.25, 7.761989593505859, -0.24136927723884583],
+        ],
+        [
+            [-46.25, 5.9406304359436035, -0.9287304282188416],
+            [-45.0, 6.403646945953369, -0.744124174118042],
+            [-43.75, 6.841299057006836, -0.5593869090080261],
+            [-42.5, 7.2556986808776855, -0.37683385610580444],
+            [-41.25, 7.649820327758789, -0.19836151599884033],
+        ],
+    ];
+    moved(&lines, 1.0, [0.0; 3])
+}
+
 /// The three streamlines of `three_streamlines_meeting_beside_a_bend_meet_eps`, scaled by `k`
 /// about the origin and moved by `o`, radius `0.12·k`.
 fn beside_a_bend(k: f64, o: [f64; 3]) -> Scene {

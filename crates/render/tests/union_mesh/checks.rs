@@ -323,6 +323,22 @@ fn onto_crease(a: &RoundCone<f64>, b: &RoundCone<f64>, mut x: P, steps: usize, d
     x
 }
 
+/// The point nearest `x` where the surfaces of three tubes meet (Newton on their three SDFs),
+/// with the direction `w` along which all three grow at unit rate (`gᵢ·w = 1`: out of each,
+/// down the channel between them); `None` where the normals are coplanar there.
+fn onto_channel(t: [&RoundCone<f64>; 3], mut x: P) -> Option<(P, P)> {
+    let solve = |x: P, f: [f64; 3]| {
+        let g = t.map(|t| num_grad(t, x));
+        let c = [g[1].cross(g[2]), g[2].cross(g[0]), g[0].cross(g[1])];
+        let det = g[0].dot(c[0]);
+        (det.abs() > 1e-12).then(|| (c[0] * f[0] + c[1] * f[1] + c[2] * f[2]) * (1.0 / det))
+    };
+    for _ in 0..30 {
+        x = x - solve(x, t.map(|t| t.sdf(x)))?;
+    }
+    Some((x, solve(x, [1.0; 3])?))
+}
+
 /// An upper bound on the distance from `p` to the union's surface, found by witnesses: points
 /// `q` outside the union (`sdf(q) ≥ 0`, checked with the brute-force union SDF), so that the
 /// distance is at most `|p − q|`. Outside the union that distance is `sdf(p)` itself (the
@@ -330,7 +346,8 @@ fn onto_crease(a: &RoundCone<f64>, b: &RoundCone<f64>, mut x: P, steps: usize, d
 /// depth in one tube) only bounds the true depth from **below** near a crease, the witnesses
 /// are: `p` moved out of each tube along its gradient (the nearest point of that tube's
 /// surface), the nearest crease point of each pair of tubes near `p` (Newton on both SDFs,
-/// then a push of `push` along the bisector of the two normals), and 4,000 directions at
+/// then a push of `push` along the bisector of the two normals), where none of those is within
+/// `d` the nearest point where three tubes meet (pushed along their channel), and 4,000 directions at
 /// distance `d` (the bound to check), the eight least inside of them climbed over the sphere
 /// where all are inside. Returns the least witness distance, or infinity when none within `d` is
 /// found.
@@ -361,6 +378,22 @@ pub fn depth_witness(tubes: &[RoundCone<f64>], p: P, d: f64) -> f64 {
             let n = ga + gb;
             if n.length() > 0.0 {
                 take(x + n * (push / n.length()));
+            }
+        }
+    }
+    // Where three tubes meet, the exterior nearest a point by their channel's closing point
+    // is the channel itself, a sliver whose walls' normals are nearly coplanar (thinner than
+    // the samples below can find): the closing point, then pushed along the channel.
+    if best.get() > d {
+        for (i, a) in near.iter().enumerate() {
+            for (j, b) in near.iter().enumerate().skip(i + 1) {
+                for c in &near[j + 1..] {
+                    if let Some((x, w)) = onto_channel([a, b, c], p) {
+                        for k in [1.0, 10.0, 100.0] {
+                            take(x + w * (k * push));
+                        }
+                    }
+                }
             }
         }
     }
