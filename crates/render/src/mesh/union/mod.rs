@@ -104,9 +104,11 @@ const GRAZING_SIN: f64 = 0.5;
 /// (partners' keys are chains and links, far below it).
 const POINT: u32 = u32::MAX;
 
-/// Directions graded about excesses per link at most (a link meets few junctions; a cost
-/// limit).
-const MAX_POINTS: usize = 4;
+/// Directions graded about excesses per link at most (a cost limit). A link meets few
+/// junctions, but while its rings are coarse one junction's excess spans several directions
+/// more than half a step apart: with four, links beside a channel closing by three
+/// streamlines' aligned ends had spent theirs by the second build and stayed 8·ε deep.
+const MAX_POINTS: usize = 16;
 
 /// Peak bytes per hull triangle (manifold's input): the hulls, the boolean's working set, the
 /// result and its certificate. Calibrated on the generator's 900-link neuron at ε = 10⁻²·r̄,
