@@ -73,7 +73,7 @@ pub(super) struct Body {
 }
 
 /// A unit vector perpendicular to the unit vector `d`.
-fn across(d: P) -> P {
+fn perpendicular(d: P) -> P {
     let helper = if d.x.abs() < 0.6 { V3::new(1.0, 0.0, 0.0) } else { V3::new(0.0, 1.0, 0.0) };
     unit(helper - d * helper.dot(d))
 }
@@ -265,7 +265,7 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], grading: Grading, ep
     let uniform = |n: u32| (0..n).map(|i| 2.0 * PI * i as f64 / n as f64).collect::<Vec<f64>>();
     let node_angles = |j: usize, f1: P, f2: P| graded(sizes[j], &focus[run.nodes[j]], f1, f2, eps / r, eps / r);
     let d0 = dirs[0];
-    let mut e1 = across(d0);
+    let mut e1 = perpendicular(d0);
     let lat = |n: u32| -> Vec<f64> {
         let k = latitudes(n);
         (1..k).map(|j| FRAC_PI_2 * j as f64 / k as f64).collect()
@@ -572,7 +572,7 @@ pub(super) fn body(run: &Run, centres: &[P], sizes: &[u32], grading: Grading, ep
         let band = if b == START_FAN || b == END_FAN { None } else { link_band(b) };
         let d = if let Some(l) = band {
             let (o, d) = (pts[l], dirs[l]);
-            let g1 = across(d);
+            let g1 = perpendicular(d);
             let g2 = d.cross(g1);
             dist_2d_triangle(corners.map(|v| [(v - o).dot(g1), (v - o).dot(g2)]))
         } else {
