@@ -66,7 +66,7 @@ pub fn mesh(a: &MeshArgs) -> Result<(), CliError> {
     if m.mesh.certified > a.tolerance || m.mesh.certified.is_nan() {
         let why = match &report {
             Some(r) => format!(
-                "{} triangles at creases too narrow for the resolution tried (least sin(β/2) {:.2e}: tubes overlapping at a narrow angle, where the bound is the sagitta over sin(β/2); see docs/design/union-mesh.md)",
+                "{} triangles where tubes meet stay over it (at a narrow crease the bound is the sagitta over sin(β/2), least {:.2e} in this mesh; where three tubes meet, their channel magnifies it; see docs/design/union-mesh.md)",
                 r.outside, r.min_sin_half
             ),
             None => "see docs/design/union-mesh.md".to_string(),
