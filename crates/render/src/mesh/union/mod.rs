@@ -105,10 +105,14 @@ const GRAZING_SIN: f64 = 0.5;
 const POINT: u32 = u32::MAX;
 
 /// Directions graded about excesses per link at most (a cost limit). A link meets few
-/// junctions, but while its rings are coarse one junction's excess spans several directions
+/// junctions, but while its rings are coarse one junction's excess spans many directions
 /// more than half a step apart: with four, links beside a channel closing by three
-/// streamlines' aligned ends had spent theirs by the second build and stayed 8·ε deep.
-const MAX_POINTS: usize = 16;
+/// streamlines' aligned ends had spent theirs by the second build and stayed 8·ε deep; with
+/// sixteen, the first links of streamlines starting side by side spent theirs by the third
+/// build on one channel's few hundred triangles and ended just over ε. Each direction costs
+/// its grading's ramp (about `base/fine` angles) on the link's two rings, only where an
+/// excess asked for it.
+const MAX_POINTS: usize = 64;
 
 /// Peak bytes per hull triangle (manifold's input): the hulls, the boolean's working set, the
 /// result and its certificate. Calibrated on the generator's 900-link neuron at ε = 10⁻²·r̄,
