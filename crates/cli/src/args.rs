@@ -455,9 +455,14 @@ pub struct MeshArgs {
     pub shells: bool,
     /// Union: mesh each stretch of a chain with one radius (a streamline) as one body of
     /// mitred rings instead of a hull per link: fewer triangles on tractograms at the same
-    /// tolerance; slower to certify where streamlines nearly coincide.
-    #[arg(long, conflicts_with_all = ["shells", "splines"])]
+    /// tolerance; slower to certify where streamlines nearly coincide. The default where at
+    /// least half the links lie on such stretches of four links or more.
+    #[arg(long, conflicts_with_all = ["shells", "splines", "hulls"])]
     pub runs: bool,
+    /// Union: a hull of the two end spheres per link, whatever the chains (the default
+    /// where fewer than half the links lie on equal-radius stretches of four links or more).
+    #[arg(long, conflicts_with_all = ["shells", "splines"])]
+    pub hulls: bool,
     /// Print the summary as one JSON object.
     #[arg(long)]
     pub json: bool,

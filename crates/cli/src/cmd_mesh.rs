@@ -4,7 +4,7 @@
 use crate::args::MeshArgs;
 use crate::error::CliError;
 use tubecast_render::accel::{Bvh, Tracer};
-use tubecast_render::mesh::{export, tessellate, tessellate_union_with, MeshTracer, UnionOptions, UnionReport};
+use tubecast_render::mesh::{export, tessellate, tessellate_union_with, Bodies, MeshTracer, UnionOptions, UnionReport};
 use tubecast_render::scene::{Model, Prim, Scene};
 
 /// The tracer for `render`: the exact BVH, or with `tolerance` the certified mesh of the
@@ -32,11 +32,16 @@ pub fn mesh(a: &MeshArgs) -> Result<(), CliError> {
     // The union is refused before it is built when its estimated peak exceeds --memory-limit
     // or, without it, the memory available.
     let memory_limit = a.select.memory_limit.or_else(|| tubecast_render::estimate::available().map(|(b, _)| b));
+    let bodies = match (a.runs, a.hulls) {
+        (true, _) => Bodies::Runs,
+        (_, true) => Bodies::Hulls,
+        _ => Bodies::Auto,
+    };
     let (m, report) = crate::setup::with_threads(a.run.threads, || -> Result<_, CliError> {
         Ok(if shells {
             (tessellate(&scene, model, a.tolerance)?, None)
         } else {
-            let (m, r) = tessellate_union_with(&scene, a.tolerance, &UnionOptions { memory_limit, runs: a.runs })?;
+            let (m, r) = tessellate_union_with(&scene, a.tolerance, &UnionOptions { memory_limit, bodies })?;
             (m, Some(r))
         })
     })??;

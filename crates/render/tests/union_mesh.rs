@@ -12,7 +12,7 @@ mod trees;
 use checks::{sdf, tubes, P};
 use tubecast::V3;
 use tubecast_render::io::Polyline;
-use tubecast_render::mesh::{tessellate_union, tessellate_union_with, SceneMesh, UnionOptions, UnionReport};
+use tubecast_render::mesh::{tessellate_union, tessellate_union_with, Bodies, SceneMesh, UnionOptions, UnionReport};
 use tubecast_render::scene::Scene;
 
 /// Every check on one scene; returns the mesh and report for case-specific assertions.
@@ -25,7 +25,7 @@ use tubecast_render::scene::Scene;
 /// least depth in one tube, which is smaller), and every sampled point of the union's surface
 /// (crease points included) is within the bound of the mesh.
 fn check(scene: &Scene, eps: f64, bound_holds: bool) -> (SceneMesh, UnionReport) {
-    check_with(scene, eps, bound_holds, &UnionOptions::default())
+    check_with(scene, eps, bound_holds, &HULLS)
 }
 
 /// [`check`] with the union's options (the runs' bodies).
@@ -96,7 +96,7 @@ fn disjoint_tubes_are_separate_components() {
         "t",
     )
     .unwrap();
-    for opts in [UnionOptions::default(), RUNS] {
+    for opts in [HULLS, RUNS] {
         let (m, _) = check_with(&s, 2e-2, true, &opts);
         assert_eq!(checks::components(&m), 2);
         assert_eq!(m.mesh.parts.len(), 2);
@@ -113,14 +113,17 @@ fn bifurcations_and_crossings() {
         line(&[[1.0, -2.0, 0.2], [1.2, 2.0, -0.1]], &[0.25, 0.35]),
     ];
     let s = Scene::from_polylines(&lines, 0.5, "t").unwrap();
-    for opts in [UnionOptions::default(), RUNS] {
+    for opts in [HULLS, RUNS] {
         let (m, _) = check_with(&s, 1e-2, true, &opts);
         assert_eq!(checks::components(&m), 1);
     }
 }
 
-/// The union with the runs' bodies (`UnionOptions::runs`).
-const RUNS: UnionOptions = UnionOptions { memory_limit: None, runs: true };
+/// The union with the runs' bodies, whatever the chains.
+const RUNS: UnionOptions = UnionOptions { memory_limit: None, bodies: Bodies::Runs };
+
+/// The hulls per link, whatever the chains.
+const HULLS: UnionOptions = UnionOptions { memory_limit: None, bodies: Bodies::Hulls };
 
 /// The union has fewer triangles than the per-chain shells (the kernel's
 /// `tessellate_chain_solid`, an independent construction) at the same ε.

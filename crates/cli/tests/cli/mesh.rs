@@ -148,6 +148,33 @@ fn mesh_writes_the_union_by_default_and_shells_on_request() {
     assert!(s["union"].is_null());
 }
 
+/// The union's bodies: three of the generator's Bundle fibres (twelve gently bending links each,
+/// one radius) are meshed as runs by default and as hulls with `--hulls`; a tree whose radii change at every node (above) gets hulls by
+/// default. Both are certified within the tolerance.
+#[test]
+fn mesh_chooses_runs_for_long_streamlines_and_hulls_on_request() {
+    let tck = tmp("union_runs.tck");
+    let gen = ["generate", "bundle", "--count", "3", "--segments", "12", "--force", "-o"];
+    assert!(bin().args(gen).arg(&tck).status().unwrap().success());
+    let ply = tmp("union_runs.ply");
+    let json = |args: &[&str]| -> serde_json::Value {
+        let run = bin().arg("mesh").arg(&tck).args(args).args(["--json", "--force", "-o"]).arg(&ply).output().unwrap();
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        serde_json::from_slice(&run.stdout).unwrap()
+    };
+    let auto = json(&["--tolerance", "1.2e-3", "--radius", "0.12"]);
+    let hulls = json(&["--tolerance", "1.2e-3", "--radius", "0.12", "--hulls"]);
+    assert!(auto["union"]["runs"].as_u64().unwrap() >= 1, "{auto}");
+    assert_eq!(hulls["union"]["runs"], 0, "{hulls}");
+    assert_eq!(auto["closed_parts"], hulls["closed_parts"]);
+    for j in [&auto, &hulls] {
+        assert!(j["certified"].as_f64().unwrap() <= 1.2e-3, "{j}");
+    }
+    let both = bin().arg("mesh").arg(&tck).args(["--tolerance", "1e-3", "--runs", "--hulls", "-o"]).arg(&ply).output();
+    let err = String::from_utf8_lossy(&both.unwrap().stderr).to_string();
+    assert!(err.contains("--hulls") && err.contains("cannot be used"), "{err}");
+}
+
 /// A union too large for `--memory-limit` is refused before it is built, naming the estimate
 /// and what lowers it.
 #[test]

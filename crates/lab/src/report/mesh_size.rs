@@ -1,8 +1,9 @@
 //! Model size against certified error, per representation, on the real-world-like scenes of
 //! `mesh_real.md`: the links as they are (exact), the simplified link model (`scene::choice`),
 //! the per-chain shells (`mesh::tessellate`, Salm-style: overlapping closed shells composited
-//! through a depth buffer) and the surface of the union (`mesh::tessellate_union`, what
-//! `tubecast mesh` writes, and with `UnionOptions::runs`, what `tubecast mesh --runs` writes),
+//! through a depth buffer) and the surface of the union (`mesh::tessellate_union_with`, with
+//! `Bodies::Hulls` what `tubecast mesh --hulls` writes, with `Bodies::Runs` what `tubecast mesh
+//! --runs` writes; `tubecast mesh` writes one of them, chosen by the scene),
 //! at ε = k·r̄ (r̄ the mean node radius).
 //!
 //! A mesh is built where its estimated triangle count is within the run's cap; above it the
@@ -17,7 +18,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use tubecast::V3;
 use tubecast_render::accel::Bvh;
-use tubecast_render::mesh::{export, tessellate, tessellate_union_with, MeshError, SceneMesh, UnionOptions};
+use tubecast_render::mesh::{export, tessellate, tessellate_union_with, Bodies, MeshError, SceneMesh, UnionOptions};
 use tubecast_render::scene::choice::{choose_with, Tolerance};
 use tubecast_render::scene::{Model, Scene};
 
@@ -98,12 +99,12 @@ fn lateral_area(scene: &Scene) -> f64 {
         .sum()
 }
 
-/// The union mesh's size estimated from a contiguous run of `n` links from the middle of the
-/// scene, meshed for real at `eps`: its triangles per unit of lateral area, scaled to the
-/// scene's lateral area (the union's spheres are resolved per node radius at the same ε, so
-/// the density carries over between runs of similar radii). High where the scene's chains are
-/// longer than the sample: the sample's two end caps (half a node sphere each) are spread over
-/// its few links.
+/// The union mesh's size (the hulls', [`Bodies::Hulls`]) estimated from a contiguous run of
+/// `n` links from the middle of the scene, meshed for real at `eps`: its triangles per unit
+/// of lateral area, scaled to the scene's lateral area (the union's spheres are resolved per
+/// node radius at the same ε, so the density carries over between runs of similar radii).
+/// High where the scene's chains are longer than the sample: the sample's two end caps (half
+/// a node sphere each) are spread over its few links.
 pub fn union_estimate(scene: &Scene, eps: f64, n: usize) -> Result<f64, ReportError> {
     let n = n.min(scene.links.len());
     if n == 0 {
@@ -119,7 +120,7 @@ pub fn union_estimate(scene: &Scene, eps: f64, n: usize) -> Result<f64, ReportEr
     // Under the same memory limit as the rows built: a sample whose refinements would not fit
     // keeps its last mesh; one whose first union would not fit has no estimate (infinite: the
     // row is left out).
-    let opts = UnionOptions { memory_limit: Some(UNION_MEMORY_LIMIT), ..Default::default() };
+    let opts = UnionOptions { memory_limit: Some(UNION_MEMORY_LIMIT), bodies: Bodies::Hulls };
     let m = match tessellate_union_with(&part, eps, &opts) {
         Ok((m, _)) => m,
         Err(MeshError::Memory { .. }) => return Ok(f64::INFINITY),
@@ -215,7 +216,7 @@ pub fn measure_sizes(
             estimated_row(name, KINDS[2], k, r, est)
         });
         let est = pool.install(|| union_estimate(scene, eps, UNION_SAMPLE_LINKS))?;
-        let opts = UnionOptions { memory_limit: Some(UNION_MEMORY_LIMIT), ..Default::default() };
+        let opts = UnionOptions { memory_limit: Some(UNION_MEMORY_LIMIT), bodies: Bodies::Hulls };
         let built = if est <= union_cap {
             match pool.install(|| tessellate_union_with(scene, eps, &opts)) {
                 Ok((m, _)) => Some(m),
@@ -235,7 +236,7 @@ pub fn measure_sizes(
         // estimate is within the union's cap, and has no row elsewhere.
         let shells = rows.iter().rev().find(|x| x.kind == KINDS[2]).map_or(f64::INFINITY, |x| x.triangles);
         if est.min(shells) <= union_cap {
-            let opts = UnionOptions { runs: true, ..opts };
+            let opts = UnionOptions { bodies: Bodies::Runs, ..opts };
             match pool.install(|| tessellate_union_with(scene, eps, &opts)) {
                 Ok((m, _)) => rows.push(mesh_row(name, KINDS[4], k, r, &m)),
                 Err(MeshError::Memory { .. }) => {}
@@ -348,8 +349,8 @@ pub fn run_mesh_size(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Re
          simplified link model (`scene::choice`: merged links, spheres, cylinders, cones within ε), the per-chain \
          **shells** (`tubecast mesh --shells`: one closed shell per chain and split joint, overlapping where chains \
          meet, each certified against its own chain; Salm-style, for renderers that composite through a depth \
-         buffer) and the **union** (`tubecast mesh`: one closed, embedded surface per component, certified against \
-         the union's exact surface). Bytes: meshes as the binary PLY `tubecast mesh` writes (12 per vertex, 13 per \
+         buffer) and the **union** (`tubecast mesh --hulls`: one closed, embedded surface per component, certified \
+         against the union's exact surface). Bytes: meshes as the binary PLY `tubecast mesh` writes (12 per vertex, 13 per \
          triangle), link models as primitives + BVH in memory. Certified error: the representation's two-sided \
          Hausdorff bound (absolute). A mesh is built where its estimated triangle count is at most {:.0e} \
          (union: {:.0e}, and its own memory estimate within {:.1} GB); above it the row is the estimate (`est.`: \
@@ -362,7 +363,9 @@ pub fn run_mesh_size(out: &Path, opts: &ReportOptions) -> Result<ReportFiles, Re
          (`docs/design/union-mesh.md`); **union, runs** (`tubecast mesh --runs`) the same union with each \
          equal-radius stretch of a chain meshed as one body of mitred rings, graded towards grazing tubes, \
          built where the union's or the shells' estimate is within the union's cap (no estimate otherwise: \
-         its size depends on how many streamlines graze). \
+         its size depends on how many streamlines graze). `tubecast mesh` without either flag builds the runs \
+         where at least half the links lie on runs of four links or more (here the Bundle), the hulls \
+         otherwise. \
          Chart: bytes against certified error / r̄, one colour per representation, one marker per scene.\n\n",
         names.join(", "),
         cap,

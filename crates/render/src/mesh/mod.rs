@@ -15,7 +15,7 @@ mod union;
 
 pub use tracer::MeshTracer;
 pub use union::{
-    tessellate_union, tessellate_union_with, UnionOptions, UnionReport, UNION_BASE_BYTES,
+    tessellate_union, tessellate_union_with, Bodies, UnionOptions, UnionReport, UNION_BASE_BYTES,
     UNION_BYTES_PER_BODY_TRIANGLE, UNION_BYTES_PER_HULL_TRIANGLE,
 };
 

@@ -1,6 +1,7 @@
 //! The surface of the union of a scene's links, built with manifold (the pure-Rust port
 //! `manifold-rust`): every node sphere an inscribed polyhedron, every link the convex hull of
-//! its two end polyhedra, all links united by manifold's booleans, by halves in space
+//! its two end polyhedra (or, where the chains are streamlines, each run of a chain one body of
+//! mitred rings, `piece.rs`: [`Bodies`]), all united by manifold's booleans, by halves in space
 //! (`hull.rs`); the result is one closed, oriented 2-manifold per component (manifold's
 //! guarantee, checked by the tests), measured triangle by triangle against the exact round
 //! cones (`certify.rs`), with a certified two-sided Hausdorff bound to the union's exact
@@ -71,12 +72,71 @@ pub struct UnionOptions {
     /// Refuse, before building, a union whose estimated peak memory exceeds this many bytes
     /// (`None`: no limit).
     pub memory_limit: Option<u64>,
-    /// Mesh each stretch of a chain with one radius (a streamline) as one body of mitred
-    /// rings before the union, instead of a hull per link (`docs/design/union-mesh.md`,
-    /// "Runs"): fewer triangles on tractograms at the same ε; slower to certify where
-    /// streamlines nearly coincide.
-    pub runs: bool,
+    /// The bodies united: hulls per link, runs per streamline, or chosen by the scene.
+    pub bodies: Bodies,
 }
+
+/// The bodies manifold unites (`docs/design/union-mesh.md`, "Construction"). Both are
+/// inscribed in the exact union and certified the same way; they differ in size and in
+/// where they reach ε.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Bodies {
+    /// Runs where at least half of the scene's links lie on runs of several links
+    /// ([`Bodies::chosen`]: streamlines), hulls otherwise (neurons, piles of short chains).
+    #[default]
+    Auto,
+    /// The convex hull of a link's two sphere polyhedra, per link: fewest triangles where
+    /// chains are a link or two long, but a grazing crease between two tubes needs a sagitta
+    /// of about `ε²/(2r)` all over their spheres, so bundles of nearly parallel streamlines
+    /// can stay over ε within the builds' budget.
+    Hulls,
+    /// Each stretch of a chain with one radius (a streamline) as one body of mitred rings,
+    /// graded towards grazing tubes (`docs/design/union-mesh.md`, "Runs"): fewer triangles on
+    /// long streamlines at the same ε, and ε reached where they graze; more than the hulls,
+    /// and slower to certify, on piles of short streamlines.
+    Runs,
+}
+
+impl Bodies {
+    /// Whether runs are meshed for `scene` at tolerance `eps`: [`Bodies::Runs`], or
+    /// [`Bodies::Auto`] where at least half of the scene's links lie on runs of at least
+    /// `AUTO_RUN_LINKS` links (equal-radius stretches of a chain, cut where a joint bends
+    /// too sharply to be mitred at `eps`).
+    ///
+    /// ```
+    /// use tubecast_render::io::Polyline;
+    /// use tubecast_render::mesh::Bodies;
+    /// use tubecast_render::scene::Scene;
+    /// let long = Polyline { points: (0..9).map(|i| [i as f64, 0.0, 0.0]).collect(), radii: vec![] };
+    /// let short = Polyline { points: vec![[0.0; 3], [1.0, 0.0, 0.0]], radii: vec![] };
+    /// let tract = Scene::from_polylines(&[long], 0.1, "t").unwrap();
+    /// let pile = Scene::from_polylines(&[short.clone(), short], 0.1, "t").unwrap();
+    /// assert!(Bodies::Auto.chosen(&tract, 1e-3) && !Bodies::Auto.chosen(&pile, 1e-3));
+    /// assert!(Bodies::Runs.chosen(&pile, 1e-3) && !Bodies::Hulls.chosen(&tract, 1e-3));
+    /// ```
+    pub fn chosen(self, scene: &Scene, eps: f64) -> bool {
+        match self {
+            Bodies::Hulls => false,
+            Bodies::Runs => true,
+            Bodies::Auto => {
+                let n = scene.nodes.len();
+                let centres: Vec<P> = scene.nodes.iter().map(|x| V3::from(x.pos)).collect();
+                let radii: Vec<f64> = (0..n).map(|i| scene.radius(i)).collect();
+                let target = vec![FIRST_SAGITTA * eps; n];
+                let long: usize = piece::runs(&scene.chains(), &centres, &radii, &target)
+                    .iter()
+                    .map(|run| run.links.len())
+                    .filter(|&k| k >= AUTO_RUN_LINKS)
+                    .sum();
+                !scene.links.is_empty() && 2 * long >= scene.links.len()
+            }
+        }
+    }
+}
+
+/// The least run that counts towards runs in [`Bodies::Auto`]: a run's two caps cost about
+/// as much as a hull's two spheres, and its rings pay only along several links.
+const AUTO_RUN_LINKS: usize = 4;
 
 /// Builds made at most (the first, then refinements where the bound exceeds ε; the larger
 /// neuron assemblies need a fourth, `docs/design/union-mesh.md`, "Size and cost").
@@ -120,7 +180,7 @@ const MAX_POINTS: usize = 64;
 /// margin (`docs/design/union-mesh.md`, "Memory guard").
 pub const UNION_BYTES_PER_HULL_TRIANGLE: f64 = 250.0;
 
-/// Peak bytes per triangle of a run's body (manifold's input with `UnionOptions::runs`): the
+/// Peak bytes per triangle of a run's body (manifold's input with `Bodies::Runs`): the
 /// bodies' triangles are mostly kept (long streamlines overlap little), so the result and its
 /// certificate weigh more per input triangle than the hulls'. Calibrated on the Bundles with
 /// runs, whose peak resident memory was 890–1,160 bytes per body triangle of the last build
@@ -182,8 +242,9 @@ pub fn tessellate_union_with(
     let n = scene.nodes.len();
     let centres: Vec<P> = scene.nodes.iter().map(|x| V3::from(x.pos)).collect();
     let radii: Vec<f64> = (0..n).map(|i| scene.radius(i)).collect();
+    let runs = options.bodies.chosen(scene, eps);
     // Only the runs need the chains.
-    let chains = if options.runs { scene.chains() } else { Vec::new() };
+    let chains = if runs { scene.chains() } else { Vec::new() };
     let mut spheres = hull::Spheres::default();
     // Sagitta targets per node (only the links' nodes matter).
     let mut target = vec![FIRST_SAGITTA * eps; n];
@@ -206,7 +267,7 @@ pub fn tessellate_union_with(
     for (c, chain) in chains.iter().enumerate() {
         chain.links.iter().for_each(|&l| partner[l as usize] = c as u32);
     }
-    if options.runs {
+    if runs {
         let mut run_link = vec![false; pairs.len()];
         for run in piece::runs(&chains, &centres, &radii, &target) {
             run.links.iter().for_each(|&l| run_link[l as usize] = true);
@@ -214,9 +275,9 @@ pub fn tessellate_union_with(
         pregrade(&tubes, &pairs, &run_link, &partner, &mut focus, &mut graded_in, &mut stations);
     }
     let mut best: Option<(hull::Built, UnionReport)> = None;
-    let most = if options.runs { RUN_TRIES } else { TRIES };
+    let most = if runs { RUN_TRIES } else { TRIES };
     for tries in 1..=most {
-        let bodies = if options.runs {
+        let bodies = if runs {
             bodies(
                 &chains,
                 &centres,
