@@ -191,7 +191,7 @@ pub const UNION_BYTES_PER_BODY_TRIANGLE: f64 = 1400.0;
 pub const UNION_BASE_BYTES: f64 = 64e6;
 
 /// Meshes the surface of the union of the scene's links within `eps` (absolute, scene units),
-/// both ways. The mesh's [`Mesh::certified`] is [`UnionReport::certified`]; it is at most `eps`
+/// both ways, from the bodies [`Bodies::Auto`] chooses for the scene. The mesh's [`Mesh::certified`] is [`UnionReport::certified`]; it is at most `eps`
 /// unless the report says otherwise (tubes tangent or nearly tangent: see
 /// [`UnionReport::outside`]).
 ///
@@ -214,8 +214,9 @@ pub fn tessellate_union(scene: &Scene, eps: f64) -> Result<(SceneMesh, UnionRepo
     tessellate_union_with(scene, eps, &UnionOptions::default())
 }
 
-/// [`tessellate_union`] with a memory limit: a union whose estimated peak exceeds
-/// `options.memory_limit` is refused before it is built ([`MeshError::Memory`]).
+/// [`tessellate_union`] with options: the bodies ([`Bodies`]), and a memory limit: a union
+/// whose estimated peak exceeds `options.memory_limit` is refused before it is built
+/// ([`MeshError::Memory`]).
 ///
 /// ```
 /// use tubecast_render::io::Polyline;
