@@ -149,8 +149,9 @@ fn mesh_writes_the_union_by_default_and_shells_on_request() {
 }
 
 /// The union's bodies: three of the generator's Bundle fibres (twelve gently bending links each,
-/// one radius) are meshed as runs by default and as hulls with `--hulls`; a tree whose radii change at every node (above) gets hulls by
-/// default. Both are certified within the tolerance.
+/// one radius) are meshed as runs by default and as hulls with `--hulls` (a tree whose radii
+/// change at every node gets hulls by default: above). Both are certified within the
+/// tolerance.
 #[test]
 fn mesh_chooses_runs_for_long_streamlines_and_hulls_on_request() {
     let tck = tmp("union_runs.tck");

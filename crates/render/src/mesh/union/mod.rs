@@ -123,15 +123,17 @@ impl Bodies {
                 let centres: Vec<P> = scene.nodes.iter().map(|x| V3::from(x.pos)).collect();
                 let radii: Vec<f64> = (0..n).map(|i| scene.radius(i)).collect();
                 let target = vec![FIRST_SAGITTA * eps; n];
-                let long: usize = piece::runs(&scene.chains(), &centres, &radii, &target)
-                    .iter()
-                    .map(|run| run.links.len())
-                    .filter(|&k| k >= AUTO_RUN_LINKS)
-                    .sum();
-                !scene.links.is_empty() && 2 * long >= scene.links.len()
+                runs_pay(&piece::runs(&scene.chains(), &centres, &radii, &target), scene.links.len())
             }
         }
     }
+}
+
+/// [`Bodies::Auto`]'s rule on the runs at the first sagitta target: at least half of the
+/// scene's `links` lie on runs of at least `AUTO_RUN_LINKS` links.
+fn runs_pay(runs: &[piece::Run], links: usize) -> bool {
+    let long: usize = runs.iter().map(|run| run.links.len()).filter(|&k| k >= AUTO_RUN_LINKS).sum();
+    links > 0 && 2 * long >= links
 }
 
 /// The least run that counts towards runs in [`Bodies::Auto`]: a run's two caps cost about
@@ -191,9 +193,9 @@ pub const UNION_BYTES_PER_BODY_TRIANGLE: f64 = 1400.0;
 pub const UNION_BASE_BYTES: f64 = 64e6;
 
 /// Meshes the surface of the union of the scene's links within `eps` (absolute, scene units),
-/// both ways, from the bodies [`Bodies::Auto`] chooses for the scene. The mesh's [`Mesh::certified`] is [`UnionReport::certified`]; it is at most `eps`
-/// unless the report says otherwise (tubes tangent or nearly tangent: see
-/// [`UnionReport::outside`]).
+/// both ways, from the bodies [`Bodies::Auto`] chooses for the scene. The mesh's
+/// [`Mesh::certified`] is [`UnionReport::certified`]; it is at most `eps` unless the report
+/// says otherwise (tubes tangent or nearly tangent: see [`UnionReport::outside`]).
 ///
 /// Errors: a tolerance that is not a positive number, a node that is not finite or has radius
 /// 0 (the union's certificate needs a ball inside every point of the surface: raise such radii
@@ -243,12 +245,21 @@ pub fn tessellate_union_with(
     let n = scene.nodes.len();
     let centres: Vec<P> = scene.nodes.iter().map(|x| V3::from(x.pos)).collect();
     let radii: Vec<f64> = (0..n).map(|i| scene.radius(i)).collect();
-    let runs = options.bodies.chosen(scene, eps);
-    // Only the runs need the chains.
-    let chains = if runs { scene.chains() } else { Vec::new() };
-    let mut spheres = hull::Spheres::default();
     // Sagitta targets per node (only the links' nodes matter).
     let mut target = vec![FIRST_SAGITTA * eps; n];
+    // The runs at the first targets decide `Bodies::Auto` (as `Bodies::chosen`) and are the
+    // ones pregraded below; only the runs need the chains.
+    let mut chains = if options.bodies == Bodies::Hulls { Vec::new() } else { scene.chains() };
+    let first_runs = piece::runs(&chains, &centres, &radii, &target);
+    let runs = match options.bodies {
+        Bodies::Hulls => false,
+        Bodies::Runs => true,
+        Bodies::Auto => runs_pay(&first_runs, scene.links.len()),
+    };
+    if !runs {
+        chains.clear();
+    }
+    let mut spheres = hull::Spheres::default();
     // Directions about which a node's ring is graded finer (runs only: `piece::graded`).
     let mut focus: Vec<Vec<Focus>> = vec![Vec::new(); n];
     // The build in which each (node, partner, link) focus was added: one focus per link and
@@ -270,7 +281,7 @@ pub fn tessellate_union_with(
     }
     if runs {
         let mut run_link = vec![false; pairs.len()];
-        for run in piece::runs(&chains, &centres, &radii, &target) {
+        for run in &first_runs {
             run.links.iter().for_each(|&l| run_link[l as usize] = true);
         }
         pregrade(&tubes, &pairs, &run_link, &partner, &mut focus, &mut graded_in, &mut stations);
